@@ -1,0 +1,83 @@
+// Per-player economy: coins, prices, upgrades, lives. Integers with saturating arithmetic:
+// coins and prices live in [0, cfg.coin_cap] (default 10^15, exact in a double), the
+// multiplier in (0, cfg.multiplier_cap]; speeds, masses and lives have caps too. Nothing
+// here overflows, goes negative or becomes NaN, whatever the number of levels or buys.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "fts/sim/config.hpp"
+
+namespace fts::sim {
+
+using Coins = std::int64_t;
+
+enum class Item : std::uint8_t { mass, speed, accel, rockets, life, multiplier, bank };
+inline constexpr Item kAllItems[] = {Item::mass, Item::speed,      Item::accel, Item::rockets,
+                                     Item::life, Item::multiplier, Item::bank};
+
+// "mass", "speed", ... and the shop keys "m", "s", "a", "r", "l", "x", "b".
+std::optional<Item> parse_item(std::string_view s);
+std::string_view to_string(Item item);
+char shop_key(Item item);
+
+enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item };
+std::string_view to_string(Refusal r);
+
+struct Prices {
+  Coins mass = 0, speed = 0, accel = 0, rockets = 0, bank = 0;
+  double life = 0.0;        // grows by x1.015 per level: fractional; charged floor(life)
+  double multiplier = 0.0;  // grows by x1.5 without a floor: charged floor(multiplier)
+};
+
+struct Economy {
+  Coins coins = 0;
+  std::int64_t lives = 0;
+  std::int64_t mass = 0;
+  double vmax_u_per_s = 0.0;
+  double accel_u_per_s2 = 0.0;
+  double multiplier = 1.0;
+  bool bank = false;
+  bool rockets = false;
+  Prices prices;
+  // Bookkeeping: coins == start + earned_defeats + earned_interest - spent, always.
+  Coins start_coins = 0;
+  Coins earned_defeats = 0;
+  Coins earned_interest = 0;
+  Coins spent = 0;
+  std::int64_t purchases = 0;
+  std::int64_t defeats = 0;
+};
+
+struct Purchase {
+  Item item = Item::mass;
+  bool ok = false;
+  Refusal reason = Refusal::none;
+  Coins price = 0;
+  Coins coins_after = 0;
+};
+
+// a + b clamped to [0, cap] (a, b >= 0).
+Coins sat_add(Coins a, Coins b, Coins cap);
+// floor(a * f) clamped to [0, cap] (a >= 0, f >= 0 finite).
+Coins floor_mul(Coins a, double f, Coins cap);
+// floor(x) clamped to [0, cap].
+Coins floor_clamp(double x, Coins cap);
+
+Economy start_economy(const MatchConfig& cfg);
+// The price charged now for `item` (an integer number of coins).
+Coins price_of(const Economy& e, Item item);
+// Buys `item` after level `level` was completed; a refusal changes nothing.
+Purchase buy(Economy& e, Item item, std::int64_t level, const MatchConfig& cfg);
+// Coins for defeating an enemy: floor(mass x multiplier) + L + 5, and floor(mass x
+// multiplier) again on a boss level.
+Coins defeat_reward(double enemy_mass, double multiplier, std::int64_t level, bool boss,
+                    const MatchConfig& cfg);
+// Credits a defeat reward; returns the coins actually added (saturated).
+Coins earn_defeat(Economy& e, Coins reward, const MatchConfig& cfg);
+// End of a level: bank interest, multiplier x1.02, life price x1.015.
+void complete_level(Economy& e, const MatchConfig& cfg);
+
+}  // namespace fts::sim

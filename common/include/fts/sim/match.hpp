@@ -1,0 +1,135 @@
+// One match of the game as a pure function stepped at fixed ticks:
+// events = step(state, inputs). No clock, no I/O; one Rng owned by the state; every
+// container is iterated by id. Phases: lobby -> playing -> shop -> playing ... ->
+// game_over; "play again" starts a new match at level 1.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fts/sim/config.hpp"
+#include "fts/sim/economy.hpp"
+#include "fts/sim/level.hpp"
+#include "fts/sim/physics.hpp"
+#include "fts/sim/rng.hpp"
+
+namespace fts::sim {
+
+using PlayerId = std::uint32_t;  // chosen by the caller (the server's session slot); 0 is null
+
+enum class Phase : std::uint8_t { lobby, playing, shop, game_over };
+std::string_view to_string(Phase p);
+
+// What a player holds down during one tick.
+struct PlayerInput {
+  std::int8_t move_x = 0;  // -1, 0, +1
+  std::int8_t move_y = 0;  // -1, 0, +1 (y grows up)
+  bool fire = false;
+};
+
+enum class CommandKind : std::uint8_t { buy, ready, play_again };
+struct Command {
+  CommandKind kind = CommandKind::ready;
+  std::string item;  // buy only: "mass" or "m", ...; anything else is refused as unknown_item
+};
+
+struct PlayerTick {
+  PlayerId player = 0;
+  PlayerInput input;
+  std::vector<Command> commands;  // applied in order
+};
+struct JoinRequest {
+  PlayerId player = 0;
+  std::string name;
+};
+// Everything that reaches the match for one tick. Applied in player-id order.
+struct TickInputs {
+  std::vector<JoinRequest> joins;
+  std::vector<PlayerId> leaves;
+  std::vector<PlayerTick> players;
+};
+
+enum class EventKind : std::uint8_t {
+  joined, join_refused, left, level_started, enemy_defeated, player_fell, player_respawned,
+  level_complete, purchase, rocket_fired, game_over,
+};
+std::string_view to_string(EventKind k);
+
+struct Event {
+  EventKind kind = EventKind::joined;
+  PlayerId player = 0;         // 0: nobody (an untouched enemy fell)
+  BallId ball = 0;             // the enemy, the rocket, the player's ball
+  std::int64_t level = 0;
+  Coins coins = 0;             // enemy_defeated: coins earned
+  std::int64_t lives_left = 0; // player_fell
+  bool restart = false;        // level_started: the same level again after everyone fell
+  Item item = Item::mass;      // purchase
+  bool ok = false;             // purchase
+  Refusal reason = Refusal::none;
+  Coins price = 0;
+  Coins coins_after = 0;
+  std::string text;            // joined: name; join_refused: reason; purchase: the item as asked
+};
+
+enum class BodyKind : std::uint8_t { enemy, player, rocket };
+std::string_view to_string(BodyKind k);
+
+// Game data of a ball; its physics lives in World.
+struct Body {
+  BodyKind kind = BodyKind::enemy;
+  PlayerId owner = 0;          // player / rocket
+  std::int64_t index = 0;      // enemy index within the level
+  EnemySpec spec;              // enemy
+  Vec2 goal;                   // enemy
+  PlayerId credit = 0;         // enemy: last toucher (directly or through a chain)
+  std::int64_t credit_tick = -1;  // tick of that player's originating hit
+  std::int64_t expires_tick = 0;  // rocket
+  std::int8_t thrust_x = 0, thrust_y = 0;  // thrust applied this tick (friction exemption)
+};
+
+struct Player {
+  PlayerId id = 0;
+  std::string name;
+  Economy eco;
+  bool ready = false;
+  BallId ball = 0;                 // 0: not on the platform
+  std::int64_t respawn_tick = -1;  // >= 0: put back on the platform at that tick
+  std::int64_t next_fire_tick = 0;
+  Vec2 aim{1.0, 0.0};              // last thrust direction (rockets when standing still)
+  bool in_match() const { return eco.lives > 0; }
+};
+
+struct MatchState {
+  MatchConfig cfg;
+  Phase phase = Phase::lobby;
+  std::int64_t tick = 0;             // ticks stepped so far
+  std::int64_t level = 0;            // current (or just completed, in the shop) level
+  std::int64_t levels_cleared = 0;   // in this match
+  std::int64_t shop_deadline_tick = 0;
+  std::int64_t matches_started = 0;
+  Rng rng;
+  World world;
+  PhysicsSettings physics;
+  StepConstants step_k;
+  double friction_factor = 1.0;
+  std::map<BallId, Body> bodies;
+  std::vector<Player> players;  // sorted by id
+  BallId next_ball_id = 1;
+};
+
+// A fresh match in the lobby. cfg must be valid (see validate()).
+MatchState make_match(const MatchConfig& cfg, std::uint64_t seed);
+// Advances the match by one tick.
+std::vector<Event> step(MatchState& state, const TickInputs& inputs);
+// FNV-1a over every bit of the state, the Rng included.
+std::uint64_t match_hash(const MatchState& state);
+
+// Look-ups (nullptr when absent).
+Player* find_player(MatchState& s, PlayerId id);
+const Player* find_player(const MatchState& s, PlayerId id);
+const Ball* find_ball(const World& w, BallId id);
+Ball* find_ball(World& w, BallId id);
+
+}  // namespace fts::sim

@@ -1,0 +1,204 @@
+// The match step: joins and leaves, commands, phase changes; the playing tick itself is
+// in match_play.cpp, levels and spawns in match_level.cpp.
+#include "fts/sim/match.hpp"
+
+#include <algorithm>
+
+#include "match_internal.hpp"
+
+namespace fts::sim {
+
+std::string_view to_string(Phase p) {
+  switch (p) {
+    case Phase::lobby: return "lobby";
+    case Phase::playing: return "playing";
+    case Phase::shop: return "shop";
+    case Phase::game_over: return "game_over";
+  }
+  return "?";
+}
+
+std::string_view to_string(EventKind k) {
+  switch (k) {
+    case EventKind::joined: return "joined";
+    case EventKind::join_refused: return "join_refused";
+    case EventKind::left: return "left";
+    case EventKind::level_started: return "level_started";
+    case EventKind::enemy_defeated: return "enemy_defeated";
+    case EventKind::player_fell: return "player_fell";
+    case EventKind::player_respawned: return "player_respawned";
+    case EventKind::level_complete: return "level_complete";
+    case EventKind::purchase: return "purchase";
+    case EventKind::rocket_fired: return "rocket_fired";
+    case EventKind::game_over: return "game_over";
+  }
+  return "?";
+}
+
+std::string_view to_string(BodyKind k) {
+  switch (k) {
+    case BodyKind::enemy: return "enemy";
+    case BodyKind::player: return "player";
+    case BodyKind::rocket: return "rocket";
+  }
+  return "?";
+}
+
+Player* find_player(MatchState& s, PlayerId id) {
+  auto it = std::lower_bound(s.players.begin(), s.players.end(), id,
+                             [](const Player& p, PlayerId v) { return p.id < v; });
+  return it != s.players.end() && it->id == id ? &*it : nullptr;
+}
+const Player* find_player(const MatchState& s, PlayerId id) {
+  return find_player(const_cast<MatchState&>(s), id);
+}
+Ball* find_ball(World& w, BallId id) {
+  auto it = std::lower_bound(w.balls.begin(), w.balls.end(), id,
+                             [](const Ball& b, BallId v) { return b.id < v; });
+  return it != w.balls.end() && it->id == id ? &*it : nullptr;
+}
+const Ball* find_ball(const World& w, BallId id) { return find_ball(const_cast<World&>(w), id); }
+
+MatchState make_match(const MatchConfig& cfg, std::uint64_t seed) {
+  MatchState s;
+  s.cfg = cfg;
+  s.rng = Rng(seed);
+  s.world.arena.width_u = cfg.arena_width_u;
+  s.world.arena.height_u = cfg.arena_height_u;
+  s.world.arena.boundary = Boundary::open;
+  s.physics = physics_settings(cfg);
+  s.step_k = make_step_constants(s.physics, 1.0 / cfg.tick_rate_hz);
+  PhysicsSettings f = s.physics;
+  f.friction = true;
+  s.friction_factor = make_step_constants(f, 1.0 / cfg.tick_rate_hz).friction_factor;
+  return s;
+}
+
+namespace {
+
+void handle_leaves(MatchState& s, std::vector<PlayerId> leaves, std::vector<Event>& out) {
+  std::sort(leaves.begin(), leaves.end());
+  leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+  for (PlayerId id : leaves) {
+    Player* p = find_player(s, id);
+    if (!p) continue;
+    if (p->ball) detail::remove_ball(s, p->ball);
+    s.players.erase(s.players.begin() + (p - s.players.data()));
+    Event e;
+    e.kind = EventKind::left;
+    e.player = id;
+    out.push_back(e);
+  }
+}
+
+void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Event>& out) {
+  std::stable_sort(joins.begin(), joins.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
+  for (const JoinRequest& j : joins) {
+    Event e;
+    e.player = j.player;
+    if (j.player == 0) e.text = "bad_id";
+    else if (find_player(s, j.player)) e.text = "id_in_use";
+    else if (static_cast<std::int64_t>(s.players.size()) >= s.cfg.max_players) e.text = "match_full";
+    else if (j.name.empty() || j.name.size() > 32) e.text = "bad_name";
+    if (!e.text.empty()) {
+      e.kind = EventKind::join_refused;
+      out.push_back(e);
+      continue;
+    }
+    Player p;
+    p.id = j.player;
+    p.name = j.name;
+    p.eco = start_economy(s.cfg);
+    if (s.phase == Phase::game_over) p.eco.lives = 0;  // watches until "play again"
+    auto at = std::lower_bound(s.players.begin(), s.players.end(), p.id,
+                               [](const Player& q, PlayerId v) { return q.id < v; });
+    const PlayerId id = p.id;
+    s.players.insert(at, std::move(p));
+    if (s.phase == Phase::playing) find_player(s, id)->respawn_tick = s.tick;
+    e.kind = EventKind::joined;
+    e.text = j.name;
+    out.push_back(e);
+  }
+}
+
+void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
+  switch (c.kind) {
+    case CommandKind::ready:
+      if (s.phase == Phase::lobby || (s.phase == Phase::shop && p.in_match())) p.ready = true;
+      return;
+    case CommandKind::play_again:
+      if (s.phase == Phase::game_over) detail::start_new_match(s, out);
+      return;
+    case CommandKind::buy: break;
+  }
+  Event e;
+  e.kind = EventKind::purchase;
+  e.player = p.id;
+  e.text = c.item;
+  e.coins_after = p.eco.coins;
+  const auto item = parse_item(c.item);
+  if (!item) {
+    e.reason = Refusal::unknown_item;
+  } else if (s.phase != Phase::shop || !p.in_match()) {
+    e.item = *item;
+    e.price = price_of(p.eco, *item);
+    e.reason = Refusal::wrong_phase;
+  } else {
+    const Purchase r = buy(p.eco, *item, s.level, s.cfg);
+    e.item = r.item;
+    e.ok = r.ok;
+    e.reason = r.reason;
+    e.price = r.price;
+    e.coins_after = r.coins_after;
+  }
+  out.push_back(e);
+}
+
+bool all_ready(const MatchState& s, bool only_in_match) {
+  bool any = false;
+  for (const Player& p : s.players) {
+    if (only_in_match && !p.in_match()) continue;
+    any = true;
+    if (!p.ready) return false;
+  }
+  return any;
+}
+
+}  // namespace
+
+std::vector<Event> step(MatchState& s, const TickInputs& in) {
+  std::vector<Event> out;
+  handle_leaves(s, in.leaves, out);
+  handle_joins(s, in.joins, out);
+
+  std::vector<PlayerTick> inputs = in.players;
+  std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
+  for (const PlayerTick& t : inputs) {
+    for (const Command& c : t.commands) {
+      Player* p = find_player(s, t.player);  // re-found: a command may restart the match
+      if (p) handle_command(s, *p, c, out);
+    }
+  }
+
+  if (s.players.empty() && s.phase != Phase::lobby) {
+    // Everyone left: back to an empty lobby.
+    while (!s.world.balls.empty()) detail::remove_ball(s, s.world.balls.back().id);
+    s.phase = Phase::lobby;
+    s.level = 0;
+  }
+  switch (s.phase) {
+    case Phase::lobby:
+      if (all_ready(s, false)) detail::start_new_match(s, out);
+      break;
+    case Phase::shop:
+      if (all_ready(s, true) || s.tick >= s.shop_deadline_tick) detail::start_level(s, s.level + 1, false, out);
+      break;
+    case Phase::playing:
+    case Phase::game_over: break;
+  }
+  if (s.phase == Phase::playing) detail::play_tick(s, inputs, out);
+  ++s.tick;
+  return out;
+}
+
+}  // namespace fts::sim

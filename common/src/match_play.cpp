@@ -1,0 +1,185 @@
+// The playing phase's tick: respawns, thrust, rockets, enemy AI, physics, friction,
+// credit for contacts, falls, and the level's end (complete, restart or game over).
+#include <algorithm>
+#include <cmath>
+
+#include "match_internal.hpp"
+
+namespace fts::sim::detail {
+namespace {
+
+int clamp_dir(std::int8_t v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+void fire_rocket(MatchState& s, Player& p, std::vector<Event>& out) {
+  const Ball* b = find_ball(s.world, p.ball);
+  if (!b) return;
+  Vec2 dir = p.aim;
+  const double speed = length(b->vel);
+  if (speed > 1e-9) dir = b->vel * (1.0 / speed);
+  const MatchConfig& cfg = s.cfg;
+  const Vec2 pos = b->pos + dir * (b->radius + cfg.rocket_radius_u + 0.5);
+  const Vec2 vel = dir * (cfg.rocket_speed_factor * p.eco.vmax_u_per_s);
+  Body rb;
+  rb.kind = BodyKind::rocket;
+  rb.owner = p.id;
+  rb.expires_tick = s.tick + ticks_for(cfg, cfg.rocket_lifetime_s);
+  const BallId id = add_ball(s, pos, vel, cfg.rocket_radius_u, cfg.rocket_mass, rb);
+  p.next_fire_tick = s.tick + ticks_for(cfg, cfg.rocket_cooldown_s);
+  Event e;
+  e.kind = EventKind::rocket_fired;
+  e.player = p.id;
+  e.ball = id;
+  out.push_back(e);
+}
+
+void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector<Event>& out) {
+  const double dt = s.step_k.dt_s;
+  for (const PlayerTick& t : inputs) {
+    Player* p = find_player(s, t.player);
+    if (!p || !p->ball) continue;
+    Ball* b = find_ball(s.world, p->ball);
+    if (!b) continue;
+    const int dx = clamp_dir(t.input.move_x), dy = clamp_dir(t.input.move_y);
+    thrust_axis(b->vel.x, dx, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
+    thrust_axis(b->vel.y, dy, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
+    Body& body = s.bodies[p->ball];
+    body.thrust_x = static_cast<std::int8_t>(dx);
+    body.thrust_y = static_cast<std::int8_t>(dy);
+    if (dx != 0 || dy != 0) {
+      const double k = (dx != 0 && dy != 0) ? std::sqrt(0.5) : 1.0;
+      p->aim = {dx * k, dy * k};
+    }
+    if (t.input.fire && p->eco.rockets && s.tick >= p->next_fire_tick) fire_rocket(s, *p, out);
+  }
+}
+
+// Friction per tick; an axis under thrust this tick is not stopped by the cut-off, so a
+// ball can start moving at any tick rate (a*dt may be below the cut-off at 200 Hz).
+void apply_match_friction(MatchState& s) {
+  const double cut = s.cfg.friction_cutoff_u_per_s;
+  for (Ball& b : s.world.balls) {
+    const Body& body = s.bodies[b.id];
+    b.vel *= s.friction_factor;
+    if (body.thrust_x == 0 && std::fabs(b.vel.x) < cut) b.vel.x = 0.0;
+    if (body.thrust_y == 0 && std::fabs(b.vel.y) < cut) b.vel.y = 0.0;
+  }
+}
+
+PlayerId toucher(const Body& b) {
+  return (b.kind == BodyKind::player || b.kind == BodyKind::rocket) ? b.owner : 0;
+}
+
+// Last-touch credit: a player's (or its rocket's) hit marks the enemy; enemy-on-enemy
+// contacts pass on the more recent mark if its originating hit is within the chain window.
+void credit_contacts(MatchState& s, const StepReport& report) {
+  const std::int64_t now = s.tick;
+  const std::int64_t window = ticks_for(s.cfg, s.cfg.credit_chain_s);
+  for (const Contact& c : report.contacts) {
+    auto ia = s.bodies.find(c.a), ib = s.bodies.find(c.b);
+    if (ia == s.bodies.end() || ib == s.bodies.end()) continue;
+    Body& a = ia->second;
+    Body& b = ib->second;
+    const bool ea = a.kind == BodyKind::enemy, eb = b.kind == BodyKind::enemy;
+    if (ea && eb) {
+      const PlayerId ca = a.credit, cb = b.credit;
+      const std::int64_t ta = a.credit_tick, tb = b.credit_tick;
+      if (cb && now - tb <= window && tb > ta) { a.credit = cb; a.credit_tick = tb; }
+      if (ca && now - ta <= window && ta > tb) { b.credit = ca; b.credit_tick = ta; }
+    } else if (ea && toucher(b)) {
+      a.credit = toucher(b);
+      a.credit_tick = now;
+    } else if (eb && toucher(a)) {
+      b.credit = toucher(a);
+      b.credit_tick = now;
+    }
+  }
+}
+
+void handle_falls(MatchState& s, const StepReport& report, std::vector<Event>& out) {
+  for (BallId id : report.fallen) {
+    auto it = s.bodies.find(id);
+    if (it == s.bodies.end()) continue;
+    const Body body = it->second;
+    s.bodies.erase(it);
+    Event e;
+    e.ball = id;
+    e.level = s.level;
+    if (body.kind == BodyKind::enemy) {
+      e.kind = EventKind::enemy_defeated;
+      if (Player* p = body.credit ? find_player(s, body.credit) : nullptr) {
+        const Coins reward = defeat_reward(body.spec.mass, p->eco.multiplier, s.level,
+                                           is_boss_level(s.level, s.cfg), s.cfg);
+        e.player = p->id;
+        e.coins = earn_defeat(p->eco, reward, s.cfg);
+      }
+      out.push_back(e);
+    } else if (body.kind == BodyKind::player) {
+      Player* p = find_player(s, body.owner);
+      if (!p) continue;
+      p->ball = 0;
+      p->eco.lives = std::max<std::int64_t>(0, p->eco.lives - 1);
+      if (p->in_match()) p->respawn_tick = s.tick + ticks_for(s.cfg, s.cfg.respawn_delay_s);
+      e.kind = EventKind::player_fell;
+      e.player = p->id;
+      e.lives_left = p->eco.lives;
+      out.push_back(e);
+    }
+  }
+}
+
+void expire_rockets(MatchState& s) {
+  std::vector<BallId> gone;
+  for (const auto& [id, b] : s.bodies)
+    if (b.kind == BodyKind::rocket && s.tick >= b.expires_tick) gone.push_back(id);
+  for (BallId id : gone) remove_ball(s, id);
+}
+
+void check_level_end(MatchState& s, std::vector<Event>& out) {
+  bool anyone = false, on_platform = false, enemies = false;
+  for (const Player& p : s.players) {
+    anyone = anyone || p.in_match();
+    on_platform = on_platform || p.ball != 0;
+  }
+  for (const auto& [id, b] : s.bodies) enemies = enemies || b.kind == BodyKind::enemy;
+  if (!anyone) {
+    s.phase = Phase::game_over;
+    Event e;
+    e.kind = EventKind::game_over;
+    e.level = s.level;
+    out.push_back(e);
+  } else if (!enemies) {
+    for (Player& p : s.players) {
+      p.ready = false;
+      if (p.in_match()) complete_level(p.eco, s.cfg);
+    }
+    ++s.levels_cleared;
+    s.phase = Phase::shop;
+    s.shop_deadline_tick = s.tick + ticks_for(s.cfg, s.cfg.shop_timeout_s);
+    Event e;
+    e.kind = EventKind::level_complete;
+    e.level = s.level;
+    out.push_back(e);
+  } else if (!on_platform) {
+    start_level(s, s.level, true, out);
+  }
+}
+
+}  // namespace
+
+void play_tick(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector<Event>& out) {
+  for (Player& p : s.players) {
+    if (p.in_match() && !p.ball && p.respawn_tick >= 0 && s.tick >= p.respawn_tick) respawn_player(s, p, out);
+  }
+  for (auto& [id, b] : s.bodies) b.thrust_x = b.thrust_y = 0;
+  apply_player_inputs(s, inputs, out);
+  steer_enemies(s);
+  StepReport report;
+  fts::sim::step(s.world, s.physics, s.step_k, report);
+  apply_match_friction(s);
+  credit_contacts(s, report);
+  handle_falls(s, report, out);
+  expire_rockets(s);
+  check_level_end(s, out);
+}
+
+}  // namespace fts::sim::detail

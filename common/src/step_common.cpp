@@ -1,0 +1,136 @@
+#include <algorithm>
+#include <cmath>
+
+#include "fts/sim/collide.hpp"
+#include "step_internal.hpp"
+
+namespace fts::sim::detail {
+namespace {
+
+// Folds x into [lo, hi] as a ball reflecting off both walls would; returns the number
+// of reflections (the velocity flips when it is odd).
+double fold(double& x, double lo, double hi) {
+  if (x >= lo && x <= hi) return 0.0;
+  const double span = hi - lo;
+  if (!(span > 0.0)) {  // the ball is as wide as the box: park it in the middle
+    x = 0.5 * (lo + hi);
+    return 1.0;
+  }
+  const double u = x - lo;
+  const double crossings = std::fabs(std::floor(u / span));
+  double m = std::fmod(u, 2.0 * span);  // exact
+  if (m < 0.0) m += 2.0 * span;
+  if (m > span) m = 2.0 * span - m;
+  x = lo + m;
+  return crossings;
+}
+
+}  // namespace
+
+bool use_grid(const PhysicsSettings& s, std::size_t bodies) {
+  switch (s.broadphase) {
+    case Broadphase::pairs: return false;
+    case Broadphase::grid: return true;
+    case Broadphase::automatic: break;
+  }
+  return bodies > static_cast<std::size_t>(s.pairs_max_bodies);
+}
+
+void apply_boundary(World& world, StepReport& report) {
+  const Arena& a = world.arena;
+  if (a.boundary == Boundary::walls) {
+    for (Ball& b : world.balls) {
+      const double rx = fold(b.pos.x, b.radius, a.width_u - b.radius);
+      const double ry = fold(b.pos.y, b.radius, a.height_u - b.radius);
+      for (auto [n, v] : {std::pair{rx, &b.vel.x}, std::pair{ry, &b.vel.y}}) {
+        if (n == 0.0) continue;
+        report.wall_hits += static_cast<std::uint64_t>(std::min(n, 1e18));
+        report.wall_impulse += 2.0 * b.mass * std::fabs(*v) * n;
+        if (std::fmod(n, 2.0) == 1.0) *v = -*v;
+      }
+    }
+    return;
+  }
+  auto out = [&](const Ball& b) {
+    const bool inside = b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u;
+    if (!inside) report.fallen.push_back(b.id);
+    return !inside;
+  };
+  world.balls.erase(std::remove_if(world.balls.begin(), world.balls.end(), out), world.balls.end());
+}
+
+void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, Grid& grid,
+                   std::vector<Box>& boxes, std::vector<IndexPair>& out) {
+  out.clear();
+  const std::uint32_t n = static_cast<std::uint32_t>(balls.size());
+  auto test = [&](std::uint32_t i, std::uint32_t j) {
+    const double reach = balls[i].radius + balls[j].radius;
+    if (length_sq(balls[j].pos - balls[i].pos) <= reach * reach) out.emplace_back(i, j);
+  };
+  if (!grid_mode) {
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (std::uint32_t j = i + 1; j < n; ++j) test(i, j);
+    return;
+  }
+  boxes.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Ball& b = balls[i];
+    boxes[i] = {b.pos.x - b.radius, b.pos.y - b.radius, b.pos.x + b.radius, b.pos.y + b.radius};
+  }
+  grid.build(boxes);
+  grid.for_each_overlapping_pair(test);
+  std::sort(out.begin(), out.end());
+}
+
+void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
+  for (Ball& b : world.balls) b.pos += b.vel * dt;
+  apply_boundary(world, report);
+  Grid grid;
+  std::vector<Box> boxes;
+  std::vector<IndexPair> pairs;
+  auto& balls = world.balls;
+  find_overlaps(balls, use_grid(s, balls.size()), grid, boxes, pairs);
+  for (auto [i, j] : pairs) {
+    Ball& b1 = balls[i];
+    Ball& b2 = balls[j];
+    const double reach = b1.radius + b2.radius;
+    if (length_sq(b2.pos - b1.pos) > reach * reach) continue;  // an earlier push moved them
+    push_apart_seed(b1, b2);
+    respond_seed(b1, b2);
+    ++report.collisions;
+    report.contacts.push_back({b1.id, b2.id});
+  }
+  // A push-apart can cross an edge: apply the boundary again so nothing ends outside.
+  apply_boundary(world, report);
+}
+
+void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
+  const int k = std::max(1, s.substeps);
+  const double h = dt / k;
+  Grid grid;
+  std::vector<Box> boxes;
+  std::vector<IndexPair> pairs;
+  auto& balls = world.balls;
+  for (int sub = 0; sub < k; ++sub) {
+    for (Ball& b : balls) b.pos += b.vel * h;
+    apply_boundary(world, report);
+    find_overlaps(balls, use_grid(s, balls.size()), grid, boxes, pairs);
+    for (auto [i, j] : pairs) {
+      Ball& a = balls[i];
+      Ball& b = balls[j];
+      const Vec2 d = b.pos - a.pos;
+      const double reach = a.radius + b.radius;
+      const double dist_sq = length_sq(d);
+      if (dist_sq > reach * reach) continue;
+      const Vec2 n = contact_normal(a, b);
+      separate(a, b, n, reach - std::sqrt(dist_sq));
+      if (respond_elastic(a, b, n)) {
+        ++report.collisions;
+        report.contacts.push_back({a.id, b.id});
+      }
+    }
+    if (!pairs.empty()) apply_boundary(world, report);
+  }
+}
+
+}  // namespace fts::sim::detail

@@ -1,0 +1,29 @@
+// Shared pieces of the three models (internal to fts_common).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "fts/sim/broadphase.hpp"
+#include "fts/sim/physics.hpp"
+
+namespace fts::sim::detail {
+
+using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
+
+bool use_grid(const PhysicsSettings& s, std::size_t bodies);
+
+// After a move: fold positions back into a walled box (any number of reflections), or
+// remove balls whose centre left an open rectangle (ids appended to report.fallen).
+void apply_boundary(World& world, StepReport& report);
+
+// Every overlapping pair (d <= r1 + r2) as index pairs (i < j) in ascending order, so
+// that "pairs" and "grid" resolve contacts in the same order.
+void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, Grid& grid,
+                   std::vector<Box>& boxes, std::vector<IndexPair>& out);
+
+void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report);
+void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report);
+void step_continuous(World& world, const PhysicsSettings& s, double dt, StepReport& report);
+
+}  // namespace fts::sim::detail

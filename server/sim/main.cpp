@@ -1,0 +1,167 @@
+// fts-sim: the simulation without a network. Scene mode runs a physics scene and prints
+// one JSON report; `--match` plays a headless match (see match_cli.hpp).
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "host/scene_json.hpp"
+#include "sim/scene_run.hpp"
+#if __has_include("sim/match_cli.hpp")
+#include "sim/match_cli.hpp"
+#define FTS_HAVE_MATCH_CLI 1
+#endif
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: fts-sim SCENE.json [--model seed|discrete|continuous] [--substeps K]\n"
+    "               [--tick-rate HZ] [--steps N] [--broadphase auto|pairs|grid]\n"
+    "               [--dump-state FILE] [--check-every K]\n"
+    "       fts-sim --match [--players N] [--levels N] [--max-ticks T] [--seed S] [--model M]\n"
+    "               [--config FILE] [--inputs FILE] [--record FILE]\n"
+    "Scene mode prints one JSON object (see README.md); flags override the scene file.\n";
+
+int usage_error(const std::string& message) {
+  std::cerr << "fts-sim: " << message << "\n" << kUsage;
+  return 2;
+}
+
+std::optional<double> to_number(const std::string& s) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used != s.size()) return std::nullopt;
+    return v;
+  } catch (...) {
+    return std::nullopt;
+  }
+}
+
+std::optional<std::int64_t> to_integer(const std::string& s) {
+  try {
+    std::size_t used = 0;
+    const long long v = std::stoll(s, &used);
+    if (used != s.size()) return std::nullopt;
+    return v;
+  } catch (...) {
+    return std::nullopt;
+  }
+}
+
+int run_scene_mode(const std::vector<std::string>& args) {
+  std::string scene_path, dump_path;
+  std::optional<std::string> model, broadphase, substeps, tick_rate, steps;
+  std::string check_every = "1";
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](std::optional<std::string>& out) -> bool {
+      if (i + 1 >= args.size()) return false;
+      out = args[++i];
+      return true;
+    };
+    std::optional<std::string> tmp;
+    if (a == "--model") { if (!value(model)) return usage_error("--model needs a value"); }
+    else if (a == "--broadphase") { if (!value(broadphase)) return usage_error("--broadphase needs a value"); }
+    else if (a == "--substeps") { if (!value(substeps)) return usage_error("--substeps needs a value"); }
+    else if (a == "--tick-rate") { if (!value(tick_rate)) return usage_error("--tick-rate needs a value"); }
+    else if (a == "--steps") { if (!value(steps)) return usage_error("--steps needs a value"); }
+    else if (a == "--dump-state") { if (!value(tmp)) return usage_error("--dump-state needs a file"); dump_path = *tmp; }
+    else if (a == "--check-every") { if (!value(tmp)) return usage_error("--check-every needs a value"); check_every = *tmp; }
+    else if (a.rfind("--", 0) == 0) return usage_error("unknown flag " + a);
+    else if (scene_path.empty()) scene_path = a;
+    else return usage_error("more than one scene file: " + a);
+  }
+  if (scene_path.empty()) return usage_error("no scene file given");
+  std::ifstream in(scene_path);
+  if (!in) return usage_error("cannot read scene file " + scene_path);
+  std::stringstream text;
+  text << in.rdbuf();
+  auto parsed = fts::host::parse_scene(text.str());
+  if (auto* err = std::get_if<std::string>(&parsed)) {
+    std::cerr << "fts-sim: " << scene_path << ": " << *err << "\n";
+    return 1;
+  }
+  auto scene = std::get<fts::sim::Scene>(parsed);
+  if (model) {
+    auto m = fts::sim::parse_model(*model);
+    if (!m) return usage_error("--model must be seed, discrete or continuous, got " + *model);
+    scene.physics.model = *m;
+  }
+  if (broadphase) {
+    auto b = fts::sim::parse_broadphase(*broadphase);
+    if (!b) return usage_error("--broadphase must be auto, pairs or grid, got " + *broadphase);
+    scene.physics.broadphase = *b;
+  }
+  if (substeps) {
+    auto k = to_integer(*substeps);
+    if (!k || *k < 1 || *k > 1024) return usage_error("--substeps must be 1..1024, got " + *substeps);
+    scene.physics.substeps = static_cast<int>(*k);
+  }
+  if (tick_rate) {
+    auto hz = to_number(*tick_rate);
+    if (!hz || !(*hz >= 1.0 && *hz <= 100000.0)) return usage_error("--tick-rate must be 1..100000, got " + *tick_rate);
+    scene.tick_rate_hz = *hz;
+  }
+  if (steps) {
+    auto n = to_integer(*steps);
+    if (!n || *n < 0) return usage_error("--steps must be >= 0, got " + *steps);
+    scene.steps = *n;
+  }
+  auto every = to_integer(check_every);
+  if (!every || *every < 0) return usage_error("--check-every must be >= 0, got " + check_every);
+
+  fts::sim::World world;
+  if (auto err = fts::sim::build_world(scene, world)) {
+    std::cerr << "fts-sim: " << scene_path << ": " << *err << "\n";
+    return 1;
+  }
+  const auto report = fts::simtool::run_scene(scene, world, *every);
+  std::cout << fts::simtool::to_json(report) << "\n";
+  if (!dump_path.empty()) {
+    nlohmann::json balls = nlohmann::json::array();
+    for (const auto& b : world.balls) {
+      balls.push_back({{"id", b.id}, {"x", b.pos.x}, {"y", b.pos.y}, {"vx", b.vel.x}, {"vy", b.vel.y},
+                       {"r", b.radius}, {"m", b.mass}});
+    }
+    std::ofstream out(dump_path);
+    out << balls.dump() << "\n";
+    if (!out) {
+      std::cerr << "fts-sim: cannot write " << dump_path << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (const auto& a : args) {
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (a == "--version") {
+      std::cout << "fts-sim 0.1.0\n";
+      return 0;
+    }
+  }
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--match") {
+#ifdef FTS_HAVE_MATCH_CLI
+      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i));
+      return fts::simtool::run_match_cli(args);
+#else
+      return usage_error("--match is not built yet");
+#endif
+    }
+  }
+  return run_scene_mode(args);
+}
