@@ -1,0 +1,38 @@
+// Datagrams: the binary header followed by the payload, a list of messages encoded as
+// JSON text or as MessagePack (the header's encoding field says which).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fts/protocol/decoded.hpp"
+#include "fts/protocol/header.hpp"
+#include "fts/protocol/messages.hpp"
+
+namespace fts::protocol {
+
+struct Datagram {
+  Header header;
+  std::vector<Message> messages;
+};
+
+// Header + encoded messages. May exceed kMaxDatagramBytes: callers that build datagrams
+// check the size (the endpoints do, and split snapshots to fit).
+std::vector<std::uint8_t> encode_datagram(const Header& header, const std::vector<Message>& messages);
+
+// Parses and validates a datagram; never throws, never reads past `bytes`.
+Decoded<Datagram> decode_datagram(std::span<const std::uint8_t> bytes,
+                                  std::uint16_t expected_version = kProtocolVersion);
+
+// Decodes a datagram of any version if it holds exactly one Error message: how a client
+// reads the "wrong version" refusal of a server that speaks another version.
+Decoded<Error> decode_version_error(std::span<const std::uint8_t> bytes);
+
+// The payload alone, in one encoding (for size measurements and debugging).
+std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);
+// JSON text of a message list, for logs and docs.
+std::string to_json_text(const std::vector<Message>& messages);
+
+}  // namespace fts::protocol

@@ -1,0 +1,37 @@
+// Wire constants shared by every part of the protocol (see protocol/PROTOCOL.md).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace fts::protocol {
+
+// "FTSP" read as a big-endian 32-bit integer: the first four bytes of every datagram.
+inline constexpr std::uint32_t kProtocolId = 0x46545350u;
+inline constexpr std::uint16_t kProtocolVersion = 1;
+
+// No datagram, in either direction, is ever larger than this.
+inline constexpr std::size_t kMaxDatagramBytes = 1200;
+// A hello datagram must be at least this large (padding), so that no reply sent before
+// the handshake completes is larger than the request that caused it.
+inline constexpr std::size_t kMinHelloBytes = 512;
+
+// Quantization of positions, velocities, radii and masses in snapshots: 1/16 unit.
+inline constexpr double kQuantaPerUnit = 16.0;
+
+// Hard limits a decoder enforces (anything beyond is out of range).
+inline constexpr std::size_t kMaxMessagesPerDatagram = 32;
+inline constexpr std::size_t kMaxNameBytes = 16;
+inline constexpr std::size_t kMaxTextBytes = 200;
+inline constexpr std::size_t kMaxInputFrames = 16;
+inline constexpr std::size_t kMaxBallsPerMessage = 256;
+inline constexpr std::size_t kMaxPlayersPerMessage = 64;
+inline constexpr std::size_t kMaxEventsPerMessage = 64;
+inline constexpr std::uint32_t kMaxSnapshotParts = 16;
+inline constexpr std::int64_t kMaxCoins = 1'000'000'000'000'000;  // 10^15
+inline constexpr std::int64_t kMaxQuantized = std::int64_t{1} << 40;
+
+// The two payload encodings; the client picks one at connect, the header names it.
+enum class Encoding : std::uint8_t { json = 0, msgpack = 1 };
+
+}  // namespace fts::protocol

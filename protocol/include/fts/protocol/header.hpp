@@ -1,0 +1,45 @@
+// The fixed 19-byte binary header in front of every datagram (big-endian):
+//   0  u32 protocol id "FTSP"     4  u16 version      6  u8 flags (bits 0-1: encoding)
+//   7  u32 session id (0 before the handshake completes)
+//  11  u16 sequence   13  u16 ack (latest sequence received)   15  u32 ack bits
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fts/protocol/constants.hpp"
+#include "fts/protocol/decoded.hpp"
+
+namespace fts::protocol {
+
+inline constexpr std::size_t kHeaderBytes = 19;
+
+struct Header {
+  std::uint16_t version = kProtocolVersion;
+  Encoding encoding = Encoding::msgpack;
+  std::uint32_t session = 0;
+  std::uint16_t sequence = 0;
+  std::uint16_t ack = 0;
+  std::uint32_t ack_bits = 0;  // bit i set: sequence (ack - 1 - i) was received too
+
+  bool operator==(const Header&) const = default;
+};
+
+// Appends the 19 header bytes to `out`.
+void write_header(const Header& header, std::vector<std::uint8_t>& out);
+
+// Reads the header, checking protocol id, length limits and flags. A version other than
+// `expected_version` is rejected with Reject::bad_version (the header is still readable
+// with read_header_any_version, to answer with a clear error).
+Decoded<Header> read_header(std::span<const std::uint8_t> bytes,
+                            std::uint16_t expected_version = kProtocolVersion);
+Decoded<Header> read_header_any_version(std::span<const std::uint8_t> bytes);
+
+// 16-bit sequence arithmetic with wrap-around: is `a` newer than `b`?
+inline bool sequence_newer(std::uint16_t a, std::uint16_t b) {
+  return a != b && static_cast<std::uint16_t>(a - b) < 0x8000u;
+}
+
+}  // namespace fts::protocol

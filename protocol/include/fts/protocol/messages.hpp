@@ -1,0 +1,157 @@
+// Every message of the protocol, declared once. Each has one nlohmann-json mapping
+// (messages.cpp, snapshot_msg.cpp) from which both encodings, JSON text and MessagePack,
+// are produced (codec.hpp). Field units are in the names or comments.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fts/protocol/constants.hpp"
+#include "fts/protocol/snapshot.hpp"
+
+namespace fts::protocol {
+
+// client -> server, before and during the handshake. Padded to kMinHelloBytes.
+struct Hello {
+  std::string name;    // 1..16 printable ASCII characters
+  std::string token;   // "" or the 32-hex-digit session token of a previous welcome
+  std::string cookie;  // "" or the 48-hex-digit cookie of a challenge
+  std::string pad;     // ignored filler, any printable ASCII
+
+  bool operator==(const Hello&) const = default;
+};
+
+// server -> client: prove you receive at your address by sending this cookie back.
+struct Challenge {
+  std::string cookie;  // 48 hex digits
+  bool operator==(const Challenge&) const = default;
+};
+
+// server -> client: the handshake is complete.
+struct Welcome {
+  std::uint32_t player_id = 0;
+  std::string token;  // 32 hex digits; keep it to reconnect
+  std::uint32_t tick_rate_hz = 100;
+  std::uint32_t snapshot_rate_hz = 20;
+  double arena_width_u = 500;
+  double arena_height_u = 300;
+  std::uint32_t max_players = 8;
+  std::uint32_t timeout_ms = 10000;
+  std::uint32_t reconnect_window_ms = 60000;
+  std::uint32_t input_redundancy = 8;  // send at least this many recent input frames
+  std::uint32_t server_tick = 0;
+  bool reconnected = false;
+
+  bool operator==(const Welcome&) const = default;
+};
+
+// server -> client: a refusal or a fatal error; the connection is over.
+struct Error {
+  std::string code;     // "version", "full", "bad_token", "timeout", "kicked", "shutdown"
+  std::string message;  // a sentence a person can act on
+  bool operator==(const Error&) const = default;
+};
+
+// One tick of a player's controls.
+struct InputFrame {
+  std::uint32_t seq = 0;  // client input sequence, 1, 2, 3, ... per session
+  std::int8_t move_x = 0;  // -1 left, 0, +1 right
+  std::int8_t move_y = 0;  // -1 down, 0, +1 up
+  bool fire = false;
+  bool operator==(const InputFrame&) const = default;
+};
+
+// client -> server, unreliable: the latest few input frames (redundant) and the tick of
+// the latest complete snapshot received (0: none). Also the client's heartbeat.
+struct Input {
+  std::uint32_t snapshot_ack = 0;
+  std::vector<InputFrame> frames;  // any order, at most kMaxInputFrames
+  bool operator==(const Input&) const = default;
+};
+
+enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2 };
+
+// client -> server, reliable: applied exactly once, in rid order, answered by a Result.
+struct Command {
+  std::uint32_t rid = 0;  // reliable id, 1, 2, 3, ... per session
+  CommandOp op = CommandOp::ready;
+  char item = 0;  // buy only: one of m s a r l x b
+  bool operator==(const Command&) const = default;
+};
+
+// server -> client, reliable: the outcome of one Command.
+struct Result {
+  std::uint32_t rid = 0;  // server's reliable id, 1, 2, 3, ... per session
+  std::uint32_t command_rid = 0;  // the Command this answers
+  bool ok = false;
+  std::string code;     // "ok", "coins", "owned", "phase", ... (see PROTOCOL.md)
+  std::string message;  // human readable
+  bool operator==(const Result&) const = default;
+};
+
+// Either way: keeps the connection alive and carries the header's acks.
+struct Ping {
+  bool operator==(const Ping&) const = default;
+};
+
+// Either way: a clean disconnect.
+struct Bye {
+  std::string reason;
+  bool operator==(const Bye&) const = default;
+};
+
+// A ball in a snapshot message, in quantized units (1/16 u, 1/16 u/s). A full entry has
+// every field; a motion entry (full == false) holds only the differences of x, y, vx, vy
+// from the same ball in the base snapshot.
+struct BallEntry {
+  std::uint32_t id = 0;
+  bool full = true;
+  std::int64_t x = 0, y = 0, vx = 0, vy = 0;
+  std::int64_t radius = 0, mass = 0;
+  BallKind kind = BallKind::enemy;
+  std::uint32_t owner = 0;
+  bool operator==(const BallEntry&) const = default;
+};
+
+// A player in a snapshot message: in a full snapshot every field is set; in a delta only
+// the fields that changed since the base.
+struct PlayerEntry {
+  std::uint32_t id = 0;
+  std::optional<std::string> name;
+  std::optional<std::int64_t> coins;
+  std::optional<std::int32_t> lives;
+  std::optional<double> mass, vmax_u_per_s, accel_u_per_s2, multiplier;
+  std::optional<bool> bank;
+  std::optional<Weapon> weapon;
+  std::optional<std::array<std::int64_t, 7>> prices;
+  std::optional<bool> ready, alive;
+  bool operator==(const PlayerEntry&) const = default;
+};
+
+// server -> client, unreliable: one part of a snapshot (full, or a delta against `base`).
+struct SnapshotMsg {
+  std::uint32_t tick = 0;
+  std::optional<std::uint32_t> base;  // absent: full snapshot
+  std::uint32_t part = 0;             // 0 .. parts-1
+  std::uint32_t parts = 1;
+  Phase phase = Phase::lobby;
+  std::uint32_t level = 0;
+  std::vector<BallEntry> balls;      // new or changed balls of this part
+  std::vector<std::uint32_t> gone;   // balls of the base that no longer exist
+  std::vector<PlayerEntry> players;  // new or changed players of this part
+  std::vector<std::uint32_t> left;   // players of the base that no longer exist
+  std::vector<Event> events;         // recent events (delta: newer than the base tick)
+  bool operator==(const SnapshotMsg&) const = default;
+};
+
+using Message = std::variant<Hello, Challenge, Welcome, Error, Input, Command, Result, Ping,
+                             Bye, SnapshotMsg>;
+
+// The wire name of a message type ("hello", "challenge", ... "snap").
+const char* message_type(const Message& message);
+
+}  // namespace fts::protocol

@@ -1,0 +1,50 @@
+// Why an incoming datagram or message was dropped. Every drop is counted, none throws.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace fts::protocol {
+
+enum class Reject : std::uint8_t {
+  truncated,          // shorter than the header, or a message cut short
+  oversize,           // longer than kMaxDatagramBytes
+  wrong_protocol_id,  // first four bytes are not "FTSP"
+  bad_version,        // another protocol version
+  bad_flags,          // unknown encoding or reserved header bits set
+  garbage,            // payload does not parse, or fields have the wrong shape
+  unknown_type,       // a message type this version does not know
+  out_of_range,       // a field value outside its documented range
+  unpadded_hello,     // hello datagram smaller than kMinHelloBytes
+  bad_cookie,         // handshake cookie forged, for another address, or expired
+  bad_token,          // reconnect token unknown or expired
+  unknown_session,    // session id not (or no longer) known
+  address_mismatch,   // a live session used from another address
+  unexpected,         // valid message that makes no sense in the current state
+  server_full,        // no free player slot
+  unknown_base,       // snapshot delta against a snapshot we do not have
+  stale,              // older than what we already have (sequence or snapshot tick)
+  count_
+};
+
+inline constexpr std::size_t kRejectCount = static_cast<std::size_t>(Reject::count_);
+
+// Stable lower-case name, as used in logs and stats ("truncated", "bad_cookie", ...).
+std::string_view to_string(Reject reason);
+
+// Drops counted by reason.
+struct RejectCounters {
+  std::array<std::uint64_t, kRejectCount> counts{};
+
+  void add(Reject reason) { ++counts[static_cast<std::size_t>(reason)]; }
+  std::uint64_t operator[](Reject reason) const { return counts[static_cast<std::size_t>(reason)]; }
+  std::uint64_t total() const {
+    std::uint64_t sum = 0;
+    for (auto c : counts) sum += c;
+    return sum;
+  }
+};
+
+}  // namespace fts::protocol

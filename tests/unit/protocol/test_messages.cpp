@@ -1,0 +1,82 @@
+// Round trips of every message in both encodings, and golden bytes for a few.
+#include <catch2/catch.hpp>
+
+#include "fts/protocol/codec.hpp"
+#include "samples.hpp"
+
+using namespace fts::protocol;
+
+TEST_CASE("every message round-trips in both encodings", "[protocol][messages]") {
+  for (Encoding enc : {Encoding::json, Encoding::msgpack}) {
+    for (const Message& m : test::all_messages()) {
+      CAPTURE(static_cast<int>(enc), message_type(m));
+      Header h;
+      h.encoding = enc;
+      h.session = 0xDEADBEEF;
+      h.sequence = 65535;
+      h.ack = 7;
+      h.ack_bits = 0x80000001u;
+      const auto bytes = encode_datagram(h, {m});
+      REQUIRE(bytes.size() <= kMaxDatagramBytes);
+      auto d = decode_datagram(bytes);
+      REQUIRE(d.ok());
+      CHECK(d->header == h);
+      REQUIRE(d->messages.size() == 1);
+      CHECK(d->messages[0] == m);
+    }
+  }
+}
+
+TEST_CASE("several messages share one datagram", "[protocol][messages]") {
+  auto all = test::all_messages();
+  all.resize(all.size() - 2);  // both snapshots together would pass 1200 bytes in JSON
+  for (Encoding enc : {Encoding::json, Encoding::msgpack}) {
+    Header h;
+    h.encoding = enc;
+    const auto bytes = encode_datagram(h, all);
+    auto d = decode_datagram(bytes);
+    REQUIRE(d.ok());
+    CHECK(d->messages == all);
+  }
+}
+
+TEST_CASE("golden bytes", "[protocol][messages][golden]") {
+  Header h;
+  h.encoding = Encoding::json;
+  h.session = 0x01020304;
+  h.sequence = 5;
+  h.ack = 4;
+  h.ack_bits = 0x3;
+
+  SECTION("header") {
+    std::vector<std::uint8_t> out;
+    write_header(h, out);
+    const std::vector<std::uint8_t> golden = {'F', 'T', 'S', 'P', 0, 1, 0, 1, 2, 3, 4,
+                                              0, 5, 0, 4, 0, 0, 0, 3};
+    CHECK(out == golden);
+  }
+  SECTION("ping in JSON") {
+    const auto bytes = encode_datagram(h, {Ping{}});
+    const std::string payload(bytes.begin() + kHeaderBytes, bytes.end());
+    CHECK(payload == R"([{"t":"ping"}])");
+  }
+  SECTION("command in JSON") {
+    const auto bytes = encode_datagram(h, {Command{1, CommandOp::buy, 'm'}});
+    const std::string payload(bytes.begin() + kHeaderBytes, bytes.end());
+    CHECK(payload == R"([{"item":"m","op":"buy","rid":1,"t":"cmd"}])");
+  }
+  SECTION("input in MessagePack") {
+    h.encoding = Encoding::msgpack;
+    const auto bytes = encode_datagram(h, {Input{3, {{4, 1, -1, true}}}});
+    const std::vector<std::uint8_t> payload(bytes.begin() + kHeaderBytes, bytes.end());
+    // [ {"ack":3, "f":[[4,1,-1,1]], "t":"input"} ]
+    const std::vector<std::uint8_t> golden = {0x91, 0x83, 0xA3, 'a', 'c', 'k', 0x03, 0xA1, 'f',
+                                              0x91, 0x94, 0x04, 0x01, 0xFF, 0x01, 0xA1, 't',
+                                              0xA5, 'i',  'n',  'p',  'u',  't'};
+    CHECK(payload == golden);
+  }
+}
+
+TEST_CASE("to_json_text is the JSON payload", "[protocol][messages]") {
+  CHECK(to_json_text({Bye{"quit"}}) == R"([{"reason":"quit","t":"bye"}])");
+}
