@@ -1,0 +1,222 @@
+#include "host/match_config_json.hpp"
+
+#include <cmath>
+#include <variant>
+
+#include "host/json_fields.hpp"
+
+namespace fts::host {
+namespace {
+
+using sim::MatchConfig;
+using FieldPtr = std::variant<double MatchConfig::*, std::int64_t MatchConfig::*, int MatchConfig::*,
+                              sim::Model MatchConfig::*>;
+struct FieldDef {
+  const char* name;
+  FieldPtr ptr;
+};
+
+#define FTS_F(name) FieldDef{#name, &MatchConfig::name}
+const FieldDef kFields[] = {
+    FTS_F(tick_rate_hz), FTS_F(model), FTS_F(substeps), FTS_F(max_players), FTS_F(frame_s),
+    FTS_F(arena_width_u), FTS_F(arena_height_u), FTS_F(spawn_margin_u), FTS_F(spawn_gap_u),
+    FTS_F(spawn_attempts), FTS_F(friction_per_frame), FTS_F(friction_cutoff_u_per_s), FTS_F(radius_base_u),
+    FTS_F(radius_mass_divisor), FTS_F(player_mass), FTS_F(player_vmax_u_per_s), FTS_F(player_accel_u_per_s2),
+    FTS_F(player_lives), FTS_F(player_coins), FTS_F(player_multiplier), FTS_F(respawn_delay_s),
+    FTS_F(player_spawn_x_fraction), FTS_F(enemies_max_normal), FTS_F(enemies_min_late), FTS_F(boss_period),
+    FTS_F(boss_count), FTS_F(boss_double_period), FTS_F(boss_double_count), FTS_F(swarm_phase),
+    FTS_F(swarm_count), FTS_F(enemies_cap), FTS_F(chaser_index), FTS_F(level1_enemy_mass),
+    FTS_F(normal_mass_base), FTS_F(normal_mass_per_level), FTS_F(normal_mass_per_q), FTS_F(normal_mass_jitter),
+    FTS_F(normal_accel_base_u_per_frame2), FTS_F(normal_accel_per_level), FTS_F(normal_accel_per_q),
+    FTS_F(normal_vmax_base_u_per_frame), FTS_F(normal_vmax_per_level), FTS_F(normal_vmax_per_q),
+    FTS_F(swarm_mass_per_q1), FTS_F(swarm_radius_base_u), FTS_F(swarm_radius_per_q),
+    FTS_F(swarm_vmax_base_u_per_frame), FTS_F(swarm_vmax_per_level), FTS_F(swarm_vmax_per_q),
+    FTS_F(swarm_accel_base_u_per_frame2), FTS_F(swarm_accel_per_level), FTS_F(swarm_accel_per_q),
+    FTS_F(boss_mass_per_q), FTS_F(boss_mass_per_pair), FTS_F(boss_radius_base_u), FTS_F(boss_vmax_base_u_per_frame),
+    FTS_F(boss_vmax_per_q), FTS_F(boss_accel_base_u_per_frame2), FTS_F(boss_accel_per_q), FTS_F(goal_half_w_u),
+    FTS_F(goal_half_h_u), FTS_F(goal_shrink_per_level_u), FTS_F(goal_shrink_level_cap), FTS_F(boss_goal_half_w_u),
+    FTS_F(boss_goal_half_h_u), FTS_F(goal_reach_u), FTS_F(reward_level_bonus), FTS_F(credit_chain_s),
+    FTS_F(bank_interest_factor), FTS_F(level_multiplier_growth), FTS_F(level_life_price_growth),
+    FTS_F(price_mass), FTS_F(price_mass_level_coeff), FTS_F(price_mass_offset), FTS_F(price_speed),
+    FTS_F(price_speed_growth), FTS_F(speed_upgrade_factor), FTS_F(price_accel), FTS_F(price_accel_growth),
+    FTS_F(accel_upgrade_factor), FTS_F(price_rockets), FTS_F(price_life), FTS_F(price_life_growth),
+    FTS_F(price_multiplier), FTS_F(price_multiplier_growth), FTS_F(multiplier_upgrade_factor), FTS_F(price_bank),
+    FTS_F(shop_timeout_s), FTS_F(rocket_cooldown_s), FTS_F(rocket_mass), FTS_F(rocket_radius_u),
+    FTS_F(rocket_speed_factor), FTS_F(rocket_lifetime_s), FTS_F(coin_cap), FTS_F(multiplier_cap),
+    FTS_F(player_vmax_cap_u_per_s), FTS_F(player_accel_cap_u_per_s2), FTS_F(player_mass_cap), FTS_F(lives_cap),
+};
+#undef FTS_F
+
+const FieldDef* find_field(std::string_view key) {
+  for (const FieldDef& f : kFields)
+    if (key == f.name) return &f;
+  return nullptr;
+}
+
+}  // namespace
+
+std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string& text, const sim::MatchConfig& base) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    return std::string("match config: invalid JSON: ") + e.what();
+  }
+  try {
+    Fields f(j, "");
+    MatchConfig cfg = base;
+    for (const auto& [key, value] : j.items()) {
+      const FieldDef* def = find_field(key);
+      if (!def) f.fail(key, "unknown key (value " + value.dump() + ")");
+      std::visit(
+          [&](auto ptr) {
+            using T = std::remove_reference_t<decltype(cfg.*ptr)>;
+            if constexpr (std::is_same_v<T, double>) {
+              cfg.*ptr = f.number(key);
+            } else if constexpr (std::is_same_v<T, sim::Model>) {
+              const std::string s = f.string(key);
+              const auto m = sim::parse_model(s);
+              if (!m) f.fail(key, "must be one of seed, discrete, continuous, got \"" + s + "\"");
+              cfg.*ptr = *m;
+            } else if constexpr (std::is_same_v<T, int>) {
+              const std::int64_t v = f.integer(key);
+              if (v < INT32_MIN || v > INT32_MAX) f.fail(key, "out of range, got " + value.dump());
+              cfg.*ptr = static_cast<int>(v);
+            } else {
+              cfg.*ptr = f.integer(key);
+            }
+          },
+          def->ptr);
+    }
+    if (const std::string err = sim::validate(cfg); !err.empty()) return "match config: " + err;
+    return cfg;
+  } catch (const FieldError& e) {
+    return std::string("match config: ") + e.what();
+  }
+}
+
+nlohmann::json match_config_to_json(const sim::MatchConfig& cfg) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const FieldDef& f : kFields) {
+    std::visit(
+        [&](auto ptr) {
+          using T = std::remove_reference_t<decltype(cfg.*ptr)>;
+          if constexpr (std::is_same_v<T, sim::Model>) j[f.name] = std::string(sim::to_string(cfg.*ptr));
+          else j[f.name] = cfg.*ptr;
+        },
+        f.ptr);
+  }
+  return j;
+}
+
+std::string to_input_line(std::int64_t tick, const sim::TickInputs& in) {
+  nlohmann::json j = {{"tick", tick}};
+  if (!in.joins.empty()) {
+    auto& a = j["joins"] = nlohmann::json::array();
+    for (const auto& jr : in.joins) a.push_back({{"player", jr.player}, {"name", jr.name}});
+  }
+  if (!in.leaves.empty()) j["leaves"] = in.leaves;
+  if (!in.players.empty()) {
+    auto& a = j["players"] = nlohmann::json::array();
+    for (const auto& p : in.players) {
+      nlohmann::json o = {{"id", p.player}};
+      if (p.input.move_x) o["x"] = p.input.move_x;
+      if (p.input.move_y) o["y"] = p.input.move_y;
+      if (p.input.fire) o["fire"] = true;
+      if (!p.commands.empty()) {
+        auto& c = o["cmd"] = nlohmann::json::array();
+        for (const auto& cmd : p.commands) {
+          switch (cmd.kind) {
+            case sim::CommandKind::buy: c.push_back("buy:" + cmd.item); break;
+            case sim::CommandKind::ready: c.push_back("ready"); break;
+            case sim::CommandKind::play_again: c.push_back("play_again"); break;
+          }
+        }
+      }
+      a.push_back(std::move(o));
+    }
+  }
+  return j.dump();
+}
+
+namespace {
+
+std::uint32_t player_id(const Fields& f, std::string_view key) {
+  const std::int64_t v = f.integer(key);
+  if (v < 1 || v > UINT32_MAX) f.fail(key, "must be a player id 1..4294967295, got " + std::to_string(v));
+  return static_cast<std::uint32_t>(v);
+}
+
+std::int8_t axis(const Fields& f, std::string_view key) {
+  const std::int64_t v = f.integer_or(key, 0);
+  if (v < -1 || v > 1) f.fail(key, "must be -1, 0 or 1, got " + std::to_string(v));
+  return static_cast<std::int8_t>(v);
+}
+
+}  // namespace
+
+std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::exception& e) {
+    return std::string("input line: invalid JSON: ") + e.what();
+  }
+  try {
+    Fields f(j, "");
+    f.only({"tick", "joins", "leaves", "players"});
+    InputLine out;
+    out.tick = f.integer("tick");
+    if (out.tick < 0) f.fail("tick", "must be >= 0, got " + std::to_string(out.tick));
+    auto list = [&](std::string_view key) -> const nlohmann::json* {
+      if (!f.has(key)) return nullptr;
+      const auto& a = f.at(key);
+      if (!a.is_array()) f.fail(key, "must be an array, got " + a.dump());
+      return &a;
+    };
+    if (const auto* a = list("joins")) {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        Fields g((*a)[i], "joins[" + std::to_string(i) + "]");
+        g.only({"player", "name"});
+        out.inputs.joins.push_back({player_id(g, "player"), g.string("name")});
+      }
+    }
+    if (const auto* a = list("leaves")) {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const auto& v = (*a)[i];
+        if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 1 || v.get<std::uint64_t>() > UINT32_MAX)
+          f.fail("leaves", "must hold player ids, got " + v.dump());
+        out.inputs.leaves.push_back(v.get<std::uint32_t>());
+      }
+    }
+    if (const auto* a = list("players")) {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        Fields g((*a)[i], "players[" + std::to_string(i) + "]");
+        g.only({"id", "x", "y", "fire", "cmd"});
+        sim::PlayerTick t;
+        t.player = player_id(g, "id");
+        t.input.move_x = axis(g, "x");
+        t.input.move_y = axis(g, "y");
+        t.input.fire = g.boolean_or("fire", false);
+        if (g.has("cmd")) {
+          const auto& c = g.at("cmd");
+          if (!c.is_array()) g.fail("cmd", "must be an array, got " + c.dump());
+          for (const auto& v : c) {
+            if (!v.is_string()) g.fail("cmd", "must hold strings, got " + v.dump());
+            const std::string s = v.get<std::string>();
+            if (s == "ready") t.commands.push_back({sim::CommandKind::ready, {}});
+            else if (s == "play_again") t.commands.push_back({sim::CommandKind::play_again, {}});
+            else if (s.rfind("buy:", 0) == 0) t.commands.push_back({sim::CommandKind::buy, s.substr(4)});
+            else g.fail("cmd", "unknown command \"" + s + "\" (ready, play_again, buy:ITEM)");
+          }
+        }
+        out.inputs.players.push_back(std::move(t));
+      }
+    }
+    return out;
+  } catch (const FieldError& e) {
+    return std::string("input line: ") + e.what();
+  }
+}
+
+}  // namespace fts::host

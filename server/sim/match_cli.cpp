@@ -1,0 +1,227 @@
+#include "sim/match_cli.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "fts/sim/bot_player.hpp"
+#include "fts/sim/match.hpp"
+#include "host/match_config_json.hpp"
+
+namespace fts::simtool {
+namespace {
+
+constexpr const char* kMatchUsage =
+    "usage: fts-sim --match [--players N] [--levels N] [--max-ticks T] [--seed S] [--model M]\n"
+    "                       [--tick-rate HZ] [--config FILE] [--inputs FILE] [--record FILE] [--events]\n";
+
+int usage(const std::string& msg) {
+  std::cerr << "fts-sim --match: " << msg << "\n" << kMatchUsage;
+  return 2;
+}
+
+std::optional<std::int64_t> to_int(const std::string& s) {
+  try {
+    std::size_t used = 0;
+    const long long v = std::stoll(s, &used);
+    if (used != s.size()) return std::nullopt;
+    return v;
+  } catch (...) {
+    return std::nullopt;
+  }
+}
+
+std::string hex16(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+nlohmann::json event_json(std::int64_t tick, const sim::Event& e) {
+  nlohmann::json j = {{"tick", tick}, {"event", sim::to_string(e.kind)}};
+  if (e.player) j["player"] = e.player;
+  switch (e.kind) {
+    case sim::EventKind::enemy_defeated: j["enemy"] = e.ball; j["coins"] = e.coins; break;
+    case sim::EventKind::player_fell: j["lives_left"] = e.lives_left; break;
+    case sim::EventKind::level_started: j["level"] = e.level; j["restart"] = e.restart; break;
+    case sim::EventKind::level_complete: j["level"] = e.level; break;
+    case sim::EventKind::purchase:
+      j["item"] = e.text; j["ok"] = e.ok; j["price"] = e.price; j["coins_after"] = e.coins_after;
+      if (!e.ok) j["reason"] = sim::to_string(e.reason);
+      break;
+    case sim::EventKind::rocket_fired: j["rocket"] = e.ball; break;
+    case sim::EventKind::joined: j["name"] = e.text; break;
+    case sim::EventKind::join_refused: j["reason"] = e.text; break;
+    default: break;
+  }
+  return j;
+}
+
+struct Tally {
+  std::vector<std::int64_t> level_clear_ticks;
+  std::int64_t restarts = 0, falls = 0, defeats = 0, untouched = 0, refusals = 0;
+  void add(const sim::MatchState& s, const std::vector<sim::Event>& events) {
+    for (const auto& e : events) {
+      switch (e.kind) {
+        case sim::EventKind::level_complete: level_clear_ticks.push_back(s.tick); break;
+        case sim::EventKind::level_started: restarts += e.restart ? 1 : 0; break;
+        case sim::EventKind::player_fell: ++falls; break;
+        case sim::EventKind::enemy_defeated: ++defeats; untouched += e.player ? 0 : 1; break;
+        case sim::EventKind::purchase: refusals += e.ok ? 0 : 1; break;
+        default: break;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+int run_match_cli(const std::vector<std::string>& args) {
+  std::int64_t players = 1, levels = 5, max_ticks = 1'000'000, seed = 1;
+  std::optional<std::string> model, config_path, inputs_path, record_path, tick_rate;
+  bool print_events = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto next = [&]() -> std::optional<std::string> {
+      if (i + 1 >= args.size()) return std::nullopt;
+      return args[++i];
+    };
+    auto int_flag = [&](std::int64_t& out, std::int64_t lo, std::int64_t hi) -> bool {
+      auto v = next();
+      auto n = v ? to_int(*v) : std::nullopt;
+      if (!n || *n < lo || *n > hi) return false;
+      out = *n;
+      return true;
+    };
+    if (a == "--players") { if (!int_flag(players, 1, 64)) return usage("--players must be 1..64"); }
+    else if (a == "--levels") { if (!int_flag(levels, 0, 1'000'000)) return usage("--levels must be 0..1000000"); }
+    else if (a == "--max-ticks") { if (!int_flag(max_ticks, 0, 1'000'000'000'000)) return usage("--max-ticks must be >= 0"); }
+    else if (a == "--seed") { if (!int_flag(seed, 0, INT64_MAX)) return usage("--seed must be >= 0"); }
+    else if (a == "--model") { if (!(model = next())) return usage("--model needs a value"); }
+    else if (a == "--tick-rate") { if (!(tick_rate = next())) return usage("--tick-rate needs a value"); }
+    else if (a == "--config") { if (!(config_path = next())) return usage("--config needs a file"); }
+    else if (a == "--inputs") { if (!(inputs_path = next())) return usage("--inputs needs a file"); }
+    else if (a == "--record") { if (!(record_path = next())) return usage("--record needs a file"); }
+    else if (a == "--events") print_events = true;
+    else return usage("unknown argument " + a);
+  }
+
+  sim::MatchConfig cfg;
+  if (config_path) {
+    std::ifstream in(*config_path);
+    if (!in) return usage("cannot read " + *config_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    auto parsed = host::parse_match_config(text.str());
+    if (auto* err = std::get_if<std::string>(&parsed)) {
+      std::cerr << "fts-sim: " << *config_path << ": " << *err << "\n";
+      return 1;
+    }
+    cfg = std::get<sim::MatchConfig>(parsed);
+  }
+  if (model) {
+    auto m = sim::parse_model(*model);
+    if (!m) return usage("--model must be seed, discrete or continuous, got " + *model);
+    cfg.model = *m;
+  }
+  if (tick_rate) {
+    auto hz = to_int(*tick_rate);
+    if (!hz || *hz < 1 || *hz > 10000) return usage("--tick-rate must be 1..10000 (integer Hz)");
+    cfg.tick_rate_hz = static_cast<double>(*hz);
+  }
+  if (players > cfg.max_players) return usage("--players exceeds max_players");
+  if (const std::string err = sim::validate(cfg); !err.empty()) return usage("config: " + err);
+
+  std::ofstream record;
+  if (record_path) {
+    record.open(*record_path);
+    if (!record) return usage("cannot write " + *record_path);
+  }
+  sim::MatchState s = sim::make_match(cfg, static_cast<std::uint64_t>(seed));
+  Tally tally;
+  auto run_tick = [&](const sim::TickInputs& in) {
+    if (record) record << host::to_input_line(s.tick, in) << "\n";
+    const std::int64_t t = s.tick;
+    auto events = sim::step(s, in);
+    tally.add(s, events);
+    if (print_events)
+      for (const auto& e : events) std::cerr << event_json(t, e).dump() << "\n";
+  };
+
+  if (inputs_path) {
+    std::ifstream in(*inputs_path);
+    if (!in) return usage("cannot read " + *inputs_path);
+    std::string line;
+    std::int64_t line_no = 0;
+    while (std::getline(in, line) && s.tick < max_ticks) {
+      ++line_no;
+      if (line.empty()) continue;
+      auto parsed = host::parse_input_line(line);
+      if (auto* err = std::get_if<std::string>(&parsed)) {
+        std::cerr << "fts-sim: " << *inputs_path << ":" << line_no << ": " << *err << "\n";
+        return 1;
+      }
+      const auto& il = std::get<host::InputLine>(parsed);
+      if (il.tick < s.tick) {
+        std::cerr << "fts-sim: " << *inputs_path << ":" << line_no << ": tick " << il.tick
+                  << " is before the match's tick " << s.tick << "\n";
+        return 1;
+      }
+      while (s.tick < il.tick && s.tick < max_ticks) run_tick({});
+      if (s.tick < max_ticks) run_tick(il.inputs);
+    }
+  } else {
+    while (s.tick < max_ticks && s.levels_cleared < levels && s.phase != sim::Phase::game_over) {
+      sim::TickInputs in;
+      if (s.tick == 0) {
+        for (std::int64_t p = 1; p <= players; ++p)
+          in.joins.push_back({static_cast<sim::PlayerId>(p), "bot" + std::to_string(p)});
+      }
+      for (const auto& p : s.players) in.players.push_back(sim::bot_tick(s, p.id));
+      run_tick(in);
+    }
+  }
+
+  nlohmann::json report = {
+      {"mode", "match"},
+      {"seed", seed},
+      {"model", sim::to_string(cfg.model)},
+      {"tick_rate_hz", cfg.tick_rate_hz},
+      {"replay", inputs_path.has_value()},
+      {"phase", sim::to_string(s.phase)},
+      {"level", s.level},
+      {"levels_cleared", s.levels_cleared},
+      {"ticks", s.tick},
+      {"seconds", static_cast<double>(s.tick) / cfg.tick_rate_hz},
+      {"level_clear_ticks", tally.level_clear_ticks},
+      {"level_restarts", tally.restarts},
+      {"falls", tally.falls},
+      {"enemies_defeated", tally.defeats},
+      {"enemies_fell_untouched", tally.untouched},
+      {"purchase_refusals", tally.refusals},
+  };
+  auto& per = report["players"] = nlohmann::json::array();
+  for (const auto& p : s.players) {
+    per.push_back({{"id", p.id},
+                   {"name", p.name},
+                   {"coins", p.eco.coins},
+                   {"lives", p.eco.lives},
+                   {"purchases", p.eco.purchases},
+                   {"defeats", p.eco.defeats},
+                   {"mass", p.eco.mass},
+                   {"vmax_u_per_s", p.eco.vmax_u_per_s},
+                   {"accel_u_per_s2", p.eco.accel_u_per_s2},
+                   {"multiplier", p.eco.multiplier},
+                   {"bank", p.eco.bank},
+                   {"rockets", p.eco.rockets}});
+  }
+  report["state_hash"] = hex16(sim::match_hash(s));
+  std::cout << report.dump() << "\n";
+  return 0;
+}
+
+}  // namespace fts::simtool
