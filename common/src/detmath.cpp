@@ -36,7 +36,10 @@ double det_exp(double x) {
   if (x < -745.0) return 0.0;
   // x = k ln2 + r with |r| <= ln2/2; e^x = 2^k e^r.
   const double k = std::nearbyint(x / kLn2);
-  const double r = x - k * kLn2;
+  // Cody-Waite: ln 2 split in two so that k * hi is exact and r keeps full precision.
+  constexpr double kLn2Hi = 6.93147180369123816490e-01;
+  constexpr double kLn2Lo = 1.90821492927058770002e-10;
+  const double r = (x - k * kLn2Hi) - k * kLn2Lo;
   double term = 1.0;
   double sum = 1.0;
   for (int n = 1; n < 40; ++n) {

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/scene_json.hpp"
-#include "sim/scene_run.hpp"
+#include "host/scene_run.hpp"
 #if __has_include("sim/match_cli.hpp")
 #include "sim/match_cli.hpp"
 #define FTS_HAVE_MATCH_CLI 1

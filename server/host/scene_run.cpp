@@ -1,4 +1,4 @@
-#include "sim/scene_run.hpp"
+#include "host/scene_run.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -1,0 +1,118 @@
+// The seed's collision math (GAME_RULES.md "Collisions") and its vector form.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "../../support/physics_fixtures.hpp"
+#include "fts/sim/collide.hpp"
+#include "fts/sim/rng.hpp"
+
+using namespace fts::sim;
+using fts::test::ball;
+
+namespace {
+// The 1-D elastic formula along the normal, applied unconditionally (as the seed does).
+void vector_response(Ball& a, Ball& b) {
+  const Vec2 n = contact_normal(a, b);
+  const double vn = dot(b.vel - a.vel, n);
+  a.vel += n * (2.0 * b.mass / (a.mass + b.mass) * vn);
+  b.vel -= n * (2.0 * a.mass / (a.mass + b.mass) * vn);
+}
+}  // namespace
+
+TEST_CASE("Collisions: the seed's trigonometric response equals the vector response", "[collide]") {
+  Rng rng(12345);
+  double worst = 0.0;
+  for (int k = 0; k < 10000; ++k) {
+    const double r1 = rng.uniform(0.5, 30), r2 = rng.uniform(0.5, 30);
+    const double ang_x = rng.uniform(-1, 1), ang_y = rng.uniform(-1, 1);
+    const double len = std::sqrt(ang_x * ang_x + ang_y * ang_y) + 1e-9;
+    Ball a = ball(1, 100, 100, rng.uniform(-200, 200), rng.uniform(-200, 200), r1, rng.uniform(0.1, 100));
+    Ball b = ball(2, 100 + (r1 + r2) * ang_x / len, 100 + (r1 + r2) * ang_y / len, rng.uniform(-200, 200),
+                  rng.uniform(-200, 200), r2, rng.uniform(0.1, 100));
+    Ball sa = a, sb = b;
+    respond_seed(sa, sb);
+    vector_response(a, b);
+    const double scale = length(a.vel) + length(b.vel) + length(sa.vel) + length(sb.vel);
+    const double err = length(sa.vel - a.vel) + length(sb.vel - b.vel);
+    worst = std::max(worst, err / scale);
+  }
+  INFO("worst relative difference " << worst);
+  CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("Collisions: the seed's limit M1 >> M2 leaves v1 unaffected", "[collide]") {
+  for (double ratio : {1e6, 1e9}) {
+    Ball a = ball(1, 0, 0, 10, 0, 1, ratio), b = ball(2, 2, 0, 0, 0, 1, 1);
+    REQUIRE(respond_elastic(a, b, contact_normal(a, b)));
+    CHECK(a.vel.x == Approx(10).epsilon(1e-5));
+    CHECK(b.vel.x == Approx(20).epsilon(1e-5));  // the light ball leaves at twice the speed
+  }
+}
+
+TEST_CASE("Collisions: the seed's limit M1 << M2 (v2 = 0, head-on) makes v1 become -v1", "[collide]") {
+  for (double ratio : {1e-6, 1e-9}) {
+    Ball a = ball(1, 0, 0, 10, 0, 1, ratio), b = ball(2, 2, 0, 0, 0, 1, 1);
+    Ball sa = a, sb = b;
+    REQUIRE(respond_elastic(a, b, contact_normal(a, b)));
+    CHECK(a.vel.x == Approx(-10).epsilon(1e-5));
+    CHECK(std::fabs(b.vel.x) < 1e-4);
+    respond_seed(sa, sb);
+    CHECK(sa.vel.x == Approx(-10).epsilon(1e-5));
+  }
+}
+
+TEST_CASE("Collisions: head-on equal masses swap velocities", "[collide]") {
+  Ball a = ball(1, 0, 0, 3, 0, 1, 2), b = ball(2, 2, 0, -5, 0, 1, 2);
+  REQUIRE(respond_elastic(a, b, contact_normal(a, b)));
+  CHECK(a.vel.x == -5.0);
+  CHECK(b.vel.x == 3.0);
+  CHECK(a.vel.y == 0.0);
+}
+
+TEST_CASE("Collisions: a glancing hit keeps the tangential components", "[collide]") {
+  // Normal along +x: the y components must come through untouched.
+  Ball a = ball(1, 0, 0, 4, 7, 1, 1), b = ball(2, 2, 0, -1, -3, 1, 3);
+  REQUIRE(respond_elastic(a, b, contact_normal(a, b)));
+  CHECK(a.vel.y == 7.0);
+  CHECK(b.vel.y == -3.0);
+  Ball sa = ball(1, 0, 0, 4, 7, 1, 1), sb = ball(2, 2, 0, -1, -3, 1, 3);
+  respond_seed(sa, sb);
+  CHECK(sa.vel.y == Approx(7.0).margin(1e-12));
+  CHECK(sb.vel.y == Approx(-3.0).margin(1e-12));
+}
+
+TEST_CASE("Collisions: separating pairs get no impulse", "[collide]") {
+  Ball a = ball(1, 0, 0, -1, 0, 1, 1), b = ball(2, 2, 0, 1, 0, 1, 1);
+  CHECK_FALSE(respond_elastic(a, b, contact_normal(a, b)));
+  CHECK(a.vel.x == -1.0);
+}
+
+TEST_CASE("Collisions: the seed's push-apart is guarded and bounded", "[collide]") {
+  SECTION("coincident centres move ball 1 along +x, deterministically") {
+    Ball a = ball(1, 5, 5, 0, 0, 2, 1), b = ball(2, 5, 5, 0, 0, 2, 1);
+    const int steps = push_apart_seed(a, b);
+    CHECK(steps == 5);  // 1, 2, 3, 4 overlap; 5 > r1 + r2 = 4
+    CHECK(a.pos.x == 10.0);
+    CHECK(a.pos.y == 5.0);
+  }
+  SECTION("a zero difference on one axis moves only the other") {
+    Ball a = ball(1, 5, 5, 0, 0, 2, 1), b = ball(2, 4, 5, 0, 0, 2, 1);
+    push_apart_seed(a, b);
+    CHECK(a.pos.y == 5.0);
+    CHECK(a.pos.x > 8.0);
+  }
+  SECTION("a huge overlap stops after the iteration bound and still separates") {
+    Ball a = ball(1, 0, 0, 0, 0, 1e6, 1), b = ball(2, 0.5, 0, 0, 0, 1e6, 1);
+    const int steps = push_apart_seed(a, b, 100);
+    CHECK(steps == 100);
+    CHECK(length(a.pos - b.pos) > 2e6);
+  }
+}
+
+TEST_CASE("Collisions: separation is weighted by inverse mass", "[collide]") {
+  Ball a = ball(1, 0, 0, 0, 0, 1, 3), b = ball(2, 1, 0, 0, 0, 1, 1);
+  separate(a, b, contact_normal(a, b), 1.0);
+  CHECK(a.pos.x == Approx(-0.25));
+  CHECK(b.pos.x == Approx(1.75));
+}
