@@ -1,0 +1,60 @@
+#include "fts/sim/match_view.hpp"
+
+#include <algorithm>
+
+namespace fts::sim {
+
+MatchView make_view(const MatchState& s) {
+  MatchView v;
+  v.tick = s.tick;
+  v.phase = s.phase;
+  v.level = s.level;
+  v.levels_cleared = s.levels_cleared;
+  if (s.phase == Phase::shop) v.shop_ticks_left = std::max<std::int64_t>(0, s.shop_deadline_tick - s.tick);
+  for (const Player& p : s.players) {
+    PlayerView pv;
+    pv.id = p.id;
+    pv.name = p.name;
+    const Economy& e = p.eco;
+    pv.coins = e.coins;
+    pv.lives = e.lives;
+    pv.price_mass = price_of(e, Item::mass);
+    pv.price_speed = price_of(e, Item::speed);
+    pv.price_accel = price_of(e, Item::accel);
+    pv.price_rockets = price_of(e, Item::rockets);
+    pv.price_life = price_of(e, Item::life);
+    pv.price_multiplier = price_of(e, Item::multiplier);
+    pv.price_bank = price_of(e, Item::bank);
+    pv.mass = e.mass;
+    pv.vmax_u_per_s = e.vmax_u_per_s;
+    pv.accel_u_per_s2 = e.accel_u_per_s2;
+    pv.multiplier = e.multiplier;
+    pv.bank = e.bank;
+    pv.rockets = e.rockets;
+    pv.ready = p.ready;
+    pv.alive = p.ball != 0;
+    pv.out = !p.in_match();
+    pv.ball = p.ball;
+    pv.purchases = e.purchases;
+    pv.defeats = e.defeats;
+    v.players.push_back(std::move(pv));
+  }
+  for (const Ball& b : s.world.balls) {
+    BallView bv;
+    bv.id = b.id;
+    if (auto it = s.bodies.find(b.id); it != s.bodies.end()) {
+      bv.kind = it->second.kind;
+      bv.owner = it->second.owner;
+    }
+    bv.x = b.pos.x;
+    bv.y = b.pos.y;
+    bv.vx = b.vel.x;
+    bv.vy = b.vel.y;
+    bv.radius = b.radius;
+    bv.mass = b.mass;
+    v.balls.push_back(bv);
+  }
+  return v;
+}
+
+}  // namespace fts::sim
