@@ -1,0 +1,36 @@
+// Stateless handshake cookies and session secrets, keyed with a server key made at
+// start-up (libsodium's keyed BLAKE2b, crypto_generichash). The key is passed in, so
+// tests are deterministic; a server makes it with random_key().
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace fts::protocol {
+
+using ServerKey = std::array<std::uint8_t, 32>;
+
+// 32 bytes from libsodium's system random generator.
+ServerKey random_key();
+
+// 48 hex digits: the 8-byte issue time (ms, big-endian) then a 16-byte keyed hash of
+// ("cookie", issue time, address). Nothing is stored: the server recomputes it.
+std::string make_cookie(const ServerKey& key, std::string_view address, std::uint64_t now_ms);
+
+enum class CookieCheck { ok, forged, expired };
+
+// A cookie is good for `lifetime_ms` after issue, only from the address it was issued to.
+CookieCheck check_cookie(const ServerKey& key, std::string_view address, std::string_view cookie,
+                         std::uint64_t now_ms, std::uint64_t lifetime_ms);
+
+// Secrets of the n-th session a server makes: a 32-hex-digit reconnect token and a
+// non-zero 32-bit session id, unguessable without the key, deterministic with it.
+std::string derive_token(const ServerKey& key, std::uint64_t n);
+std::uint32_t derive_session_id(const ServerKey& key, std::uint64_t n);
+
+// Lower-case hex of bytes.
+std::string to_hex(const std::uint8_t* data, std::size_t size);
+
+}  // namespace fts::protocol

@@ -1,0 +1,75 @@
+// Snapshot delta encoding: a snapshot is sent against the last one the client
+// acknowledged (full when there is none), quantized, and split into parts so that no
+// datagram passes kMaxDatagramBytes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "fts/protocol/decoded.hpp"
+#include "fts/protocol/header.hpp"
+#include "fts/protocol/messages.hpp"
+
+namespace fts::protocol {
+
+// Payload budget of one datagram.
+inline constexpr std::size_t kMaxPayloadBytes = kMaxDatagramBytes - kHeaderBytes;
+
+// One message holding `current` as a delta against `base` (nullptr: full). Both are
+// quantized first (base normally is already).
+SnapshotMsg make_snapshot_msg(const Snapshot& current, const Snapshot* base);
+
+// Splits a message into parts whose payloads (each encoded alone) fit `budget` bytes:
+// balls and players spread over the parts; gone, left and events in part 0 (the oldest
+// events are dropped if even that does not fit).
+std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding,
+                                        std::size_t budget = kMaxPayloadBytes);
+
+// Rebuilds a snapshot from all its parts and its base (nullptr for a full snapshot).
+Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Snapshot* base);
+
+// Server side, one per client: remembers what was sent, and which tick was acknowledged.
+class SnapshotSender {
+ public:
+  static constexpr std::size_t kHistory = 64;
+
+  // The parts to send for `current` (delta against the acknowledged snapshot if it is
+  // still in the history, else full).
+  std::vector<SnapshotMsg> encode(const Snapshot& current, Encoding encoding,
+                                  std::size_t budget = kMaxPayloadBytes);
+  // The client reports the latest complete snapshot it has.
+  void on_ack(std::uint32_t tick);
+  std::optional<std::uint32_t> acked_tick() const { return acked_; }
+  void reset() { history_.clear(); acked_.reset(); }
+
+ private:
+  std::deque<Snapshot> history_;
+  std::optional<std::uint32_t> acked_;
+};
+
+// Client side: assembles parts, applies deltas, keeps recent complete snapshots as bases.
+class SnapshotReceiver {
+ public:
+  static constexpr std::size_t kHistory = 64;
+  static constexpr std::size_t kMaxPending = 8;
+
+  // Feeds one part. Returns the reconstructed snapshot when this part completes one that
+  // is newer than every complete snapshot so far; nullopt while parts are missing.
+  Decoded<std::optional<Snapshot>> accept(const SnapshotMsg& part);
+
+  // Tick of the latest complete snapshot (0: none yet): what the client acknowledges.
+  std::uint32_t latest_tick() const { return latest_ ? latest_->tick : 0; }
+  const Snapshot* latest() const { return latest_ ? &*latest_ : nullptr; }
+  void reset() { history_.clear(); pending_.clear(); latest_.reset(); }
+
+ private:
+  std::map<std::uint32_t, Snapshot> history_;
+  std::map<std::uint32_t, std::vector<std::optional<SnapshotMsg>>> pending_;
+  std::optional<Snapshot> latest_;
+};
+
+}  // namespace fts::protocol

@@ -1,0 +1,58 @@
+#include "fts/protocol/ack.hpp"
+
+namespace fts::protocol {
+
+void AckWindow::stamp(Header& header, std::uint64_t now_ms) {
+  header.sequence = next_sequence_++;
+  if (next_sequence_ == 0) next_sequence_ = 1;  // 0 is never a sequence: ack 0 means "none yet"
+  header.ack = latest_received_;
+  header.ack_bits = have_received_ ? received_bits_ : 0;
+  Sent& slot = sent_[header.sequence % sent_.size()];
+  slot = Sent{header.sequence, true, false, now_ms};
+  ++packets_sent_;
+}
+
+void AckWindow::ack_one(std::uint16_t seq, std::uint64_t now_ms, std::vector<std::uint16_t>& out) {
+  Sent& slot = sent_[seq % sent_.size()];
+  if (!slot.valid || slot.acked || slot.sequence != seq) return;
+  slot.acked = true;
+  ++packets_acked_;
+  out.push_back(seq);
+  const double sample = now_ms >= slot.time_ms ? static_cast<double>(now_ms - slot.time_ms) : 0.0;
+  rtt_ms_ = rtt_ms_ == 0 ? sample : rtt_ms_ + 0.1 * (sample - rtt_ms_);
+}
+
+bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
+                           std::vector<std::uint16_t>& newly_acked) {
+  const std::uint16_t seq = header.sequence;
+  if (seq == 0) return false;
+  if (!have_received_) {
+    have_received_ = true;
+    latest_received_ = seq;
+    received_bits_ = 0;
+  } else if (sequence_newer(seq, latest_received_)) {
+    const unsigned shift = static_cast<std::uint16_t>(seq - latest_received_);
+    if (shift < 32) {
+      received_bits_ = (received_bits_ << shift) | (1u << (shift - 1));
+    } else {
+      received_bits_ = shift == 32 ? (1u << 31) : 0;
+    }
+    latest_received_ = seq;
+  } else {
+    const unsigned behind = static_cast<std::uint16_t>(latest_received_ - seq);
+    if (behind == 0 || behind > 32) return false;
+    const std::uint32_t bit = 1u << (behind - 1);
+    if (received_bits_ & bit) return false;
+    received_bits_ |= bit;
+  }
+  if (header.ack == 0) return true;
+  ack_one(header.ack, now_ms, newly_acked);
+  for (unsigned i = 0; i < 32; ++i)
+    if (header.ack_bits & (1u << i)) {
+      const auto acked = static_cast<std::uint16_t>(header.ack - 1 - i);
+      if (acked != 0) ack_one(acked, now_ms, newly_acked);
+    }
+  return true;
+}
+
+}  // namespace fts::protocol
