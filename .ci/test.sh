@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Sets everything up and passes every test: the README's test command, and CI's.
+# 1. dependencies; 2. a warnings-as-errors build and its tests; 3. the same tests under
+# AddressSanitizer + UBSan; 4. a short libFuzzer run of the wire decoder (if present).
+# Slow soak and load runs are labelled "soak" and left out: run them with
+#   ctest --test-dir build -L soak
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+bash .ci/deps.sh
+jobs=${FTS_JOBS:-$(nproc)}
+
+bash .ci/build.sh build -DFTS_WERROR=ON
+ctest --test-dir build -LE soak -j "$jobs" --output-on-failure --timeout 600
+
+bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan -LE soak -j "$jobs" --output-on-failure --timeout 900
+
+if [[ -f .ci/fuzz.sh ]]; then
+  bash .ci/fuzz.sh
+fi
+echo "all tests passed"
