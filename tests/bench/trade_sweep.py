@@ -48,11 +48,10 @@ def positions(path):
 
 def rms_error(a, b):
     common = sorted(set(a) & set(b))
-    missing = len(set(a) ^ set(b))
     if not common:
         return float("nan")
     err = sum((a[i][0] - b[i][0]) ** 2 + (a[i][1] - b[i][1]) ** 2 for i in common) / len(common)
-    return math.sqrt(err) + 0.0 * missing
+    return math.sqrt(err)
 
 
 def main():
@@ -127,7 +126,7 @@ def main():
                 f.write(f"{r['model']}-K{r['substeps']} {r['tick_rate']} {r['ns_per_body_step']} {err}\n")
     plot = os.path.join(args.out, "trade.png")
     script = [
-        "set terminal pngcairo size 1200,800" if False else "set terminal png size 1200,800",
+        "set terminal png size 1400,1000",
         f"set output '{plot}'", "set multiplot layout 2,2", "set logscale xy",
         "set xlabel 'ns per body-step'", "set key outside right top font ',8'",
     ]
@@ -135,7 +134,7 @@ def main():
         ylabel = "RMS position error vs continuous@400Hz (u)" if few else "max penetration (u)"
         dat = os.path.join(args.out, f"plot-{scene}.dat")
         script += [f"set title '{scene}'", f"set ylabel \"{ylabel}\"",
-                   f"plot '{dat}' using 3:($4>0?$4:1e-12):1 with labels point pt 7 offset char 0,0.6 font ',7' notitle"]
+                   f"plot '{dat}' using 3:($4>0?$4:1e-12):(sprintf('%s@%d', strcol(1), $2)) with labels point pt 7 offset char 0,0.6 font ',6' notitle"]
     script.append("unset multiplot")
     try:
         subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True, capture_output=True)
