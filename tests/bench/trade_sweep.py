@@ -60,6 +60,7 @@ def main():
     ap.add_argument("--out", default="bench-out")
     ap.add_argument("--seconds", type=float, default=2.0)
     ap.add_argument("--quick", action="store_true", help="100 Hz only, gas-1000 and game-like")
+    ap.add_argument("--from-csv", help="skip the runs: redraw the table and plot from a trade.csv")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rates = [100] if args.quick else RATES
@@ -69,7 +70,15 @@ def main():
             ARENAS[name] = json.load(f)["arena"]
     rows = []
     tmp = tempfile.mkdtemp()
-    for scene, (walls, few) in scenes.items():
+    if args.from_csv:
+        with open(args.from_csv) as f:
+            for r in csv.DictReader(f):
+                r["substeps"], r["tick_rate"] = int(r["substeps"]), int(r["tick_rate"])
+                for k in ("ns_per_body_step", "us_per_tick"):
+                    r[k] = float(r[k])
+                rows.append(r)
+        scenes = {k: v for k, v in scenes.items() if any(r["scene"] == k for r in rows)}
+    for scene, (walls, few) in ([] if args.from_csv else scenes.items()):
         ref = None
         if few:
             ref_path = os.path.join(tmp, f"{scene}-ref.json")
@@ -102,7 +111,7 @@ def main():
                       file=sys.stderr)
             rows += reversed(results)
     fields = list(rows[0].keys())
-    with open(os.path.join(args.out, "trade.csv"), "w", newline="") as f:
+    with open(os.path.join(args.out, "trade.csv") if not args.from_csv else os.devnull, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
         w.writerows(rows)
@@ -116,25 +125,26 @@ def main():
         for r in rows:
             f.write("| " + " | ".join(fmt(r[k]) for k in fields) + " |\n")
 
-    # Cost against error on the few-ball scenes (position error) and gas (energy drift).
-    for scene in scenes:
-        with open(os.path.join(args.out, f"plot-{scene}.dat"), "w") as f:
-            for r in rows:
-                if r["scene"] != scene:
-                    continue
-                err = r["pos_error"] if r["pos_error"] != "" else r["max_penetration"]
-                f.write(f"{r['model']}-K{r['substeps']} {r['tick_rate']} {r['ns_per_body_step']} {err}\n")
+    # Cost against error: one series per model configuration, its points the tick rates
+    # (25 .. 400 Hz, cost rising with the rate). Error: RMS position error against
+    # continuous@400Hz on few-ball scenes, max penetration on the gases (0 drawn at 1e-12).
     plot = os.path.join(args.out, "trade.png")
-    script = [
-        "set terminal png size 1400,1000",
-        f"set output '{plot}'", "set multiplot layout 2,2", "set logscale xy",
-        "set xlabel 'ns per body-step'", "set key outside right top font ',8'",
-    ]
+    script = ["set terminal png size 1400,1000", f"set output '{plot}'", "set multiplot layout 2,2",
+              "set logscale xy", "set xlabel 'ns per body-step'", "set key bottom left font ',9'",
+              "set format y '%.0e'"]
     for scene, (walls, few) in scenes.items():
-        ylabel = "RMS position error vs continuous@400Hz (u)" if few else "max penetration (u)"
-        dat = os.path.join(args.out, f"plot-{scene}.dat")
-        script += [f"set title '{scene}'", f"set ylabel \"{ylabel}\"",
-                   f"plot '{dat}' using 3:($4>0?$4:1e-12):(sprintf('%s@%d', strcol(1), $2)) with labels point pt 7 offset char 0,0.6 font ',6' notitle"]
+        series = []
+        for model, k in CONFIGS:
+            dat = os.path.join(args.out, f"plot-{scene}-{model}-{k}.dat")
+            with open(dat, "w") as f:
+                for r in rows:
+                    if r["scene"] == scene and r["model"] == model and r["substeps"] == k:
+                        err = r["pos_error"] if few else r["max_penetration"]
+                        f.write(f"{r['tick_rate']} {r['ns_per_body_step']} {max(float(err), 1e-12)}\n")
+            series.append(f"'{dat}' using 2:3 with linespoints pt 7 title '{model} K={k}'")
+        ylabel = "RMS position error vs continuous 400 Hz (u)" if few else "max penetration (u)"
+        script += [f"set title '{scene} (points: 25, 50, 100, 200, 400 Hz)'", f"set ylabel \"{ylabel}\"",
+                   "plot " + ", ".join(series)]
     script.append("unset multiplot")
     try:
         subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True, capture_output=True)
