@@ -83,8 +83,8 @@ void credit_contacts(MatchState& s, const StepReport& report) {
     if (ea && eb) {
       const PlayerId ca = a.credit, cb = b.credit;
       const std::int64_t ta = a.credit_tick, tb = b.credit_tick;
-      if (cb && now - tb <= window && tb > ta) { a.credit = cb; a.credit_tick = tb; }
-      if (ca && now - ta <= window && ta > tb) { b.credit = ca; b.credit_tick = ta; }
+      if (cb && now - tb <= window && (!ca || tb > ta)) { a.credit = cb; a.credit_tick = tb; }
+      if (ca && now - ta <= window && (!cb || ta > tb)) { b.credit = ca; b.credit_tick = ta; }
     } else if (ea && toucher(b)) {
       a.credit = toucher(b);
       a.credit_tick = now;
