@@ -1,0 +1,153 @@
+// The server end of every connection, sans-I/O: feed it (address, datagram, time), take
+// the datagrams it wants sent and what the clients asked for. It answers hellos with
+// stateless cookies, allocates a player only for a client that proved its address,
+// keeps sessions alive (heartbeats, time-outs, reconnect by token), delivers commands
+// exactly once and sends snapshots as deltas. Addresses are opaque strings
+// ("127.0.0.1:5000"), made by the caller from its sockets.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fts/protocol/ack.hpp"
+#include "fts/protocol/codec.hpp"
+#include "fts/protocol/cookie.hpp"
+#include "fts/protocol/reliable.hpp"
+#include "fts/protocol/snapshot_delta.hpp"
+
+namespace fts::protocol {
+
+using Address = std::string;
+
+struct ServerConfig {
+  ServerKey key{};  // random_key() at start-up; fixed in tests
+  std::uint16_t version = kProtocolVersion;
+  std::uint32_t max_players = 8;
+  std::uint64_t timeout_ms = 10000;
+  std::uint64_t reconnect_window_ms = 60000;
+  std::uint64_t cookie_lifetime_ms = 10000;
+  std::uint64_t heartbeat_ms = 100;
+  std::uint64_t resend_ms = 100;
+  // Settings sent in every welcome (player_id, token, server_tick, reconnected are set
+  // per client).
+  Welcome settings;
+};
+
+struct ServerEvent {
+  enum class Kind {
+    connected,     // a new player (the match should add it)
+    reconnected,   // a player came back with its token (same player id)
+    disconnected,  // bye or time-out; the slot is held for the reconnect window
+    released,      // the slot is free again (the match should remove the player)
+  };
+  Kind kind;
+  std::uint32_t player_id = 0;
+  std::string name;
+  std::string reason;
+};
+
+struct Outgoing {
+  Address to;
+  std::vector<std::uint8_t> bytes;
+};
+
+struct PlayerInput {
+  std::uint32_t player_id = 0;
+  InputFrame frame;  // each (player, seq) delivered at most once, ascending seq
+};
+
+struct PlayerCommand {
+  std::uint32_t player_id = 0;
+  Command command;  // each exactly once, in rid order
+};
+
+struct SessionInfo {
+  std::uint32_t player_id = 0;
+  std::string name;
+  Address address;
+  bool connected = false;
+  double rtt_ms = 0;
+  std::optional<std::uint32_t> acked_snapshot;
+  Encoding encoding = Encoding::msgpack;
+};
+
+class ServerEndpoint {
+ public:
+  explicit ServerEndpoint(ServerConfig config);
+
+  void receive(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+  // Timers: heartbeats, result resends, time-outs, reconnect windows.
+  void update(std::uint64_t now_ms);
+
+  // Sends the snapshot to one connected player (delta against what it acknowledged).
+  void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
+  // Answers a command (reliably). code: "ok" or a refusal code; message for a person.
+  void send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
+                   std::string message, std::uint64_t now_ms);
+  // Ends a session now (error sent to the client, slot released).
+  void kick(std::uint32_t player_id, const std::string& code, const std::string& message,
+            std::uint64_t now_ms);
+  // Tells every connected client that the server stops; releases every slot.
+  void shutdown(std::uint64_t now_ms);
+  // The tick reported in welcomes.
+  void set_server_tick(std::uint32_t tick) { server_tick_ = tick; }
+
+  std::vector<Outgoing> take_datagrams();
+  std::vector<ServerEvent> take_events();
+  std::vector<PlayerInput> take_inputs();
+  std::vector<PlayerCommand> take_commands();
+
+  const RejectCounters& rejects() const { return rejects_; }
+  std::vector<SessionInfo> sessions() const;
+  std::vector<std::uint32_t> connected_players() const;
+
+ private:
+  struct Session {
+    std::uint32_t player_id = 0;
+    std::string name;
+    std::string token;
+    std::uint32_t session_id = 0;
+    Address address;
+    Encoding encoding = Encoding::msgpack;
+    bool connected = false;
+    std::uint64_t last_receive_ms = 0;
+    std::uint64_t last_send_ms = 0;
+    std::uint64_t disconnected_ms = 0;
+    std::uint32_t last_input_seq = 0;
+    AckWindow acks;
+    ReliableSender<Result> results;
+    ReliableReceiver<Command> commands;
+    SnapshotSender snapshots;
+  };
+
+  void handle_hello(const Address& from, const Header& header, const Hello& hello,
+                    std::size_t request_bytes, std::uint64_t now_ms);
+  void handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms);
+  void reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
+                         const Message& message, std::size_t request_bytes);
+  void send_welcome(const Session& s, const Address& to, Encoding encoding, bool reconnected,
+                    std::size_t request_bytes);
+  void start_session(Session& s, const Address& from, Encoding encoding, std::uint64_t now_ms);
+  void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
+  void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
+  void release(std::uint32_t player_id, const std::string& reason);
+  void emit(const Address& to, std::vector<std::uint8_t> bytes);
+
+  ServerConfig config_;
+  std::map<std::uint32_t, Session> sessions_;  // by player id
+  std::map<Address, std::uint32_t> by_address_;
+  std::map<std::uint32_t, std::uint32_t> by_session_id_;
+  std::uint64_t sessions_made_ = 0;
+  std::uint32_t server_tick_ = 0;
+  std::vector<Outgoing> out_;
+  std::vector<ServerEvent> events_;
+  std::vector<PlayerInput> inputs_;
+  std::vector<PlayerCommand> commands_;
+  RejectCounters rejects_;
+};
+
+}  // namespace fts::protocol

@@ -1,0 +1,203 @@
+#include "fts/protocol/client.hpp"
+
+#include <algorithm>
+
+namespace fts::protocol {
+
+const char* to_string(ClientState state) {
+  switch (state) {
+    case ClientState::idle: return "idle";
+    case ClientState::connecting: return "connecting";
+    case ClientState::connected: return "connected";
+    case ClientState::refused: return "refused";
+    case ClientState::timed_out: return "timed_out";
+    case ClientState::disconnected: return "disconnected";
+  }
+  return "?";
+}
+
+ClientEndpoint::ClientEndpoint(ClientConfig config) : config_(std::move(config)) {}
+
+void ClientEndpoint::connect(std::uint64_t now_ms) {
+  const ClientConfig config = config_;
+  *this = ClientEndpoint(config);
+  state_ = ClientState::connecting;
+  connect_start_ms_ = now_ms;
+  send_hello(now_ms);
+}
+
+void ClientEndpoint::emit(const Header& header, const std::vector<Message>& messages) {
+  auto bytes = encode_datagram(header, messages);
+  if (bytes.size() > kMaxDatagramBytes) return;  // never happens with our limits; never send it
+  ++stats_.datagrams_sent;
+  stats_.bytes_sent += bytes.size();
+  out_.push_back(std::move(bytes));
+}
+
+void ClientEndpoint::send_hello(std::uint64_t now_ms) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = config_.encoding;
+  Hello hello{config_.name, config_.token, cookie_, ""};
+  // Pad to kMinHelloBytes (a longer pad may need a longer length prefix: loop).
+  for (;;) {
+    const std::size_t size = kHeaderBytes + encode_payload(config_.encoding, {hello}).size();
+    if (size >= kMinHelloBytes) break;
+    hello.pad.append(kMinHelloBytes - size, '.');
+  }
+  emit(h, {hello});
+  last_hello_ms_ = now_ms;
+}
+
+void ClientEndpoint::send_packet(std::uint64_t now_ms) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = config_.encoding;
+  h.session = session_;
+  acks_.stamp(h, now_ms);
+  std::vector<Message> messages;
+  messages.push_back(Input{snapshots_.latest_tick(), {inputs_.rbegin(), inputs_.rend()}});
+  for (auto& c : commands_.collect(h.sequence, now_ms, config_.resend_ms, 8)) messages.push_back(c);
+  emit(h, messages);
+  last_send_ms_ = now_ms;
+}
+
+std::uint32_t ClientEndpoint::send_input(InputFrame frame, std::uint64_t now_ms) {
+  if (state_ != ClientState::connected) return 0;
+  frame.seq = next_input_seq_++;
+  inputs_.push_back(frame);
+  while (inputs_.size() > std::clamp<std::size_t>(config_.input_redundancy, 1, kMaxInputFrames))
+    inputs_.pop_front();
+  send_packet(now_ms);
+  return frame.seq;
+}
+
+std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_t now_ms) {
+  if (state_ != ClientState::connected) return 0;
+  const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}});
+  send_packet(now_ms);
+  return rid;
+}
+
+void ClientEndpoint::disconnect(std::uint64_t now_ms, const std::string& reason) {
+  if (state_ == ClientState::connected) {
+    for (int i = 0; i < 3; ++i) {
+      Header h;
+      h.version = config_.version;
+      h.encoding = config_.encoding;
+      h.session = session_;
+      acks_.stamp(h, now_ms);
+      emit(h, {Bye{reason.substr(0, kMaxTextBytes)}});
+    }
+  }
+  state_ = ClientState::disconnected;
+}
+
+void ClientEndpoint::update(std::uint64_t now_ms) {
+  if (state_ == ClientState::connecting) {
+    if (now_ms - connect_start_ms_ >= config_.connect_timeout_ms) {
+      state_ = ClientState::timed_out;
+      error_ = Error{"timeout", "no answer from the server during the handshake"};
+    } else if (now_ms - last_hello_ms_ >= config_.hello_resend_ms) {
+      send_hello(now_ms);
+    }
+  } else if (state_ == ClientState::connected) {
+    if (now_ms - last_receive_ms_ >= timeout_ms_) {
+      state_ = ClientState::timed_out;
+      error_ = Error{"timeout", "the server stopped answering"};
+    } else if (now_ms - last_send_ms_ >= config_.heartbeat_ms ||
+               commands_.due(now_ms, config_.resend_ms)) {
+      send_packet(now_ms);
+    }
+  }
+}
+
+void ClientEndpoint::receive(std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
+  ++stats_.datagrams_received;
+  stats_.bytes_received += bytes.size();
+  auto d = decode_datagram(bytes, config_.version);
+  if (!d) {
+    reject(d.error());
+    if (d.error() == Reject::bad_version && state_ == ClientState::connecting) {
+      if (auto e = decode_version_error(bytes)) {
+        error_ = *e;
+        state_ = ClientState::refused;
+      }
+    }
+    return;
+  }
+  if (state_ == ClientState::connecting) {
+    for (const auto& m : d->messages) {
+      if (const auto* c = std::get_if<Challenge>(&m); c && d->header.session == 0) {
+        cookie_ = c->cookie;
+        send_hello(now_ms);
+      } else if (const auto* w = std::get_if<Welcome>(&m); w && d->header.session != 0) {
+        welcome_ = *w;
+        session_ = d->header.session;
+        timeout_ms_ = std::max<std::uint64_t>(w->timeout_ms, 1);
+        config_.input_redundancy = std::max<std::size_t>(config_.input_redundancy, w->input_redundancy);
+        config_.token = w->token;
+        state_ = ClientState::connected;
+        last_receive_ms_ = now_ms;
+        send_packet(now_ms);  // first ack: the server knows the welcome arrived
+      } else if (const auto* e = std::get_if<Error>(&m)) {
+        error_ = *e;
+        state_ = ClientState::refused;
+      } else {
+        reject(Reject::unexpected);
+      }
+    }
+    return;
+  }
+  if (state_ == ClientState::connected) handle_connected(*d, now_ms);
+  else reject(Reject::unexpected);
+}
+
+void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {
+  if (d.header.session != session_) {
+    // A welcome resent for a hello that crossed ours is harmless; anything else is not ours.
+    reject(d.header.session == 0 ? Reject::unexpected : Reject::unknown_session);
+    return;
+  }
+  if (d.messages.size() == 1 && std::holds_alternative<Welcome>(d.messages[0])) return;  // resent
+  std::vector<std::uint16_t> acked;
+  if (!acks_.on_receive(d.header, now_ms, acked)) {
+    reject(Reject::stale);
+    return;
+  }
+  last_receive_ms_ = now_ms;
+  for (auto seq : acked) commands_.on_acked(seq);
+  for (const auto& m : d.messages) {
+    if (const auto* s = std::get_if<SnapshotMsg>(&m)) {
+      auto r = snapshots_.accept(*s);
+      if (!r) reject(r.error());
+      else if (*r) {
+        ++stats_.snapshots_received;
+        new_snapshots_.push_back(std::move(**r));
+      }
+    } else if (const auto* res = std::get_if<Result>(&m)) {
+      if (auto why = results_.accept(*res)) reject(*why);
+    } else if (std::holds_alternative<Ping>(m)) {
+    } else if (const auto* bye = std::get_if<Bye>(&m)) {
+      error_ = Error{"bye", bye->reason};
+      state_ = ClientState::disconnected;
+    } else if (const auto* e = std::get_if<Error>(&m)) {
+      error_ = *e;
+      state_ = ClientState::refused;
+    } else {
+      reject(Reject::unexpected);
+    }
+  }
+}
+
+std::vector<std::vector<std::uint8_t>> ClientEndpoint::take_datagrams() { return std::exchange(out_, {}); }
+std::vector<Result> ClientEndpoint::take_results() { return results_.take(); }
+std::vector<Snapshot> ClientEndpoint::take_snapshots() { return std::exchange(new_snapshots_, {}); }
+
+ClientStats ClientEndpoint::stats() const {
+  ClientStats s = stats_;
+  s.rtt_ms = acks_.rtt_ms();
+  return s;
+}
+
+}  // namespace fts::protocol

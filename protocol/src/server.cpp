@@ -1,0 +1,277 @@
+#include "fts/protocol/server.hpp"
+
+#include <algorithm>
+
+namespace fts::protocol {
+
+ServerEndpoint::ServerEndpoint(ServerConfig config) : config_(std::move(config)) {}
+
+void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
+  if (bytes.size() > kMaxDatagramBytes) return;  // never sent; the limits make it unreachable
+  out_.push_back({to, std::move(bytes)});
+}
+
+// Before the handshake completes, a reply is never larger than its request.
+void ServerEndpoint::reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
+                                       const Message& message, std::size_t request_bytes) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = encoding;
+  h.session = session;
+  auto bytes = encode_datagram(h, {message});
+  if (bytes.size() > request_bytes) return;
+  emit(to, std::move(bytes));
+}
+
+void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
+                             std::uint64_t now_ms) {
+  auto header = read_header_any_version(bytes);
+  if (!header) return rejects_.add(header.error());
+  if (header->version != config_.version) {
+    rejects_.add(Reject::bad_version);
+    if (bytes.size() >= kMinHelloBytes) {
+      const std::string text = "protocol version " + std::to_string(header->version) +
+                               " is not supported; this server speaks version " +
+                               std::to_string(config_.version) + ": update your client";
+      reply_unconnected(from, Encoding::json, 0, Error{"version", text}, bytes.size());
+    }
+    return;
+  }
+  auto d = decode_datagram(bytes, config_.version);
+  if (!d) return rejects_.add(d.error());
+  if (d->header.session != 0) return handle_session(from, *d, now_ms);
+  if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0]))
+    return rejects_.add(Reject::unexpected);
+  if (bytes.size() < kMinHelloBytes) return rejects_.add(Reject::unpadded_hello);
+  handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
+}
+
+void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding encoding,
+                                  bool reconnected, std::size_t request_bytes) {
+  Welcome w = config_.settings;
+  w.player_id = s.player_id;
+  w.token = s.token;
+  w.server_tick = server_tick_;
+  w.reconnected = reconnected;
+  w.max_players = config_.max_players;
+  w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
+  w.reconnect_window_ms = static_cast<std::uint32_t>(config_.reconnect_window_ms);
+  reply_unconnected(to, encoding, s.session_id, w, request_bytes);
+}
+
+void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding,
+                                   std::uint64_t now_ms) {
+  if (s.session_id != 0) by_session_id_.erase(s.session_id);
+  if (!s.address.empty()) by_address_.erase(s.address);
+  ++sessions_made_;
+  s.session_id = derive_session_id(config_.key, sessions_made_);
+  while (by_session_id_.count(s.session_id))
+    s.session_id = derive_session_id(config_.key, ++sessions_made_);
+  s.address = from;
+  s.encoding = encoding;
+  s.connected = true;
+  s.last_receive_ms = now_ms;
+  s.last_send_ms = now_ms;
+  s.last_input_seq = 0;
+  s.acks = AckWindow{};
+  s.results = ReliableSender<Result>{};
+  s.commands = ReliableReceiver<Command>{};
+  s.snapshots.reset();
+  by_session_id_[s.session_id] = s.player_id;
+  by_address_[from] = s.player_id;
+}
+
+void ServerEndpoint::handle_hello(const Address& from, const Header& header, const Hello& hello,
+                                  std::size_t request_bytes, std::uint64_t now_ms) {
+  const Encoding enc = header.encoding;
+  if (hello.cookie.empty()) {
+    reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
+    return;
+  }
+  switch (check_cookie(config_.key, from, hello.cookie, now_ms, config_.cookie_lifetime_ms)) {
+    case CookieCheck::forged: return rejects_.add(Reject::bad_cookie);
+    case CookieCheck::expired:
+      rejects_.add(Reject::bad_cookie);
+      reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
+      return;
+    case CookieCheck::ok: break;
+  }
+  // The welcome was lost and the client asks again: same answer.
+  if (auto it = by_address_.find(from); it != by_address_.end()) {
+    Session& s = sessions_.at(it->second);
+    if (s.connected && (hello.token.empty() || hello.token == s.token)) {
+      send_welcome(s, from, s.encoding, false, request_bytes);
+      return;
+    }
+  }
+  if (!hello.token.empty()) {
+    auto it = std::find_if(sessions_.begin(), sessions_.end(),
+                           [&](const auto& kv) { return kv.second.token == hello.token; });
+    if (it == sessions_.end()) {
+      rejects_.add(Reject::bad_token);
+      reply_unconnected(from, enc, 0,
+                        Error{"bad_token", "unknown or expired session token; connect again without one"},
+                        request_bytes);
+      return;
+    }
+    Session& s = it->second;
+    start_session(s, from, enc, now_ms);
+    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token"});
+    send_welcome(s, from, enc, true, request_bytes);
+    return;
+  }
+  if (sessions_.size() >= config_.max_players) {
+    rejects_.add(Reject::server_full);
+    const std::string text = "the server is full (" + std::to_string(config_.max_players) +
+                             " players); try again later";
+    reply_unconnected(from, enc, 0, Error{"full", text}, request_bytes);
+    return;
+  }
+  std::uint32_t player_id = 1;
+  while (sessions_.count(player_id)) ++player_id;
+  Session& s = sessions_[player_id];
+  s.player_id = player_id;
+  s.name = hello.name;
+  s.token = derive_token(config_.key, sessions_made_ + 1);
+  start_session(s, from, enc, now_ms);
+  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, ""});
+  send_welcome(s, from, enc, false, request_bytes);
+}
+
+void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms) {
+  auto sid = by_session_id_.find(d.header.session);
+  if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
+  Session& s = sessions_.at(sid->second);
+  if (s.address != from) return rejects_.add(Reject::address_mismatch);
+  if (!s.connected) return rejects_.add(Reject::unknown_session);
+  // Validate every message before any state changes.
+  for (const auto& m : d.messages) {
+    if (!std::holds_alternative<Input>(m) && !std::holds_alternative<Command>(m) &&
+        !std::holds_alternative<Ping>(m) && !std::holds_alternative<Bye>(m))
+      return rejects_.add(Reject::unexpected);
+  }
+  std::vector<std::uint16_t> acked;
+  if (!s.acks.on_receive(d.header, now_ms, acked)) return rejects_.add(Reject::stale);
+  s.last_receive_ms = now_ms;
+  for (auto seq : acked) s.results.on_acked(seq);
+  for (const auto& m : d.messages) {
+    if (const auto* in = std::get_if<Input>(&m)) {
+      s.snapshots.on_ack(in->snapshot_ack);
+      std::vector<InputFrame> frames = in->frames;
+      std::sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
+      for (const auto& f : frames) {
+        if (f.seq <= s.last_input_seq) continue;
+        s.last_input_seq = f.seq;
+        inputs_.push_back({s.player_id, f});
+      }
+    } else if (const auto* c = std::get_if<Command>(&m)) {
+      if (auto why = s.commands.accept(*c)) rejects_.add(*why);
+      for (auto& cmd : s.commands.take()) commands_.push_back({s.player_id, cmd});
+    } else if (const auto* bye = std::get_if<Bye>(&m)) {
+      drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
+      return;
+    }
+  }
+}
+
+void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool with_results,
+                                 std::uint64_t now_ms) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = s.encoding;
+  h.session = s.session_id;
+  s.acks.stamp(h, now_ms);
+  if (with_results)
+    for (auto& r : s.results.collect(h.sequence, now_ms, config_.resend_ms, 3)) messages.push_back(std::move(r));
+  if (messages.empty()) messages.push_back(Ping{});
+  s.last_send_ms = now_ms;
+  emit(s.address, encode_datagram(h, messages));
+}
+
+void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end() || !it->second.connected) return;
+  Session& s = it->second;
+  for (auto& part : s.snapshots.encode(snapshot, s.encoding)) send_packet(s, {std::move(part)}, false, now_ms);
+}
+
+void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
+                                 std::string message, std::uint64_t now_ms) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return;
+  Session& s = it->second;
+  code.resize(std::min<std::size_t>(code.size(), 32));
+  message.resize(std::min<std::size_t>(message.size(), kMaxTextBytes));
+  for (auto* text : {&code, &message})
+    for (char& c : *text)
+      if (c < 0x20 || c > 0x7E) c = '?';
+  s.results.push(Result{0, command_rid, ok, std::move(code), std::move(message)});
+  if (s.connected) send_packet(s, {}, true, now_ms);
+}
+
+void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms) {
+  s.connected = false;
+  s.disconnected_ms = now_ms;
+  by_session_id_.erase(s.session_id);
+  by_address_.erase(s.address);
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason});
+}
+
+void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return;
+  by_session_id_.erase(it->second.session_id);
+  by_address_.erase(it->second.address);
+  events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason});
+  sessions_.erase(it);
+}
+
+void ServerEndpoint::kick(std::uint32_t player_id, const std::string& code, const std::string& message,
+                          std::uint64_t now_ms) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return;
+  if (it->second.connected)
+    send_packet(it->second, {Error{code.substr(0, 32), message.substr(0, kMaxTextBytes)}}, false, now_ms);
+  release(player_id, code);
+}
+
+void ServerEndpoint::shutdown(std::uint64_t now_ms) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& [id, s] : sessions_) ids.push_back(id);
+  for (auto id : ids) kick(id, "shutdown", "the server is shutting down", now_ms);
+}
+
+void ServerEndpoint::update(std::uint64_t now_ms) {
+  std::vector<std::uint32_t> expired;
+  for (auto& [id, s] : sessions_) {
+    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) drop_connection(s, "timeout", now_ms);
+    if (!s.connected) {
+      if (now_ms - s.disconnected_ms >= config_.reconnect_window_ms) expired.push_back(id);
+      continue;
+    }
+    if (s.results.due(now_ms, config_.resend_ms) || now_ms - s.last_send_ms >= config_.heartbeat_ms)
+      send_packet(s, {}, true, now_ms);
+  }
+  for (auto id : expired) release(id, "reconnect window over");
+}
+
+std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }
+std::vector<ServerEvent> ServerEndpoint::take_events() { return std::exchange(events_, {}); }
+std::vector<PlayerInput> ServerEndpoint::take_inputs() { return std::exchange(inputs_, {}); }
+std::vector<PlayerCommand> ServerEndpoint::take_commands() { return std::exchange(commands_, {}); }
+
+std::vector<SessionInfo> ServerEndpoint::sessions() const {
+  std::vector<SessionInfo> out;
+  for (const auto& [id, s] : sessions_)
+    out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding});
+  return out;
+}
+
+std::vector<std::uint32_t> ServerEndpoint::connected_players() const {
+  std::vector<std::uint32_t> out;
+  for (const auto& [id, s] : sessions_)
+    if (s.connected) out.push_back(id);
+  return out;
+}
+
+}  // namespace fts::protocol

@@ -1,0 +1,78 @@
+// A server endpoint and several client endpoints joined by lossy links, stepped by hand.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fts/protocol/client.hpp"
+#include "fts/protocol/server.hpp"
+#include "lossy_link.hpp"
+
+namespace fts::protocol::test {
+
+inline ServerKey test_key() {
+  ServerKey k{};
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<std::uint8_t>(i * 7 + 1);
+  return k;
+}
+
+inline ServerConfig test_server_config() {
+  ServerConfig c;
+  c.key = test_key();
+  return c;
+}
+
+struct Peer {
+  std::string address;
+  ClientEndpoint client;
+  LossyLink up;    // client -> server
+  LossyLink down;  // server -> client
+};
+
+class Harness {
+ public:
+  explicit Harness(ServerConfig config = test_server_config()) : server(std::move(config)) {}
+
+  Peer& add_client(ClientConfig config, LinkConfig link = {}, std::string address = "") {
+    if (address.empty()) address = "10.0.0." + std::to_string(peers.size() + 1) + ":5000";
+    LinkConfig down = link;
+    down.seed = link.seed * 31 + 7;
+    peers.push_back(std::make_unique<Peer>(Peer{address, ClientEndpoint(config), LossyLink(link), LossyLink(down)}));
+    return *peers.back();
+  }
+
+  // Moves every datagram due at `now`, then runs the timers; returns nothing.
+  void step(std::uint64_t now_ms) {
+    now = now_ms;
+    for (auto& p : peers) {
+      for (auto& bytes : p->client.take_datagrams()) p->up.send(std::move(bytes), now);
+      for (auto& bytes : p->up.receive(now)) server.receive(p->address, bytes, now);
+    }
+    for (auto& out : server.take_datagrams()) {
+      for (auto& p : peers)
+        if (p->address == out.to) p->down.send(out.bytes, now);
+    }
+    for (auto& p : peers) {
+      for (auto& bytes : p->down.receive(now)) p->client.receive(bytes, now);
+      p->client.update(now);
+    }
+    server.update(now);
+  }
+
+  // Steps in 5 ms increments until pred() or the deadline; returns pred().
+  template <class Pred>
+  bool run_until(Pred pred, std::uint64_t deadline_ms) {
+    while (now < deadline_ms) {
+      step(now + 5);
+      if (pred()) return true;
+    }
+    return pred();
+  }
+
+  ServerEndpoint server;
+  std::vector<std::unique_ptr<Peer>> peers;
+  std::uint64_t now = 100;
+};
+
+}  // namespace fts::protocol::test
