@@ -1,0 +1,67 @@
+// Prints the annotated example of PROTOCOL.md: fts_protocol_tests "[.example]"
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+
+#include "harness.hpp"
+#include "samples.hpp"
+
+using namespace fts::protocol;
+using namespace fts::protocol::test;
+
+namespace {
+void print(const char* direction, const std::vector<std::uint8_t>& bytes) {
+  auto d = decode_datagram(bytes);
+  REQUIRE(d.ok());
+  const Header& h = d->header;
+  std::printf("%s %zu bytes  header{version %u, encoding %s, session %u, seq %u, ack %u, ack_bits %08x}\n",
+              direction, bytes.size(), h.version, h.encoding == Encoding::json ? "json" : "msgpack",
+              h.session, h.sequence, h.ack, h.ack_bits);
+  std::printf("%s\n\n", std::string(bytes.begin() + kHeaderBytes, bytes.end()).c_str());
+}
+}  // namespace
+
+TEST_CASE("example exchange", "[.example]") {
+  ServerConfig config = test_server_config();
+  ServerEndpoint server(config);
+  ClientConfig cc;
+  cc.encoding = Encoding::json;
+  cc.name = "ann";
+  ClientEndpoint client(cc);
+  const std::string addr = "192.0.2.7:40000";
+  std::uint64_t now = 1000;
+  auto pump = [&] {
+    for (auto& b : client.take_datagrams()) {
+      print("C->S", b);
+      server.receive(addr, b, now);
+    }
+    for (auto& o : server.take_datagrams()) {
+      print("S->C", o.bytes);
+      client.receive(o.bytes, now);
+    }
+  };
+  client.connect(now);
+  for (int i = 0; i < 4; ++i) pump();
+  now += 10;
+  client.send_input({0, 1, 0, false}, now);
+  pump();
+  Snapshot s = sample_snapshot(1, 1, 200);
+  s.phase = Phase::shop;
+  s.events.clear();
+  server.send_snapshot(1, s, now);
+  pump();
+  now += 10;
+  client.send_command(CommandOp::buy, 'm', now);
+  pump();
+  for (auto& pc : server.take_commands())
+    server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass: 42 -> 43", now);
+  pump();
+  now += 40;
+  s = advance(s, 5, 0.05);
+  s.players[0].coins -= 36;
+  s.players[0].mass += 1;
+  s.players[0].prices[0] += 3;
+  s.events.push_back({202, EventKind::purchase, 1, 'm', 36});
+  server.send_snapshot(1, s, now);
+  pump();
+}
