@@ -70,7 +70,7 @@ std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string
       if (!def) f.fail(key, "unknown key (value " + value.dump() + ")");
       std::visit(
           [&](auto ptr) {
-            using T = std::remove_reference_t<decltype(cfg.*ptr)>;
+            using T = std::remove_cvref_t<decltype(cfg.*ptr)>;
             if constexpr (std::is_same_v<T, double>) {
               cfg.*ptr = f.number(key);
             } else if constexpr (std::is_same_v<T, sim::Model>) {
@@ -100,7 +100,7 @@ nlohmann::json match_config_to_json(const sim::MatchConfig& cfg) {
   for (const FieldDef& f : kFields) {
     std::visit(
         [&](auto ptr) {
-          using T = std::remove_reference_t<decltype(cfg.*ptr)>;
+          using T = std::remove_cvref_t<decltype(cfg.*ptr)>;
           if constexpr (std::is_same_v<T, sim::Model>) j[f.name] = std::string(sim::to_string(cfg.*ptr));
           else j[f.name] = cfg.*ptr;
         },
