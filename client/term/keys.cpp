@@ -1,0 +1,228 @@
+#include "term/keys.hpp"
+
+#include <cctype>
+#include <limits>
+
+namespace fts::client {
+
+std::string kitty_push() { return "\x1b[>" + std::to_string(kKittyFlags) + "u"; }
+
+namespace {
+
+KeyEvent from_char(unsigned char c) {
+  KeyEvent e;
+  if (c == 0x03) e.key = Key::ctrl_c;
+  else if (c == '\r' || c == '\n') e.key = Key::enter;
+  else if (c == ' ') e.key = Key::space;
+  else if (c == 0x1b) e.key = Key::escape;
+  else if (c >= 0x21 && c < 0x7f) {
+    e.key = Key::character;
+    e.ch = static_cast<char>(std::tolower(c));
+  }
+  return e;
+}
+
+// Splits "a:b;c:d" into fields of sub-parameters (missing numbers are -1).
+std::vector<std::vector<long>> parse_params(std::string_view p) {
+  std::vector<std::vector<long>> fields(1);
+  long cur = -1;
+  for (char ch : p) {
+    if (ch >= '0' && ch <= '9') {
+      cur = (cur < 0 ? 0 : cur) * 10 + (ch - '0');
+      if (cur > 10'000'000) cur = 10'000'000;
+    } else if (ch == ':' || ch == ';') {
+      fields.back().push_back(cur);
+      cur = -1;
+      if (ch == ';') fields.emplace_back();
+    }
+  }
+  fields.back().push_back(cur);
+  return fields;
+}
+
+long param(const std::vector<std::vector<long>>& f, std::size_t i, std::size_t j, long def) {
+  if (i >= f.size() || j >= f[i].size() || f[i][j] < 0) return def;
+  return f[i][j];
+}
+
+// One complete CSI sequence: parameters (without a leading private marker) and final byte.
+std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, bool& kitty_answer) {
+  if (!params.empty() && params[0] == '?') {
+    if (final_byte == 'u') kitty_answer = true;  // CSI ? flags u: the query's answer
+    return std::nullopt;
+  }
+  const auto f = parse_params(params);
+  const long mods = param(f, 1, 0, 1) - 1;  // bits: 1 shift, 2 alt, 4 ctrl
+  const long type = param(f, 1, 1, -1);     // kitty event type: 1 press, 2 repeat, 3 release
+  KeyEvent e;
+  e.kitty = type > 0;
+  e.action = type == 2 ? KeyAction::repeat : type == 3 ? KeyAction::release : KeyAction::press;
+  switch (final_byte) {
+    case 'A': e.key = Key::up; return e;
+    case 'B': e.key = Key::down; return e;
+    case 'C': e.key = Key::right; return e;
+    case 'D': e.key = Key::left; return e;
+    case 'u': {
+      e.kitty = true;  // CSI u is only sent under the kitty protocol
+      const long code = param(f, 0, 0, 0);
+      if (code == 13 || code == 57414) e.key = Key::enter;
+      else if (code == 32) e.key = Key::space;
+      else if (code == 27) e.key = Key::escape;
+      else if (code == 'c' && (mods & 4) != 0) e.key = Key::ctrl_c;
+      else if (code == 57417) e.key = Key::left;  // keypad arrows
+      else if (code == 57418) e.key = Key::right;
+      else if (code == 57419) e.key = Key::up;
+      else if (code == 57420) e.key = Key::down;
+      else if (code > 0x20 && code < 0x7f) {
+        e.key = Key::character;
+        e.ch = static_cast<char>(std::tolower(static_cast<int>(code)));
+      } else {
+        return std::nullopt;  // modifiers alone, function keys: not ours
+      }
+      if ((mods & 4) != 0 && e.key == Key::character) return std::nullopt;
+      return e;
+    }
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::vector<KeyEvent> KeyDecoder::feed(std::string_view bytes) {
+  buffer_ += bytes;
+  std::vector<KeyEvent> out;
+  std::size_t i = 0;
+  while (i < buffer_.size()) {
+    const auto c = static_cast<unsigned char>(buffer_[i]);
+    if (c != 0x1b) {
+      const KeyEvent e = from_char(c);
+      if (e.key != Key::none) out.push_back(e);
+      ++i;
+      continue;
+    }
+    if (i + 1 >= buffer_.size()) break;  // ESC alone so far: wait (flush() decides)
+    const char kind = buffer_[i + 1];
+    if (kind == 'O') {  // SS3: application-mode arrows
+      if (i + 2 >= buffer_.size()) break;
+      const char fb = buffer_[i + 2];
+      KeyEvent e;
+      if (fb == 'A') e.key = Key::up;
+      else if (fb == 'B') e.key = Key::down;
+      else if (fb == 'C') e.key = Key::right;
+      else if (fb == 'D') e.key = Key::left;
+      else if (fb == 'M') e.key = Key::enter;
+      if (e.key != Key::none) out.push_back(e);
+      i += 3;
+      continue;
+    }
+    if (kind != '[') {  // Alt+key or a stray ESC: take the ESC as Escape
+      out.push_back(KeyEvent{Key::escape});
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 2;
+    while (j < buffer_.size() && static_cast<unsigned char>(buffer_[j]) >= 0x20 &&
+           static_cast<unsigned char>(buffer_[j]) < 0x40)
+      ++j;
+    if (j >= buffer_.size()) {
+      if (j - i > 64) {  // an endless sequence: drop it
+        i = j;
+        continue;
+      }
+      break;
+    }
+    const auto fb = static_cast<unsigned char>(buffer_[j]);
+    if (fb >= 0x40 && fb < 0x7f) {
+      bool answer = false;
+      if (auto e = decode_csi(std::string_view(buffer_).substr(i + 2, j - i - 2), static_cast<char>(fb), answer))
+        out.push_back(*e);
+      if (answer) kitty_supported_ = true;
+    }
+    i = j + 1;
+  }
+  buffer_.erase(0, i);
+  return out;
+}
+
+std::vector<KeyEvent> KeyDecoder::flush() {
+  std::vector<KeyEvent> out;
+  if (buffer_ == "\x1b") out.push_back(KeyEvent{Key::escape});
+  buffer_.clear();
+  return out;
+}
+
+std::optional<Direction> direction_of(const KeyEvent& e) {
+  switch (e.key) {
+    case Key::up: return Direction::up;
+    case Key::down: return Direction::down;
+    case Key::left: return Direction::left;
+    case Key::right: return Direction::right;
+    case Key::character:
+      if (e.ch == 'w') return Direction::up;
+      if (e.ch == 's') return Direction::down;
+      if (e.ch == 'a') return Direction::left;
+      if (e.ch == 'd') return Direction::right;
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+namespace {
+constexpr std::size_t idx(Direction d) { return static_cast<std::size_t>(d); }
+constexpr Direction opposite(Direction d) {
+  switch (d) {
+    case Direction::up: return Direction::down;
+    case Direction::down: return Direction::up;
+    case Direction::left: return Direction::right;
+    case Direction::right: return Direction::left;
+  }
+  return d;
+}
+constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
+}  // namespace
+
+void HoldTracker::on_key(Direction d, const KeyEvent& e, std::uint64_t now_ms) {
+  auto& until = until_ms_[idx(d)];
+  if (e.action == KeyAction::release) {
+    until = 0;
+    return;
+  }
+  until_ms_[idx(opposite(d))] = 0;
+  if (e.kitty) {
+    until = kForever;  // a real release will come
+  } else if (e.action == KeyAction::repeat || held(d, now_ms)) {
+    until = now_ms + config_.repeat_hold_ms;
+  } else {
+    until = now_ms + config_.first_hold_ms;
+  }
+}
+
+bool HoldTracker::held(Direction d, std::uint64_t now_ms) const { return now_ms < until_ms_[idx(d)]; }
+
+int HoldTracker::move_x(std::uint64_t now_ms) const {
+  return (held(Direction::right, now_ms) ? 1 : 0) - (held(Direction::left, now_ms) ? 1 : 0);
+}
+
+int HoldTracker::move_y(std::uint64_t now_ms) const {
+  return (held(Direction::up, now_ms) ? 1 : 0) - (held(Direction::down, now_ms) ? 1 : 0);
+}
+
+Action action_of(const KeyEvent& e, protocol::Phase phase) {
+  if (e.key == Key::ctrl_c) return {ActionKind::quit};
+  if (e.action == KeyAction::release) {
+    return direction_of(e) && phase == protocol::Phase::play ? Action{ActionKind::move} : Action{};
+  }
+  if (e.key == Key::character && e.ch == 'q') return {ActionKind::quit};
+  if (phase == protocol::Phase::shop) {
+    if (e.key == Key::enter) return {ActionKind::ready};
+    if (e.key == Key::character && protocol::shop_index(e.ch) >= 0 && e.action == KeyAction::press)
+      return {ActionKind::buy, e.ch};
+    return {};
+  }
+  if (e.key == Key::enter && e.action == KeyAction::press) return {ActionKind::ready};
+  if (e.key == Key::space) return {ActionKind::fire};
+  if (direction_of(e)) return {ActionKind::move};
+  return {};
+}
+
+}  // namespace fts::client

@@ -1,0 +1,84 @@
+// Keyboard input, pure: bytes from the terminal become key events (legacy sequences and
+// the kitty keyboard protocol's CSI u form with press/repeat/release), and a hold tracker
+// turns them into thrust. Legacy terminals send no key-up: a key counts as held while it
+// repeats, and is let go after a short release time-out.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fts/protocol/snapshot.hpp"
+
+namespace fts::client {
+
+enum class Key : std::uint8_t { none, up, down, left, right, space, enter, escape, ctrl_c, character };
+enum class KeyAction : std::uint8_t { press, repeat, release };
+
+struct KeyEvent {
+  Key key = Key::none;
+  char ch = 0;  // Key::character: the lower-case ASCII letter or symbol
+  KeyAction action = KeyAction::press;
+  bool kitty = false;  // came in the kitty protocol's form: releases will be reported
+  bool operator==(const KeyEvent&) const = default;
+};
+
+// The kitty keyboard protocol: push flags disambiguate (1) | report event types (2) |
+// report all keys as escape codes (8, needed for releases of plain letters), pop them,
+// and the query whose answer (CSI ? flags u) tells that the terminal supports it.
+inline constexpr int kKittyFlags = 1 | 2 | 8;
+std::string kitty_push();
+inline constexpr std::string_view kKittyPop = "\x1b[<u";
+inline constexpr std::string_view kKittyQuery = "\x1b[?u";
+
+class KeyDecoder {
+ public:
+  // Decodes what it can; an incomplete escape sequence waits for more bytes.
+  std::vector<KeyEvent> feed(std::string_view bytes);
+  // A lone ESC with nothing after it for a while is the Escape key.
+  std::vector<KeyEvent> flush();
+  bool pending() const { return !buffer_.empty(); }
+  // The terminal answered the kitty query: it supports key release events.
+  bool kitty_supported() const { return kitty_supported_; }
+
+ private:
+  std::string buffer_;
+  bool kitty_supported_ = false;
+};
+
+enum class Direction : std::uint8_t { up, down, left, right };
+std::optional<Direction> direction_of(const KeyEvent& e);
+
+struct HoldConfig {
+  std::uint64_t first_hold_ms = 550;  // a first press: until the terminal's auto-repeat starts
+  std::uint64_t repeat_hold_ms = 120;  // after a repeat: a little more than the repeat interval
+};
+
+class HoldTracker {
+ public:
+  explicit HoldTracker(HoldConfig config = {}) : config_(config) {}
+  // A direction key event at now_ms.
+  void on_key(Direction d, const KeyEvent& e, std::uint64_t now_ms);
+  bool held(Direction d, std::uint64_t now_ms) const;
+  // Thrust per axis: -1, 0 or +1 (x right, y up).
+  int move_x(std::uint64_t now_ms) const;
+  int move_y(std::uint64_t now_ms) const;
+  void release_all() { until_ms_.fill(0); }
+
+ private:
+  HoldConfig config_;
+  std::array<std::uint64_t, 4> until_ms_{};  // held while now < until; max: until released
+};
+
+// What a key means in a phase of the game.
+enum class ActionKind : std::uint8_t { none, move, fire, buy, ready, quit };
+struct Action {
+  ActionKind kind = ActionKind::none;
+  char item = 0;  // buy: m s a r l x b
+};
+Action action_of(const KeyEvent& e, protocol::Phase phase);
+
+}  // namespace fts::client

@@ -1,0 +1,161 @@
+#include "ui/hud.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "fts/sim/shop_text.hpp"
+#include "ui/sanitize.hpp"
+
+namespace fts::client {
+
+using protocol::EventKind;
+using protocol::Phase;
+
+const PlayerState* find_player(const Snapshot& s, std::uint32_t id) {
+  for (const auto& p : s.players)
+    if (p.id == id) return &p;
+  return nullptr;
+}
+
+std::string hud_line(const Snapshot& s, const ViewState& view) {
+  const PlayerState* me = find_player(s, view.my_player_id);
+  std::string out = "Level: " + std::to_string(s.level);
+  if (me != nullptr) {
+    out += "   Coins: " + sim::with_thousands(me->coins);
+    out += "   Lives: " + std::to_string(me->lives);
+  }
+  char buf[64];
+  if (view.ping_ms >= 0) {
+    std::snprintf(buf, sizeof buf, "   Ping: %.0f ms", view.ping_ms);
+    out += buf;
+  }
+  if (view.loss_percent >= 0) {
+    std::snprintf(buf, sizeof buf, "   Loss: %.1f%%", view.loss_percent);
+    out += buf;
+  }
+  return out;
+}
+
+namespace {
+
+std::string plural(std::int64_t n, const char* one, const char* many) {
+  return sim::with_thousands(n) + " " + (n == 1 ? one : many);
+}
+
+std::string name_of(const Snapshot& s, std::uint32_t id) {
+  const PlayerState* p = find_player(s, id);
+  return p != nullptr ? sanitize(p->name, 16) : "player " + std::to_string(id);
+}
+
+}  // namespace
+
+std::string players_line(const Snapshot& s, const ViewState& view) {
+  std::string out = "Players:";
+  bool first = true;
+  for (const auto& p : s.players) {
+    out += first ? " " : " | ";
+    first = false;
+    out += sanitize(p.name, 16);
+    if (p.id == view.my_player_id) out += " (you)";
+    out += " " + plural(p.coins, "coin", "coins") + " " + plural(p.lives, "life", "lives");
+    if (p.lives <= 0 && !p.alive) out += " out";
+  }
+  return out;
+}
+
+sim::Economy economy_of(const PlayerState& p) {
+  sim::Economy e;
+  e.coins = p.coins;
+  e.lives = p.lives;
+  e.mass = std::llround(p.mass);
+  e.vmax_u_per_s = p.vmax_u_per_s;
+  e.accel_u_per_s2 = p.accel_u_per_s2;
+  e.multiplier = p.multiplier;
+  e.bank = p.bank;
+  e.rockets = p.weapon == protocol::Weapon::rockets;
+  const auto& pr = p.prices;  // kShopItems order: m s a r l x b
+  e.prices.mass = pr[0];
+  e.prices.speed = pr[1];
+  e.prices.accel = pr[2];
+  e.prices.rockets = pr[3];
+  e.prices.life = static_cast<double>(pr[4]);
+  e.prices.multiplier = static_cast<double>(pr[5]);
+  e.prices.bank = pr[6];
+  return e;
+}
+
+std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level) {
+  return sim::shop_lines(economy_of(p), level);
+}
+
+std::string ready_line(const Snapshot& s) {
+  std::string out = "Ready:";
+  bool first = true;
+  for (const auto& p : s.players) {
+    if (p.lives <= 0 && !p.alive) continue;
+    out += first ? " " : ", ";
+    first = false;
+    out += sanitize(p.name, 16) + (p.ready ? " (ready)" : " (shopping)");
+  }
+  return out;
+}
+
+std::string help_line(Phase phase) {
+  switch (phase) {
+    case Phase::play:
+      return "Move: arrows/WASD   Fire rockets: space   Quit: q";
+    case Phase::shop:
+      return "Buy: m s a r l x b   Ready: Enter   Quit: q";
+    case Phase::over:
+      return "Game over   Play again: Enter   Quit: q";
+    case Phase::lobby:
+      return "Waiting for the match   Ready: Enter   Quit: q";
+  }
+  return "Quit: q";
+}
+
+namespace {
+
+const char* item_name(char key) {
+  switch (key) {
+    case 'm': return "mass";
+    case 's': return "max speed";
+    case 'a': return "acceleration";
+    case 'r': return "rockets";
+    case 'l': return "a life";
+    case 'x': return "multiplier";
+    case 'b': return "bank";
+    default: return "an item";
+  }
+}
+
+}  // namespace
+
+std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id) {
+  const auto who = [&](std::uint32_t id) { return id == my_id ? std::string("You") : name_of(s, id); };
+  switch (e.kind) {
+    case EventKind::enemy_fell:
+      if (e.b == 0) return "An enemy fell off.";
+      return who(e.b) + " knocked an enemy off: +" + sim::with_thousands(e.value) + " coins.";
+    case EventKind::player_fell:
+      return who(e.a) + " fell off (" + plural(e.value, "life", "lives") + " left).";
+    case EventKind::level_started: return "Level " + std::to_string(e.value) + " started.";
+    case EventKind::level_complete: return "Level " + std::to_string(e.value) + " Complete";
+    case EventKind::purchase:
+      return who(e.a) + " bought " + item_name(static_cast<char>(e.b)) + " for " +
+             sim::with_thousands(e.value) + " coins.";
+    case EventKind::player_joined: return who(e.a) + " joined.";
+    case EventKind::player_left: return who(e.a) + " left.";
+    case EventKind::rocket_fired: return who(e.a) + " fired a rocket.";
+    case EventKind::match_over:
+      return "Game over at level " + std::to_string(e.value) + ".";
+    case EventKind::respawned: return who(e.a) + " respawned.";
+    case EventKind::interest:
+      return who(e.a) + " earned " + sim::with_thousands(e.value) + " coins of interest.";
+    case EventKind::level_restarted: return "Level " + std::to_string(e.value) + " restarts.";
+    case EventKind::count_: break;
+  }
+  return {};
+}
+
+}  // namespace fts::client

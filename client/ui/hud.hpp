@@ -1,0 +1,36 @@
+// The text parts of the screen: the HUD line in the original's words, the player list,
+// the shop screen of the seed's slide, and the help line of controls.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fts/protocol/snapshot.hpp"
+#include "fts/sim/economy.hpp"
+#include "ui/view.hpp"
+
+namespace fts::client {
+
+using protocol::PlayerState;
+using protocol::Snapshot;
+
+// The player with this id, or nullptr.
+const PlayerState* find_player(const Snapshot& s, std::uint32_t id);
+
+// "Level: 3   Coins: 286   Lives: 1   Ping: 23 ms   Loss: 0.0%".
+std::string hud_line(const Snapshot& s, const ViewState& view);
+// "Players: ann 286 coins 1 life | bob 12 coins 3 lives" (names sanitised).
+std::string players_line(const Snapshot& s, const ViewState& view);
+// A player's public state as the shop text's economy.
+sim::Economy economy_of(const PlayerState& p);
+// The seed's shop screen for this player after `level` (common's shop_lines).
+std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level);
+// "Ready: ann (ready), bob (shopping)".
+std::string ready_line(const Snapshot& s);
+// Controls for the phase.
+std::string help_line(protocol::Phase phase);
+// "Bought mass for 35 coins." for a purchase event.
+std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id);
+
+}  // namespace fts::client

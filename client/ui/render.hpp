@@ -1,0 +1,30 @@
+// Drawing is a pure function: two snapshots, how far between them, the terminal size and
+// the view state give the screen. The platform keeps its aspect ratio; every ball is a
+// disc of cells with its mass written in it; the HUD, the shop and a help line are text.
+#pragma once
+
+#include "fts/protocol/snapshot.hpp"
+#include "ui/layout.hpp"
+#include "ui/screen.hpp"
+#include "ui/view.hpp"
+
+namespace fts::client {
+
+// Fill characters: your ball, other players, enemies, rockets, the platform.
+inline constexpr char kMyBallChar = '@';
+inline constexpr char kPlayerBallChar = 'O';
+inline constexpr char kEnemyBallChar = '#';
+inline constexpr char kRocketChar = '*';
+inline constexpr char kPlatformChar = '.';
+
+// Rows above the arena (HUD, players, messages) and below it (help line).
+inline constexpr int kTopRows = 3;
+inline constexpr int kBottomRows = 1;
+
+// The platform's place for a terminal size (inside a one-cell frame).
+Viewport arena_viewport(TerminalSize size, const ViewState& view);
+
+Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double alpha,
+              TerminalSize size, const ViewState& view);
+
+}  // namespace fts::client

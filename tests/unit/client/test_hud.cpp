@@ -1,0 +1,66 @@
+#include <catch2/catch.hpp>
+
+#include "seed_situation.hpp"
+#include "ui/hud.hpp"
+#include "ui/render.hpp"
+
+using namespace fts::client;
+using fts::protocol::Phase;
+
+TEST_CASE("HUD line in the original's words", "[client][hud]") {
+  auto snap = test::seed_snapshot(Phase::play);
+  ViewState view;
+  view.my_player_id = 1;
+  SECTION("without connection figures") { CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1"); }
+  SECTION("with ping and loss") {
+    view.ping_ms = 23.4;
+    view.loss_percent = 1.25;
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1   Ping: 23 ms   Loss: 1.2%");
+  }
+  SECTION("large coin counts get thousands separators") {
+    snap.players[0].coins = 1'234'567;
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 1,234,567   Lives: 1");
+  }
+  SECTION("a spectator without a player sees the level") {
+    view.my_player_id = 9;
+    CHECK(hud_line(snap, view) == "Level: 3");
+  }
+}
+
+TEST_CASE("players line lists every player with coins and lives", "[client][hud]") {
+  auto snap = test::seed_snapshot(Phase::play);
+  auto bob = test::seed_player();
+  bob.id = 2;
+  bob.name = "bob";
+  bob.coins = 1;
+  bob.lives = 3;
+  snap.players.push_back(bob);
+  ViewState view;
+  view.my_player_id = 1;
+  CHECK(players_line(snap, view) == "Players: ann (you) 286 coins 1 life | bob 1 coin 3 lives");
+}
+
+TEST_CASE("the rendered screen carries the HUD, the players and the help line", "[client][hud]") {
+  auto snap = test::seed_snapshot(Phase::play);
+  ViewState view;
+  view.my_player_id = 1;
+  view.ping_ms = 12;
+  const Screen s = render(snap, snap, 0, {100, 30}, view);
+  CHECK(s.line(0).rfind("Level: 3   Coins: 286   Lives: 1   Ping: 12 ms", 0) == 0);
+  CHECK(s.line(1).rfind("Players: ann (you) 286 coins 1 life", 0) == 0);
+  CHECK(s.line(29).rfind("Move: arrows/WASD   Fire rockets: space   Quit: q", 0) == 0);
+  SECTION("a status line such as connection trouble is shown") {
+    view.status = "connection lost, reconnecting...";
+    CHECK(render(snap, snap, 0, {100, 30}, view).line(2).rfind("connection lost, reconnecting...", 0) == 0);
+  }
+}
+
+TEST_CASE("events are described for the message line", "[client][hud]") {
+  auto snap = test::seed_snapshot(Phase::play);
+  using fts::protocol::Event;
+  using fts::protocol::EventKind;
+  CHECK(describe_event(Event{1, EventKind::purchase, 1, 'm', 35}, snap, 1) == "You bought mass for 35 coins.");
+  CHECK(describe_event(Event{1, EventKind::enemy_fell, 7, 1, 41}, snap, 2) ==
+        "ann knocked an enemy off: +41 coins.");
+  CHECK(describe_event(Event{1, EventKind::level_complete, 0, 0, 3}, snap, 1) == "Level 3 Complete");
+}

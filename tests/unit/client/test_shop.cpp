@@ -1,0 +1,97 @@
+#include <algorithm>
+#include <catch2/catch.hpp>
+
+#include "seed_situation.hpp"
+#include "ui/hud.hpp"
+#include "ui/render.hpp"
+
+using namespace fts::client;
+using fts::protocol::Phase;
+
+namespace {
+
+bool screen_has(const Screen& s, const std::string& text) {
+  for (const auto& line : s.lines())
+    if (line.find(text) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[client][shop]") {
+  const std::vector<std::string> seed = {
+      "Level: 3",
+      "Coins: 286",
+      "Lives: 1",
+      "Level 3 Complete",
+      "Current Mass: 40",
+      "To increase Mass, press 'm' (35 coins)",
+      "Current Max Speed: 1.70",
+      "To increase Max Speed, press 's' (100 coins)",
+      "Current Acceleration: 2.00",
+      "To increase Acceleration, press 'a' (150 coins)",
+      "Current Weapon: NONE.",
+      "To purchase rockets, press 'r' (1,000,000 coins)",
+      "Current Lives: 1",
+      "To add a life, press 'l' (522 coins)",
+      "Current Multiplier: 1.06",
+      "To increase multiplier, press 'x' (100 coins)",
+      "Increases coins from enemies by 10%",
+      "Bank Purchased: False",
+      "To purchase bank, press 'b' (500 coins)",
+      "Earns 10% interest per round",
+      "Press Enter to begin next level.",
+  };
+  CHECK(shop_screen_lines(test::seed_player(), 3) == seed);
+
+  ViewState view;
+  view.my_player_id = 1;
+  SECTION("a tall terminal shows every line in the slide's order, groups spaced") {
+    const Screen s = render(test::seed_snapshot(Phase::shop), test::seed_snapshot(Phase::shop), 0, {90, 50}, view);
+    const auto lines = s.lines();
+    std::size_t row = 0;
+    for (const auto& want : seed) {
+      auto it = std::find_if(lines.begin() + static_cast<long>(row), lines.end(),
+                             [&](const std::string& l) { return l.find(want) != std::string::npos; });
+      INFO(want);
+      REQUIRE(it != lines.end());
+      row = static_cast<std::size_t>(it - lines.begin()) + 1;
+    }
+    CHECK(screen_has(s, "Ready: ann (shopping)"));
+    CHECK(screen_has(s, "Buy: m s a r l x b   Ready: Enter   Quit: q"));
+  }
+  SECTION("a 24-row terminal still shows every price") {
+    const Screen s = render(test::seed_snapshot(Phase::shop), test::seed_snapshot(Phase::shop), 0, {80, 24}, view);
+    for (std::size_t i = 3; i < seed.size(); ++i) {
+      INFO(seed[i]);
+      CHECK(screen_has(s, seed[i]));
+    }
+  }
+  SECTION("a purchase's result and who is ready are shown") {
+    auto snap = test::seed_snapshot(Phase::shop);
+    auto bob = test::seed_player();
+    bob.id = 2;
+    bob.name = "bob";
+    bob.ready = true;
+    snap.players.push_back(bob);
+    snap.players[0].coins = 251;
+    snap.players[0].mass = 41;
+    snap.players[0].prices[0] = 36;
+    view.shop_result = "You bought mass for 35 coins.";
+    const Screen s = render(snap, snap, 0, {90, 50}, view);
+    CHECK(screen_has(s, "Coins: 251"));
+    CHECK(screen_has(s, "Current Mass: 41"));
+    CHECK(screen_has(s, "To increase Mass, press 'm' (36 coins)"));
+    CHECK(screen_has(s, "You bought mass for 35 coins."));
+    CHECK(screen_has(s, "Ready: ann (shopping), bob (ready)"));
+  }
+  SECTION("owned rockets and bank drop their offers") {
+    auto p = test::seed_player();
+    p.weapon = fts::protocol::Weapon::rockets;
+    p.bank = true;
+    const auto lines = shop_screen_lines(p, 3);
+    CHECK(std::find(lines.begin(), lines.end(), "Current Weapon: ROCKETS.") != lines.end());
+    CHECK(std::find(lines.begin(), lines.end(), "Bank Purchased: True") != lines.end());
+    CHECK(std::none_of(lines.begin(), lines.end(), [](const std::string& l) { return l.find("press 'r'") != std::string::npos; }));
+  }
+}
