@@ -116,34 +116,48 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, 
     return {message};
   if (message.events.size() > kMaxEventsPerMessage)
     message.events.erase(message.events.begin(), message.events.end() - kMaxEventsPerMessage);
-  const std::size_t players = message.players.size();
-  const std::size_t items = players + message.balls.size();
   for (;;) {
-    for (std::uint32_t parts = 2; parts <= kMaxSnapshotParts; ++parts) {
-      const std::size_t per_part = (items + parts - 1) / parts;
-      std::vector<SnapshotMsg> out(parts);
-      bool fits = true;
-      for (std::uint32_t k = 0; k < parts && fits; ++k) {
-        SnapshotMsg& part = out[k];
-        part.tick = message.tick;
-        part.base = message.base;
-        part.part = k;
-        part.parts = parts;
-        part.phase = message.phase;
-        part.level = message.level;
-        if (k == 0) {
-          part.gone = message.gone;
-          part.left = message.left;
-          part.events = message.events;
-        }
-        for (std::size_t i = k * per_part; i < std::min(items, (k + 1) * per_part); ++i) {
-          if (i < players) part.players.push_back(message.players[i]);
-          else part.balls.push_back(message.balls[i - players]);
-        }
-        fits = part.balls.size() <= kMaxBallsPerMessage && part.players.size() <= kMaxPlayersPerMessage &&
-               payload_size(part, encoding) <= budget;
+    // Greedy: fill each part with players, then balls, while it fits. Sizes are measured
+    // with the widest part/parts numbers, so setting the real ones never grows a part.
+    std::vector<SnapshotMsg> out;
+    auto start_part = [&] {
+      SnapshotMsg part;
+      part.tick = message.tick;
+      part.base = message.base;
+      part.part = kMaxSnapshotParts - 1;
+      part.parts = kMaxSnapshotParts;
+      part.phase = message.phase;
+      part.level = message.level;
+      if (out.empty()) {
+        part.gone = message.gone;
+        part.left = message.left;
+        part.events = message.events;
       }
-      if (fits) return out;
+      out.push_back(std::move(part));
+    };
+    start_part();
+    bool ok = payload_size(out.back(), encoding) <= budget;
+    auto add = [&](auto member, const auto& item, std::size_t max_items) {
+      auto& list = out.back().*member;
+      list.push_back(item);
+      const bool full = list.size() > max_items || payload_size(out.back(), encoding) > budget;
+      if (!full) return true;
+      list.pop_back();
+      if (out.size() >= kMaxSnapshotParts) return false;
+      start_part();
+      (out.back().*member).push_back(item);
+      return payload_size(out.back(), encoding) <= budget;
+    };
+    for (std::size_t i = 0; ok && i < message.players.size(); ++i)
+      ok = add(&SnapshotMsg::players, message.players[i], kMaxPlayersPerMessage);
+    for (std::size_t i = 0; ok && i < message.balls.size(); ++i)
+      ok = add(&SnapshotMsg::balls, message.balls[i], kMaxBallsPerMessage);
+    if (ok) {
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        out[k].part = static_cast<std::uint32_t>(k);
+        out[k].parts = static_cast<std::uint32_t>(out.size());
+      }
+      return out;
     }
     if (message.events.empty()) break;
     // Reduced: the oldest half of the events goes.

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer target for the protocol decoder with clang (separate build dir)
+# and runs it for a short time. Exits non-zero if the build fails or the fuzzer finds a
+# crash, a sanitizer report or a leak.
+#   .ci/fuzz.sh [seconds]        (default 30; FUZZ_BUILD_DIR overrides the build dir)
+set -euo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-30}"
+build="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
+jobs="${FUZZ_JOBS:-1}"
+
+cmake -S "$here" -B "$build" -G Ninja \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+  -DFTS_FUZZ=ON -DFTS_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" -j"$jobs" --target fts_fuzz_decode
+
+corpus="$build/fuzz-corpus"
+mkdir -p "$corpus"
+# Seeds: a JSON ping and a few header shapes, so the fuzzer starts past the header.
+printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"ping"}]' >"$corpus/ping.json.bin"
+printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"input","ack":3,"f":[[1,1,-1,0]]}]' >"$corpus/input.json.bin"
+printf 'FTSP\x00\x01\x01\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x91\x81\xa1t\xa4ping' >"$corpus/ping.msgpack.bin"
+printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"snap","tick":5,"base":4,"part":0,"parts":1,"phase":"play","level":1,"balls":[[1,2,3,4,5]],"players":[{"i":1,"c":5}],"gone":[2],"events":[[4,0,1,2,3]]}]' >"$corpus/snap.json.bin"
+
+cd "$build"
+UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+  ./protocol/fts_fuzz_decode -max_total_time="$seconds" -max_len=1300 -print_final_stats=1 "$corpus"
