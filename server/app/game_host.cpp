@@ -1,0 +1,223 @@
+#include "app/game_host.hpp"
+
+#include <algorithm>
+
+#include "app/log.hpp"
+#include "app/snapshot_build.hpp"
+#include "fts/sim/match_view.hpp"
+
+namespace fts::server {
+namespace {
+
+constexpr std::size_t kRecentEvents = 48;
+
+std::string refusal_code(sim::Refusal r) {
+  switch (r) {
+    case sim::Refusal::none: return "ok";
+    case sim::Refusal::not_enough_coins: return "coins";
+    case sim::Refusal::already_owned: return "owned";
+    case sim::Refusal::wrong_phase: return "phase";
+    case sim::Refusal::unknown_item: return "item";
+  }
+  return "error";
+}
+
+}  // namespace
+
+protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchConfig& cfg,
+                                            const protocol::ServerKey& key) {
+  protocol::ServerConfig c;
+  c.key = key;
+  c.max_players = o.max_players;
+  c.timeout_ms = o.timeout_ms;
+  c.reconnect_window_ms = o.reconnect_window_ms;
+  c.settings.tick_rate_hz = o.tick_rate_hz;
+  c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
+  c.settings.arena_width_u = cfg.arena_width_u;
+  c.settings.arena_height_u = cfg.arena_height_u;
+  c.settings.max_players = o.max_players;
+  c.settings.timeout_ms = o.timeout_ms;
+  c.settings.reconnect_window_ms = o.reconnect_window_ms;
+  return c;
+}
+
+GameHost::GameHost(const Options& options, const sim::MatchConfig& config, const protocol::ServerKey& key)
+    : options_(options),
+      match_(sim::make_match(config, options.seed)),
+      endpoint_(make_endpoint_config(options, config, key)) {
+  ticks_per_snapshot_ = std::max<std::uint32_t>(1, options.tick_rate_hz / std::max<std::uint32_t>(1, options.snapshot_rate_hz));
+}
+
+void GameHost::record_to(std::ostream& out, const std::string& version) {
+  recorder_ = std::make_unique<host::RecordWriter>(out, options_.seed, match_.cfg, version);
+}
+
+void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
+  ++stats_.datagrams_in;
+  stats_.bytes_in += bytes.size();
+  endpoint_.receive(from, bytes, now_ms);
+}
+
+std::vector<protocol::Outgoing> GameHost::take_datagrams() {
+  auto out = endpoint_.take_datagrams();
+  for (const auto& d : out) {
+    ++stats_.datagrams_out;
+    stats_.bytes_out += d.bytes.size();
+  }
+  return out;
+}
+
+sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint64_t now_ms) {
+  endpoint_.update(now_ms);
+  sim::TickInputs in;
+  for (const auto& e : endpoint_.take_events()) {
+    using K = protocol::ServerEvent::Kind;
+    switch (e.kind) {
+      case K::connected:
+        in.joins.push_back({e.player_id, e.name});
+        log_record(spdlog::level::info, "connect", {{"player", e.player_id}, {"name", e.name}});
+        break;
+      case K::reconnected:
+        log_record(spdlog::level::info, "reconnect", {{"player", e.player_id}, {"name", e.name}});
+        break;
+      case K::disconnected:
+        held_.erase(e.player_id);  // a gone client stops pushing
+        log_record(spdlog::level::info, "disconnect", {{"player", e.player_id}, {"reason", e.reason}});
+        break;
+      case K::released:
+        held_.erase(e.player_id);
+        in.leaves.push_back(e.player_id);
+        log_record(spdlog::level::info, "leave", {{"player", e.player_id}, {"reason", e.reason}});
+        break;
+    }
+  }
+  // Inputs arrive in (player, seq) order; the newest frame holds until a newer one.
+  for (const auto& pi : endpoint_.take_inputs()) {
+    Held& h = held_[pi.player_id];
+    if (pi.frame.seq >= h.frame.seq) h.frame = pi.frame;
+    h.fire = h.fire || pi.frame.fire;
+  }
+  std::map<std::uint32_t, sim::PlayerTick> ticks;
+  for (auto& [id, h] : held_) {
+    sim::PlayerTick& t = ticks[id];
+    t.player = id;
+    t.input.move_x = static_cast<std::int8_t>(std::clamp<int>(h.frame.move_x, -1, 1));
+    t.input.move_y = static_cast<std::int8_t>(std::clamp<int>(h.frame.move_y, -1, 1));
+    t.input.fire = h.fire;
+    h.fire = false;
+  }
+  for (const auto& pc : endpoint_.take_commands()) {
+    const sim::Player* p = sim::find_player(match_, pc.player_id);
+    PendingAnswer a{pc.player_id, pc.command.rid, pc.command.op, false, "ok"};
+    sim::PlayerTick& t = ticks[pc.player_id];
+    t.player = pc.player_id;
+    switch (pc.command.op) {
+      case protocol::CommandOp::buy:
+        t.commands.push_back({sim::CommandKind::buy, std::string(1, pc.command.item)});
+        break;
+      case protocol::CommandOp::ready:
+        a.ok = p && (match_.phase == sim::Phase::lobby || (match_.phase == sim::Phase::shop && p->in_match()));
+        a.code = a.ok ? "ok" : "phase";
+        t.commands.push_back({sim::CommandKind::ready, {}});
+        break;
+      case protocol::CommandOp::play_again:
+        a.ok = p && match_.phase == sim::Phase::game_over;
+        a.code = a.ok ? "ok" : "phase";
+        t.commands.push_back({sim::CommandKind::play_again, {}});
+        break;
+    }
+    answers.push_back(std::move(a));
+  }
+  for (auto& [id, t] : ticks) {
+    // Players that have not joined the match (yet) have nothing to apply.
+    const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
+    if (sim::find_player(match_, id) || joining) in.players.push_back(std::move(t));
+  }
+  return in;
+}
+
+void GameHost::answer(const std::vector<PendingAnswer>& answers, const std::vector<sim::Event>& events,
+                      std::uint64_t now_ms) {
+  std::map<std::uint32_t, std::size_t> cursor;  // next purchase event per player
+  for (const auto& a : answers) {
+    if (a.op != protocol::CommandOp::buy) {
+      endpoint_.send_result(a.player, a.rid, a.ok, a.code, a.ok ? "done" : "not now (wrong phase)", now_ms);
+      continue;
+    }
+    std::size_t& i = cursor[a.player];
+    while (i < events.size() && !(events[i].kind == sim::EventKind::purchase && events[i].player == a.player)) ++i;
+    if (i == events.size()) {
+      endpoint_.send_result(a.player, a.rid, false, "phase", "not in the match", now_ms);
+      continue;
+    }
+    const sim::Event& e = events[i++];
+    std::string message = std::string(sim::to_string(e.item)) + (e.ok ? " bought for " : " not bought: ") +
+                          (e.ok ? std::to_string(e.price) + " coins, " + std::to_string(e.coins_after) + " left"
+                                : std::string(sim::to_string(e.reason)));
+    endpoint_.send_result(a.player, a.rid, e.ok, refusal_code(e.reason), std::move(message), now_ms);
+  }
+}
+
+void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
+  for (const auto& e : events) {
+    switch (e.kind) {
+      case sim::EventKind::join_refused:
+        log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.text}});
+        endpoint_.kick(e.player, "refused", "the match refused the join: " + e.text, now_ms);
+        break;
+      case sim::EventKind::level_started:
+        log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
+        break;
+      case sim::EventKind::level_complete:
+        log_record(spdlog::level::info, "level_complete", {{"level", e.level}});
+        break;
+      case sim::EventKind::purchase:
+        log_record(spdlog::level::info, "purchase",
+                   {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
+                    {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
+        break;
+      case sim::EventKind::game_over:
+        log_record(spdlog::level::info, "game_over", {{"level", e.level}});
+        break;
+      case sim::EventKind::enemy_defeated:
+        log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.ball}, {"player", e.player}, {"coins", e.coins}});
+        break;
+      case sim::EventKind::player_fell:
+        log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
+        break;
+      default: break;
+    }
+  }
+}
+
+void GameHost::tick(std::uint64_t now_ms) {
+  std::vector<PendingAnswer> answers;
+  const sim::TickInputs in = gather(answers, now_ms);
+  if (recorder_) recorder_->inputs(match_.tick, in);
+  const std::vector<sim::Event> events = sim::step(match_, in);
+  if (recorder_) recorder_->stepped(match_);
+  answer(answers, events, now_ms);
+  log_events(events, now_ms);
+
+  std::vector<protocol::Event> wire;
+  append_wire_events(match_.tick, events, wire);
+  for (auto& w : wire) recent_.push_back(w);
+  while (recent_.size() > kRecentEvents) recent_.pop_front();
+
+  endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
+  if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(now_ms);
+}
+
+void GameHost::send_snapshots(std::uint64_t now_ms) {
+  const auto players = endpoint_.connected_players();
+  if (players.empty()) return;
+  const protocol::Snapshot snap = build_snapshot(sim::make_view(match_), recent_);
+  for (auto id : players) endpoint_.send_snapshot(id, snap, now_ms);
+}
+
+void GameHost::shutdown(std::uint64_t now_ms) {
+  endpoint_.shutdown(now_ms);
+  if (recorder_) recorder_->flush();
+}
+
+}  // namespace fts::server

@@ -1,0 +1,150 @@
+#include "app/options.hpp"
+
+#include <charconv>
+#include <limits>
+
+namespace fts::server {
+namespace {
+
+template <class T>
+bool parse_uint(const std::string& s, T& out, T lo, T hi) {
+  std::uint64_t v = 0;
+  const auto* end = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), end, v);
+  if (ec != std::errc() || p != end || s.empty()) return false;
+  if (v < lo || v > hi) return false;
+  out = static_cast<T>(v);
+  return true;
+}
+
+bool one_of(const std::string& v, std::initializer_list<const char*> allowed) {
+  for (const char* a : allowed)
+    if (v == a) return true;
+  return false;
+}
+
+// Applies one setting; `source` names it in errors ("--port" or "FTS_PORT").
+std::optional<OptionError> apply(Options& o, const std::string& key, const std::string& value,
+                                 const std::string& source) {
+  auto bad = [&](const std::string& want) {
+    return OptionError{source + ": " + want + ", got \"" + value + "\""};
+  };
+  if (key == "port") {
+    if (!parse_uint<std::uint16_t>(value, o.port, 0, 65535)) return bad("must be a port number 0..65535");
+  } else if (key == "bind") {
+    if (value.empty()) return bad("must be an IP address");
+    o.bind = value;
+  } else if (key == "tick-rate") {
+    if (!parse_uint<std::uint32_t>(value, o.tick_rate_hz, 10, 1000)) return bad("must be 10..1000 Hz");
+  } else if (key == "snapshot-rate") {
+    if (!parse_uint<std::uint32_t>(value, o.snapshot_rate_hz, 1, 1000)) return bad("must be 1..1000 Hz");
+  } else if (key == "max-players") {
+    if (!parse_uint<std::uint32_t>(value, o.max_players, 1, 64)) return bad("must be 1..64");
+  } else if (key == "model") {
+    if (!one_of(value, {"seed", "discrete", "continuous"})) return bad("must be seed, discrete or continuous");
+    o.model = value;
+  } else if (key == "seed") {
+    if (!parse_uint<std::uint64_t>(value, o.seed, 0, std::numeric_limits<std::uint64_t>::max()))
+      return bad("must be a non-negative integer");
+  } else if (key == "config") {
+    o.config_path = value;
+  } else if (key == "record") {
+    o.record_path = value;
+  } else if (key == "replay") {
+    o.replay_path = value;
+  } else if (key == "log-level") {
+    if (!one_of(value, {"trace", "debug", "info", "warn", "error", "off"}))
+      return bad("must be trace, debug, info, warn, error or off");
+    o.log_level = value;
+  } else if (key == "log-format") {
+    if (!one_of(value, {"text", "json"})) return bad("must be text or json");
+    o.log_format = value;
+  } else if (key == "timeout-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.timeout_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
+  } else if (key == "reconnect-window-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.reconnect_window_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
+  } else if (key == "stats-interval-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.stats_interval_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
+  } else {
+    return OptionError{"unknown setting " + source};
+  }
+  return std::nullopt;
+}
+
+std::string env_name(const std::string& key) {
+  std::string name = "FTS_";
+  for (char c : key) name += c == '-' ? '_' : static_cast<char>(c >= 'a' && c <= 'z' ? c - 32 : c);
+  return name;
+}
+
+}  // namespace
+
+const std::vector<OptionDoc>& option_docs() {
+  static const std::vector<OptionDoc> docs = {
+      {"--port", "FTS_PORT", "7777", "UDP port to listen on (0: any free port)"},
+      {"--bind", "FTS_BIND", "0.0.0.0", "address to bind"},
+      {"--tick-rate", "FTS_TICK_RATE", "100", "simulation ticks per second (Hz)"},
+      {"--snapshot-rate", "FTS_SNAPSHOT_RATE", "20", "snapshots per second to each client (Hz)"},
+      {"--max-players", "FTS_MAX_PLAYERS", "8", "players in the match at once"},
+      {"--model", "FTS_MODEL", "continuous", "physics model: seed, discrete or continuous"},
+      {"--seed", "FTS_SEED", "1", "seed of the match's random generator"},
+      {"--config", "FTS_CONFIG", "", "match configuration JSON (docker/server-config.example.json)"},
+      {"--record", "FTS_RECORD", "", "write the input log of the match to this file"},
+      {"--replay", "FTS_REPLAY", "", "re-run a recorded input log, check every hash, exit"},
+      {"--log-level", "FTS_LOG_LEVEL", "info", "trace, debug, info, warn, error or off"},
+      {"--log-format", "FTS_LOG_FORMAT", "text", "text or json (one JSON record per line)"},
+      {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
+      {"--reconnect-window-ms", "FTS_RECONNECT_WINDOW_MS", "60000", "how long a dropped player's slot is kept (ms)"},
+      {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
+  };
+  return docs;
+}
+
+std::string usage_text() {
+  std::string s = "usage: fts-server [options]\n\nOptions (each also settable from the environment):\n";
+  for (const auto& d : option_docs()) {
+    std::string left = "  " + d.flag + " V";
+    left.resize(30, ' ');
+    s += left + d.meaning + " [" + d.env + (d.default_value.empty() ? "" : ", default " + d.default_value) + "]\n";
+  }
+  s += "  --help                      this text\n  --version                   print the version\n";
+  return s;
+}
+
+std::variant<Options, OptionError> parse_options(const std::vector<std::string>& args, const EnvLookup& env) {
+  Options o;
+  for (const auto& d : option_docs()) {
+    const std::string key = d.flag.substr(2);
+    if (auto v = env(env_name(key))) {
+      if (auto err = apply(o, key, *v, env_name(key))) return *err;
+    }
+  }
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+      continue;
+    }
+    if (a == "--version") {
+      o.version = true;
+      continue;
+    }
+    if (a.rfind("--", 0) != 0) return OptionError{"unexpected argument \"" + a + "\" (see --help)"};
+    std::string key = a.substr(2), value;
+    const auto eq = key.find('=');
+    if (eq != std::string::npos) {
+      value = key.substr(eq + 1);
+      key.resize(eq);
+    } else {
+      bool known = false;
+      for (const auto& d : option_docs()) known = known || d.flag == a;
+      if (!known) return OptionError{"unknown flag " + a + " (see --help)"};
+      if (i + 1 >= args.size()) return OptionError{a + ": needs a value"};
+      value = args[++i];
+    }
+    if (auto err = apply(o, key, value, "--" + key)) return *err;
+  }
+  return o;
+}
+
+}  // namespace fts::server

@@ -1,0 +1,52 @@
+// fts-server's settings from flags and the environment (FTS_PORT, ...). Flags win over
+// the environment; every bad value is an error naming the flag (or variable) and value,
+// found before anything binds a port.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace fts::server {
+
+struct Options {
+  std::uint16_t port = 7777;
+  std::string bind = "0.0.0.0";
+  std::uint32_t tick_rate_hz = 100;
+  std::uint32_t snapshot_rate_hz = 20;
+  std::uint32_t max_players = 8;
+  std::string model = "continuous";
+  std::uint64_t seed = 1;
+  std::string config_path;   // "" : built-in defaults
+  std::string record_path;   // "" : no recording
+  std::string replay_path;   // non-empty: re-run a recording and check its hashes, no network
+  std::string log_level = "info";   // trace debug info warn error off
+  std::string log_format = "text";  // text | json
+  std::uint32_t timeout_ms = 10000;
+  std::uint32_t reconnect_window_ms = 60000;
+  std::uint32_t stats_interval_ms = 10000;
+  bool help = false;
+  bool version = false;
+};
+
+struct OptionError {
+  std::string message;
+};
+
+using EnvLookup = std::function<std::optional<std::string>(const std::string&)>;
+
+// Parses argv-style arguments (without the program name) over the environment.
+std::variant<Options, OptionError> parse_options(const std::vector<std::string>& args, const EnvLookup& env);
+
+std::string usage_text();
+
+// The flag table, for documentation and tests: flag, environment variable, default, meaning.
+struct OptionDoc {
+  std::string flag, env, default_value, meaning;
+};
+const std::vector<OptionDoc>& option_docs();
+
+}  // namespace fts::server

@@ -1,0 +1,85 @@
+// fts-server: hosts one match over UDP. Settings come from flags and FTS_* variables
+// (see --help); every bad setting is reported before anything binds.
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "app/game_host.hpp"
+#include "app/log.hpp"
+#include "app/options.hpp"
+#include "host/match_config_json.hpp"
+#include "host/record.hpp"
+#include "net/udp_server.hpp"
+
+namespace {
+
+std::optional<std::string> getenv_opt(const std::string& name) {
+  const char* v = std::getenv(name.c_str());
+  if (!v) return std::nullopt;
+  return std::string(v);
+}
+
+int fail(const std::string& message) {
+  std::cerr << "fts-server: " << message << "\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace fts;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  auto parsed = server::parse_options(args, getenv_opt);
+  if (auto* err = std::get_if<server::OptionError>(&parsed)) return fail(err->message);
+  auto options = std::get<server::Options>(parsed);
+  if (options.help) {
+    std::cout << server::usage_text();
+    return 0;
+  }
+  if (options.version) {
+    std::cout << "fts-server " << FTS_VERSION << "\n";
+    return 0;
+  }
+
+  if (!options.replay_path.empty()) {
+    std::ifstream in(options.replay_path);
+    if (!in) return fail("--replay: cannot read " + options.replay_path);
+    auto r = host::replay_record(in);
+    if (auto* err = std::get_if<std::string>(&r)) {
+      std::cerr << "fts-server: replay of " << options.replay_path << " FAILED: " << *err << "\n";
+      return 1;
+    }
+    const auto& rep = std::get<host::ReplayReport>(r);
+    std::cout << R"({"replay":")" << options.replay_path << R"(","ticks":)" << rep.ticks << R"(,"hashes_checked":)"
+              << rep.hashes_checked << R"(,"state_hash":")" << host::hex16(rep.final_hash) << "\"}\n";
+    return 0;
+  }
+
+  sim::MatchConfig config;
+  if (!options.config_path.empty()) {
+    std::ifstream in(options.config_path);
+    if (!in) return fail("--config: cannot read " + options.config_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    auto c = host::parse_match_config(text.str());
+    if (auto* err = std::get_if<std::string>(&c)) return fail(options.config_path + ": " + *err);
+    config = std::get<sim::MatchConfig>(c);
+  }
+  // Flags and environment override the file.
+  config.tick_rate_hz = options.tick_rate_hz;
+  config.max_players = options.max_players;
+  config.model = *sim::parse_model(options.model);
+  if (auto err = sim::validate(config); !err.empty()) return fail("configuration: " + err);
+
+  std::ofstream record;
+  if (!options.record_path.empty()) {
+    record.open(options.record_path);
+    if (!record) return fail("--record: cannot write " + options.record_path);
+  }
+
+  server::init_logging(options.log_level, options.log_format);
+  server::GameHost host(options, config, protocol::random_key());
+  if (record.is_open()) host.record_to(record, FTS_VERSION);
+  return server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
+}

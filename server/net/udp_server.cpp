@@ -1,0 +1,175 @@
+#include "net/udp_server.hpp"
+
+#include <array>
+#include <chrono>
+#include <map>
+
+#include "app/log.hpp"
+#include "app/tick_clock.hpp"
+#include "net/asio.hpp"
+
+namespace fts::server {
+namespace {
+
+namespace asio = boost::asio;
+using udp = asio::ip::udp;
+using Clock = std::chrono::steady_clock;
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
+
+std::string to_key(const udp::endpoint& ep) {
+  const auto a = ep.address();
+  return (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" + std::to_string(ep.port());
+}
+
+class Loop {
+ public:
+  Loop(const Options& o, GameHost& host, std::ostream* record)
+      : options_(o), host_(host), record_(record), socket_(io_), tick_timer_(io_), stats_timer_(io_),
+        signals_(io_, SIGINT, SIGTERM), clock_(o.tick_rate_hz, 5) {}
+
+  int run() {
+    boost::system::error_code ec;
+    const auto address = asio::ip::make_address(options_.bind, ec);
+    if (ec) {
+      log_record(spdlog::level::err, "bind_failed", {{"bind", options_.bind}, {"error", "not an IP address"}});
+      return 1;
+    }
+    const udp::endpoint local(address, options_.port);
+    socket_.open(local.protocol(), ec);
+    if (!ec) socket_.bind(local, ec);
+    if (ec) {
+      log_record(spdlog::level::err, "bind_failed",
+                 {{"address", options_.bind}, {"port", options_.port}, {"error", ec.message()}});
+      return 1;
+    }
+    socket_.non_blocking(true, ec);
+    epoch_ns_ = now_ns();
+    const auto bound = socket_.local_endpoint();
+    log_record(spdlog::level::info, "ready",
+               {{"address", bound.address().to_string()}, {"port", bound.port()},
+                {"tick_rate_hz", options_.tick_rate_hz}, {"snapshot_rate_hz", options_.snapshot_rate_hz},
+                {"max_players", options_.max_players}, {"model", options_.model}, {"seed", options_.seed},
+                {"record", options_.record_path}, {"version", FTS_VERSION}});
+    receive();
+    clock_.start(now_ns());
+    schedule_tick();
+    schedule_stats();
+    signals_.async_wait([this](const boost::system::error_code& e, int sig) {
+      if (e) return;
+      log_record(spdlog::level::info, "shutdown", {{"signal", sig}});
+      host_.shutdown(now_ms());
+      flush();
+      if (record_) record_->flush();
+      io_.stop();
+    });
+    io_.run();
+    return 0;
+  }
+
+ private:
+  std::uint64_t now_ms() const { return static_cast<std::uint64_t>((now_ns() - epoch_ns_) / 1'000'000); }
+
+  void receive() {
+    socket_.async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (!ec) {
+        const std::string key = to_key(sender_);
+        if (endpoints_.size() > 4096) endpoints_.clear();  // bounded: refilled as datagrams arrive
+        endpoints_[key] = sender_;
+        host_.receive(key, std::span<const std::uint8_t>(buffer_.data(), n), now_ms());
+        flush();
+      }
+      receive();
+    });
+  }
+
+  void flush() {
+    for (auto& d : host_.take_datagrams()) {
+      auto it = endpoints_.find(d.to);
+      if (it == endpoints_.end()) continue;
+      boost::system::error_code ec;
+      socket_.send_to(asio::buffer(d.bytes), it->second, 0, ec);
+      if (ec) ++send_errors_;
+    }
+  }
+
+  void schedule_tick() {
+    const auto deadline = Clock::time_point(std::chrono::nanoseconds(clock_.next_deadline_ns()));
+    tick_timer_.expires_at(deadline);
+    tick_timer_.async_wait([this](const boost::system::error_code& ec) {
+      if (ec) return;
+      const std::uint64_t skipped_before = clock_.skipped();
+      const std::uint32_t n = clock_.due(now_ns());
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const auto start = Clock::now();
+        host_.tick(now_ms());
+        flush();
+        host_.stats().tick_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+      }
+      if (clock_.skipped() != skipped_before) {
+        host_.stats().skipped_ticks += clock_.skipped() - skipped_before;
+        if (now_ns() - last_skip_log_ns_ > 1'000'000'000) {  // at most once a second
+          log_record(spdlog::level::warn, "ticks_skipped", {{"total", clock_.skipped()}});
+          last_skip_log_ns_ = now_ns();
+        }
+      }
+      schedule_tick();
+    });
+  }
+
+  void schedule_stats() {
+    stats_timer_.expires_after(std::chrono::milliseconds(options_.stats_interval_ms));
+    stats_timer_.async_wait([this](const boost::system::error_code& ec) {
+      if (ec) return;
+      Stats& s = host_.stats();
+      const auto p = percentiles(s.tick_us);
+      nlohmann::ordered_json drops = nlohmann::ordered_json::object();
+      const auto& rejects = host_.endpoint().rejects();
+      for (std::size_t i = 0; i < protocol::kRejectCount; ++i) {
+        const auto r = static_cast<protocol::Reject>(i);
+        const std::uint64_t delta = rejects[r] - last_rejects_.counts[i];
+        if (delta) drops[std::string(protocol::to_string(r))] = delta;
+      }
+      last_rejects_ = rejects;
+      log_record(spdlog::level::info, "stats",
+                 {{"players", host_.endpoint().connected_players().size()},
+                  {"tick", host_.match().tick},
+                  {"tick_p50_us", p.p50_us}, {"tick_p99_us", p.p99_us}, {"tick_max_us", p.max_us},
+                  {"ticks_skipped_total", clock_.skipped()},
+                  {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
+                  {"bytes_in", s.bytes_in}, {"bytes_out", s.bytes_out},
+                  {"send_errors", send_errors_}, {"drops", drops}});
+      s.reset_interval();
+      schedule_stats();
+    });
+  }
+
+  const Options& options_;
+  GameHost& host_;
+  std::ostream* record_;
+  asio::io_context io_;
+  udp::socket socket_;
+  asio::steady_timer tick_timer_;
+  asio::steady_timer stats_timer_;
+  asio::signal_set signals_;
+  TickClock clock_;
+  std::array<std::uint8_t, 2048> buffer_{};
+  udp::endpoint sender_;
+  std::map<std::string, udp::endpoint> endpoints_;
+  std::int64_t epoch_ns_ = 0;
+  std::int64_t last_skip_log_ns_ = 0;
+  std::uint64_t send_errors_ = 0;
+  protocol::RejectCounters last_rejects_;
+};
+
+}  // namespace
+
+int run_udp_server(const Options& options, GameHost& host, std::ostream* record) {
+  Loop loop(options, host, record);
+  return loop.run();
+}
+
+}  // namespace fts::server

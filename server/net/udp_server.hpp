@@ -1,0 +1,16 @@
+// fts-server's event loop: one io_context, one UDP socket, the tick timer, the stats
+// timer and the signals. The only translation unit of fts-server that includes Asio.
+#pragma once
+
+#include <ostream>
+
+#include "app/game_host.hpp"
+#include "app/options.hpp"
+
+namespace fts::server {
+
+// Binds, logs the ready line, runs until SIGINT/SIGTERM, tells the clients, returns 0.
+// Returns 1 (after logging why) when the address cannot be bound.
+int run_udp_server(const Options& options, GameHost& host, std::ostream* record);
+
+}  // namespace fts::server
