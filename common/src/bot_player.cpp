@@ -22,26 +22,31 @@ Vec2 clamp_len(Vec2 v, double max_len) {
 }
 
 // Overrides thrust on an axis whose current motion would carry the ball past an edge.
-void stay_on_platform(PlayerTick& t, const Ball& me, double accel, const MatchConfig& cfg) {
+void stay_on_platform(PlayerTick& t, const Ball& me, double accel, double width_u, double height_u) {
   const double margin = 12.0;
   auto axis = [&](double pos, double vel, double hi, std::int8_t& cmd) {
     const double stop = pos + vel * std::fabs(vel) / (2.0 * accel);  // ignoring friction: safe side
     if (stop < margin || pos < margin) cmd = 1;
     else if (stop > hi - margin || pos > hi - margin) cmd = -1;
   };
-  axis(me.pos.x, me.vel.x, cfg.arena_width_u, t.input.move_x);
-  axis(me.pos.y, me.vel.y, cfg.arena_height_u, t.input.move_y);
+  axis(me.pos.x, me.vel.x, width_u, t.input.move_x);
+  axis(me.pos.y, me.vel.y, height_u, t.input.move_y);
 }
 
 void shop(const MatchState& s, const Player& p, PlayerTick& t) {
   const Economy& e = p.eco;
-  auto affordable = [&](Item it) { return e.coins >= price_of(e, it); };
-  std::optional<Item> want;
-  if (e.lives < 2 && affordable(Item::life)) want = Item::life;
-  else if (!e.bank && affordable(Item::bank)) want = Item::bank;
-  else if (e.accel_u_per_s2 < 2.0 * s.cfg.player_accel_u_per_s2 && affordable(Item::accel)) want = Item::accel;
-  else if (e.vmax_u_per_s < 1.5 * s.cfg.player_vmax_u_per_s && affordable(Item::speed)) want = Item::speed;
-  else if (e.mass < 3 * s.cfg.player_mass && affordable(Item::mass)) want = Item::mass;
+  ShopSight sight;
+  sight.coins = e.coins;
+  sight.lives = e.lives;
+  sight.bank = e.bank;
+  sight.accel_u_per_s2 = e.accel_u_per_s2;
+  sight.vmax_u_per_s = e.vmax_u_per_s;
+  sight.mass = e.mass;
+  for (int i = 0; i < 7; ++i) sight.prices[static_cast<std::size_t>(i)] = price_of(e, static_cast<Item>(i));
+  sight.start_accel_u_per_s2 = s.cfg.player_accel_u_per_s2;
+  sight.start_vmax_u_per_s = s.cfg.player_vmax_u_per_s;
+  sight.start_mass = s.cfg.player_mass;
+  const auto want = bot_shop_choice(sight);
   if (want && !p.ready) t.commands.push_back({CommandKind::buy, std::string(to_string(*want))});
   else if (!p.ready) t.commands.push_back({CommandKind::ready, {}});
 }
@@ -49,25 +54,42 @@ void shop(const MatchState& s, const Player& p, PlayerTick& t) {
 void play(const MatchState& s, const Player& p, PlayerTick& t) {
   const Ball* me = p.ball ? find_ball(s.world, p.ball) : nullptr;
   if (!me) return;
-  const MatchConfig& cfg = s.cfg;
-  const Ball* target = nullptr;
-  double best = std::numeric_limits<double>::infinity();
+  BotSight sight;
+  sight.me = *me;
   for (const Ball& b : s.world.balls) {
     auto it = s.bodies.find(b.id);
-    if (it == s.bodies.end() || it->second.kind != BodyKind::enemy) continue;
+    if (it != s.bodies.end() && it->second.kind == BodyKind::enemy) sight.enemies.push_back(b);
+  }
+  sight.vmax_u_per_s = p.eco.vmax_u_per_s;
+  sight.accel_u_per_s2 = p.eco.accel_u_per_s2;
+  sight.rockets = p.eco.rockets;
+  sight.arena_width_u = s.cfg.arena_width_u;
+  sight.arena_height_u = s.cfg.arena_height_u;
+  t.input = bot_play_input(sight);
+}
+
+}  // namespace
+
+PlayerInput bot_play_input(const BotSight& sight) {
+  PlayerTick t;
+  const Ball* me = &sight.me;
+  const Ball* target = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Ball& b : sight.enemies) {
     const double d = length_sq(b.pos - me->pos);
     if (d < best) {
       best = d;
       target = &b;
     }
   }
-  const double vmax = p.eco.vmax_u_per_s;
+  const double vmax = sight.vmax_u_per_s;
+  const double w = sight.arena_width_u, h = sight.arena_height_u;
   if (!target) {
-    steer(t, me->vel, clamp_len((Vec2{cfg.arena_width_u / 2, cfg.arena_height_u / 2} - me->pos) * 2.0, vmax));
+    steer(t, me->vel, clamp_len((Vec2{w / 2, h / 2} - me->pos) * 2.0, vmax));
   } else {
     // Push toward the enemy's nearest edge.
     const Vec2 e = target->pos;
-    const double dl = e.x, dr = cfg.arena_width_u - e.x, db = e.y, dt = cfg.arena_height_u - e.y;
+    const double dl = e.x, dr = w - e.x, db = e.y, dt = h - e.y;
     Vec2 n{-1, 0};
     double m = dl;
     if (dr < m) { m = dr; n = {1, 0}; }
@@ -89,12 +111,21 @@ void play(const MatchState& s, const Player& p, PlayerTick& t) {
       }
       steer(t, me->vel, clamp_len((goal - me->pos) * 3.0, vmax));
     }
-    if (p.eco.rockets && length_sq(rel) < 150.0 * 150.0) t.input.fire = true;
+    if (sight.rockets && length_sq(rel) < 150.0 * 150.0) t.input.fire = true;
   }
-  stay_on_platform(t, *me, p.eco.accel_u_per_s2, cfg);
+  stay_on_platform(t, *me, sight.accel_u_per_s2, w, h);
+  return t.input;
 }
 
-}  // namespace
+std::optional<Item> bot_shop_choice(const ShopSight& s) {
+  auto affordable = [&](Item it) { return s.coins >= s.prices[static_cast<std::size_t>(it)]; };
+  if (s.lives < 2 && affordable(Item::life)) return Item::life;
+  if (!s.bank && affordable(Item::bank)) return Item::bank;
+  if (s.accel_u_per_s2 < 2.0 * s.start_accel_u_per_s2 && affordable(Item::accel)) return Item::accel;
+  if (s.vmax_u_per_s < 1.5 * s.start_vmax_u_per_s && affordable(Item::speed)) return Item::speed;
+  if (s.mass < 3 * s.start_mass && affordable(Item::mass)) return Item::mass;
+  return std::nullopt;
+}
 
 PlayerTick bot_tick(const MatchState& s, PlayerId id) {
   PlayerTick t;

@@ -12,10 +12,7 @@
 
 #include "host/scene_json.hpp"
 #include "host/scene_run.hpp"
-#if __has_include("sim/match_cli.hpp")
 #include "sim/match_cli.hpp"
-#define FTS_HAVE_MATCH_CLI 1
-#endif
 
 namespace {
 
@@ -155,12 +152,8 @@ int main(int argc, char** argv) {
   }
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--match") {
-#ifdef FTS_HAVE_MATCH_CLI
       args.erase(args.begin() + static_cast<std::ptrdiff_t>(i));
       return fts::simtool::run_match_cli(args);
-#else
-      return usage_error("--match is not built yet");
-#endif
     }
   }
   return run_scene_mode(args);
