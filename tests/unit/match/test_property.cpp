@@ -131,3 +131,8 @@ void property(int matches, int ticks) {
 TEST_CASE("Property: random matches keep coins sane (1000 x 2000 ticks)") {
   property(1000, 2000);
 }
+
+// Longer matches reach later levels, bosses, swarms and the bank's compounding.
+TEST_CASE("Property: random matches keep coins sane (200 x 20000 ticks)", "[.][soak]") {
+  property(200, 20000);
+}
