@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# End to end: a real fts-server (and fts-bot, when given), the real fts-client in a tmux
+# pane. Sends keys, reads the pane, and checks what a person would see: the ball moves,
+# the HUD changes, level 1 is finished, a purchase in the shop makes the coins fall and
+# the price rise, and q quits with the terminal given back. Every wait polls the pane
+# against a deadline; nothing sleeps for a fixed time to "let things happen".
+#
+# usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]
+set -euo pipefail
+
+SERVER=${1:?usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]}
+CLIENT=${2:?usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]}
+BOT=${3:-}
+command -v tmux >/dev/null || { echo "SKIP: tmux not installed"; exit 77; }
+
+WORK=$(mktemp -d /tmp/fts-e2e.XXXXXX)
+SESSION="fts-e2e-$$"
+SERVER_PID=""
+BOT_PID=""
+cleanup() {
+  tmux kill-session -t "$SESSION" 2>/dev/null || true
+  [[ -n "$BOT_PID" ]] && kill "$BOT_PID" 2>/dev/null || true
+  [[ -n "$SERVER_PID" ]] && kill "$SERVER_PID" 2>/dev/null || true
+  wait 2>/dev/null || true
+  rm -rf "$WORK"
+}
+trap cleanup EXIT
+
+fail() {
+  echo "FAIL: $*" >&2
+  echo "--- pane ---" >&2
+  tmux capture-pane -p -t "$SESSION" 2>/dev/null >&2 || true
+  echo "--- server log (tail) ---" >&2
+  tail -n 20 "$WORK/server.log" >&2 || true
+  exit 1
+}
+
+pane() { tmux capture-pane -p -t "$SESSION"; }
+
+# wait_for SECONDS REGEX: poll the pane until a line matches.
+wait_for() {
+  local deadline=$((SECONDS + $1))
+  while ((SECONDS < deadline)); do
+    if pane | grep -qE -- "$2"; then return 0; fi
+    sleep 0.1
+  done
+  fail "no '$2' on the screen within $1 s"
+}
+
+# The column of the left edge of our ball ('@'), or -1.
+ball_col() { pane | awk '{ i = index($0, "@"); if (i > 0) { print i; found = 1; exit } } END { if (!found) print -1 }'; }
+# A number after "LABEL: " in the HUD line.
+hud_number() { pane | head -n 1 | sed -nE "s/.*$1: ([0-9,]+).*/\1/p" | tr -d ,; }
+
+# A server that gives every player 200 coins at the start, so the shop has something to
+# sell, and waits for us in the shop. Port 0: the server picks a free one and logs it.
+cat >"$WORK/config.json" <<'EOF'
+{"player_coins": 200, "shop_timeout_s": 600}
+EOF
+"$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --log-level info >"$WORK/server.log" 2>&1 &
+SERVER_PID=$!
+PORT=""
+deadline=$((SECONDS + 10))
+while ((SECONDS < deadline)) && [[ -z "$PORT" ]]; do
+  PORT=$(sed -nE 's/.*ready .*port=([0-9]+).*/\1/p; s/.*"event":"ready".*"port":([0-9]+).*/\1/p' "$WORK/server.log" | head -n 1)
+  [[ -z "$PORT" ]] && sleep 0.1
+done
+[[ -n "$PORT" ]] || fail "the server did not log its port"
+echo "server on port $PORT"
+
+if [[ -n "$BOT" && -x "$BOT" ]]; then
+  "$BOT" --connect "127.0.0.1:$PORT" --name bot1 --behavior shopper --duration 120 >"$WORK/bot.log" 2>&1 &
+  BOT_PID=$!
+fi
+
+tmux new-session -d -s "$SESSION" -x 120 -y 40 \
+  "NO_COLOR=1 '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
+
+wait_for 10 'Players:.*e2e \(you\)'
+echo "connected"
+tmux send-keys -t "$SESSION" Enter  # ready: the match starts
+wait_for 15 '^Level: 1 '
+wait_for 10 '@'
+start_col=$(ball_col)
+echo "level 1, our ball at column $start_col"
+
+# Thrust right: a held key repeats, so send 'd' every 80 ms until the ball has moved.
+deadline=$((SECONDS + 10))
+moved=0
+while ((SECONDS < deadline)); do
+  tmux send-keys -t "$SESSION" d
+  sleep 0.08
+  col=$(ball_col)
+  if ((col > start_col + 2)); then moved=1; break; fi
+done
+((moved)) || fail "the ball did not move right (column $start_col)"
+echo "the ball moved to column $col"
+
+# Keep pushing right: the enemy at the centre is knocked off and level 1 is complete.
+deadline=$((SECONDS + 60))
+while ((SECONDS < deadline)); do
+  if pane | grep -q 'Level 1 Complete'; then break; fi
+  tmux send-keys -t "$SESSION" d
+  sleep 0.08
+done
+wait_for 5 'Press Enter to begin next level\.'
+coins=$(hud_number Coins)
+echo "level 1 complete with $coins coins"
+((coins > 200)) || [[ -n "$BOT_PID" ]] || fail "the HUD shows $coins coins after a defeat (expected more than 200)"
+
+# Buy max speed: coins fall by its price, and its price rises by x1.2.
+price=$(pane | sed -nE "s/.*To increase Max Speed, press 's' \(([0-9,]+) coins\).*/\1/p" | tr -d ,)
+[[ -n "$price" ]] || fail "no max speed price in the shop"
+((coins >= price)) || fail "not enough coins ($coins) for max speed ($price)"
+new_price=$((price * 12 / 10))
+tmux send-keys -t "$SESSION" s
+wait_for 5 "To increase Max Speed, press 's' \\($new_price coins\\)"
+wait_for 5 "^Level: 1   Coins: $((coins - price)) "
+wait_for 5 'Current Max Speed: 1\.7[89]'
+echo "bought max speed: coins $coins -> $((coins - price)), price $price -> $new_price"
+
+# Quit: the client exits 0 and leaves the alternate screen.
+tmux send-keys -t "$SESSION" q
+wait_for 5 '^CLIENT_EXIT=0'
+pane | grep -q 'Level: 1' && fail "the game screen is still there after quitting"
+echo "PASS"
