@@ -154,13 +154,25 @@ class Game {
  private:
   void receive() {
     socket_.async_receive(asio::buffer(rx_), [this](boost::system::error_code ec, std::size_t n) {
-      if (done_) return;
+      if (done_ || ec == asio::error::operation_aborted) return;  // closed: a new socket reads
       if (!ec) {
         last_rx_ms_ = now_ms();
         endpoint_.receive(std::span<const std::uint8_t>(rx_.data(), n), last_rx_ms_);
       }
       receive();  // errors such as "connection refused" (ICMP) just mean: not there yet
     });
+  }
+
+  // A fresh local port for a reconnect: to the server it is a new address carrying our
+  // token, which takes the player back with a fresh session (the same address would get
+  // the old session's answer again).
+  void new_socket() {
+    boost::system::error_code ec;
+    socket_.close(ec);
+    socket_ = udp::socket(io_);
+    socket_.open(server_.protocol());
+    socket_.connect(server_);
+    receive();
   }
 
   void flush() {
@@ -319,6 +331,7 @@ class Game {
       endpoint_ = proto::ClientEndpoint(cfg);
       endpoint_.connect(now);
       welcome_seen_ = false;
+      new_socket();
     }
     view_.status = (silent || endpoint_.state() != S::connected) ? "connection lost, reconnecting..." : "";
     view_.ping_ms = endpoint_.stats().rtt_ms > 0 ? endpoint_.stats().rtt_ms : -1;

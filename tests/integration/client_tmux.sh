@@ -12,6 +12,7 @@ SERVER=${1:?usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]}
 CLIENT=${2:?usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]}
 BOT=${3:-}
 command -v tmux >/dev/null || { echo "SKIP: tmux not installed"; exit 77; }
+if [[ -n "$BOT" && ! -x "$BOT" ]]; then echo "SKIP: $BOT is not built"; exit 77; fi
 
 WORK=$(mktemp -d /tmp/fts-e2e.XXXXXX)
 SESSION="fts-e2e-$$"
@@ -118,6 +119,18 @@ wait_for 5 "To increase Max Speed, press 's' \\($new_price coins\\)"
 wait_for 5 "^Level: 1   Coins: $((coins - price)) "
 wait_for 5 'Current Max Speed: 1\.7[89]'
 echo "bought max speed: coins $coins -> $((coins - price)), price $price -> $new_price"
+
+# Connection trouble: freeze the server past the client's 10 s time-out. The client says
+# so, then resumes with its session token when the server answers again: same coins.
+kill -STOP "$SERVER_PID"
+wait_for 5 'connection lost, reconnecting\.\.\.'
+echo "the client noticed the silence"
+stalled_until=$((SECONDS + 11))
+while ((SECONDS < stalled_until)); do sleep 0.5; done  # the frozen server is the point here
+kill -CONT "$SERVER_PID"
+wait_for 20 'Reconnected: welcome back\.'
+wait_for 5 "^Level: 1   Coins: $((coins - price)) "
+echo "reconnected with the session token"
 
 # Quit: the client exits 0 and leaves the alternate screen.
 tmux send-keys -t "$SESSION" q
