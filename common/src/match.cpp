@@ -158,6 +158,7 @@ bool all_ready(const MatchState& s, bool only_in_match) {
   bool any = false;
   for (const Player& p : s.players) {
     if (only_in_match && !p.in_match()) continue;
+    if (!p.connected) continue;
     any = true;
     if (!p.ready) return false;
   }
@@ -170,6 +171,10 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   std::vector<Event> out;
   handle_leaves(s, in.leaves, out);
   handle_joins(s, in.joins, out);
+  for (PlayerId id : in.away)
+    if (Player* p = find_player(s, id)) p->connected = false;
+  for (PlayerId id : in.back)
+    if (Player* p = find_player(s, id)) p->connected = true;
 
   std::vector<PlayerTick> inputs = in.players;
   std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.player < b.player; });

@@ -30,6 +30,7 @@ std::uint64_t match_hash(const MatchState& s) {
     h.add_string(p.name);
     add_economy(h, p.eco);
     h.add_u64(p.ready ? 1 : 0);
+    h.add_u64(p.connected ? 1 : 0);
     h.add_u64(p.ball);
     h.add_i64(p.respawn_tick);
     h.add_i64(p.next_fire_tick);

@@ -78,10 +78,12 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         log_record(spdlog::level::info, "connect", {{"player", e.player_id}, {"name", e.name}});
         break;
       case K::reconnected:
+        in.back.push_back(e.player_id);
         log_record(spdlog::level::info, "reconnect", {{"player", e.player_id}, {"name", e.name}});
         break;
       case K::disconnected:
         held_.erase(e.player_id);  // a gone client stops pushing
+        in.away.push_back(e.player_id);
         log_record(spdlog::level::info, "disconnect", {{"player", e.player_id}, {"reason", e.reason}});
         break;
       case K::released:

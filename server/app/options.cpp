@@ -1,6 +1,7 @@
 #include "app/options.hpp"
 
 #include <charconv>
+#include <cstdlib>
 #include <limits>
 
 namespace fts::server {
@@ -65,6 +66,10 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.reconnect_window_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
   } else if (key == "stats-interval-ms") {
     if (!parse_uint<std::uint32_t>(value, o.stats_interval_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
+  } else if (key == "time-scale") {
+    char* end = nullptr;
+    o.time_scale = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end || !(o.time_scale >= 0.1 && o.time_scale <= 100.0)) return bad("must be 0.1..100");
   } else {
     return OptionError{"unknown setting " + source};
   }
@@ -96,6 +101,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
       {"--reconnect-window-ms", "FTS_RECONNECT_WINDOW_MS", "60000", "how long a dropped player's slot is kept (ms)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
+      {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
   };
   return docs;
 }

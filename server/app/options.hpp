@@ -28,6 +28,7 @@ struct Options {
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
   std::uint32_t stats_interval_ms = 10000;
+  double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
   bool help = false;
   bool version = false;
 };

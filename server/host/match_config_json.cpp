@@ -116,6 +116,8 @@ std::string to_input_line(std::int64_t tick, const sim::TickInputs& in) {
     for (const auto& jr : in.joins) a.push_back({{"player", jr.player}, {"name", jr.name}});
   }
   if (!in.leaves.empty()) j["leaves"] = in.leaves;
+  if (!in.away.empty()) j["away"] = in.away;
+  if (!in.back.empty()) j["back"] = in.back;
   if (!in.players.empty()) {
     auto& a = j["players"] = nlohmann::json::array();
     for (const auto& p : in.players) {
@@ -164,7 +166,7 @@ std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
   }
   try {
     Fields f(j, "");
-    f.only({"tick", "joins", "leaves", "players"});
+    f.only({"tick", "joins", "leaves", "away", "back", "players"});
     InputLine out;
     out.tick = f.integer("tick");
     if (out.tick < 0) f.fail("tick", "must be >= 0, got " + std::to_string(out.tick));
@@ -181,12 +183,15 @@ std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
         out.inputs.joins.push_back({player_id(g, "player"), g.string("name")});
       }
     }
-    if (const auto* a = list("leaves")) {
+    for (auto [key, dest] : {std::pair{"leaves", &out.inputs.leaves}, std::pair{"away", &out.inputs.away},
+                             std::pair{"back", &out.inputs.back}}) {
+      const auto* a = list(key);
+      if (!a) continue;
       for (std::size_t i = 0; i < a->size(); ++i) {
         const auto& v = (*a)[i];
         if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 1 || v.get<std::uint64_t>() > UINT32_MAX)
-          f.fail("leaves", "must hold player ids, got " + v.dump());
-        out.inputs.leaves.push_back(v.get<std::uint32_t>());
+          f.fail(key, "must hold player ids, got " + v.dump());
+        dest->push_back(v.get<std::uint32_t>());
       }
     }
     if (const auto* a = list("players")) {

@@ -28,7 +28,8 @@ class Loop {
  public:
   Loop(const Options& o, GameHost& host, std::ostream* record)
       : options_(o), host_(host), record_(record), socket_(io_), tick_timer_(io_), stats_timer_(io_),
-        signals_(io_, SIGINT, SIGTERM), clock_(o.tick_rate_hz, 5) {}
+        signals_(io_, SIGINT, SIGTERM),
+        clock_(static_cast<std::uint32_t>(o.tick_rate_hz * o.time_scale + 0.5), 5) {}
 
   int run() {
     boost::system::error_code ec;
@@ -52,7 +53,7 @@ class Loop {
                {{"address", bound.address().to_string()}, {"port", bound.port()},
                 {"tick_rate_hz", options_.tick_rate_hz}, {"snapshot_rate_hz", options_.snapshot_rate_hz},
                 {"max_players", options_.max_players}, {"model", options_.model}, {"seed", options_.seed},
-                {"record", options_.record_path}, {"version", FTS_VERSION}});
+                {"time_scale", options_.time_scale}, {"record", options_.record_path}, {"version", FTS_VERSION}});
     receive();
     clock_.start(now_ns());
     schedule_tick();

@@ -48,6 +48,10 @@ struct JoinRequest {
 struct TickInputs {
   std::vector<JoinRequest> joins;
   std::vector<PlayerId> leaves;
+  // Connection presence: an away player keeps its place (for a reconnect) but does not
+  // hold up the lobby or the shop ("every connected player ... is ready").
+  std::vector<PlayerId> away;
+  std::vector<PlayerId> back;
   std::vector<PlayerTick> players;
 };
 
@@ -98,6 +102,7 @@ struct Player {
   std::int64_t respawn_tick = -1;  // >= 0: put back on the platform at that tick
   std::int64_t next_fire_tick = 0;
   Vec2 aim{1.0, 0.0};              // last thrust direction (rockets when standing still)
+  bool connected = true;           // false while its client is away (see TickInputs::away)
   bool in_match() const { return eco.lives > 0; }
 };
 

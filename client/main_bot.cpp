@@ -1,0 +1,251 @@
+// fts-bot: K scripted bot clients in one process (K sockets), for integration and load
+// tests, and `--probe` as a health check. The only Asio translation unit of fts-bot.
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "bot/bot.hpp"
+#include "net/asio.hpp"
+
+namespace {
+
+namespace asio = boost::asio;
+using udp = asio::ip::udp;
+
+constexpr const char* kUsage =
+    "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
+    "               [--script FILE] [--duration S] [--encoding json|msgpack] [--seed S]\n"
+    "               [--token T] [--report FILE|-]\n"
+    "       fts-bot --probe HOST:PORT      connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s\n"
+    "With --count K the bots are named N1..NK. The report (default: stdout) is a JSON array, one object per bot.\n"
+    "Exit status: 0 when every bot succeeded, 1 when one failed (a failed expect, a deadline, a refusal), 2 on bad usage.\n";
+
+int usage(const std::string& m) {
+  std::cerr << "fts-bot: " << m << "\n" << kUsage;
+  return 2;
+}
+
+struct Args {
+  std::string host, port, name = "bot", script_path, report = "-", token;
+  int count = 1;
+  double duration_s = 0;  // 0: until the script ends (or forever without one)
+  fts::bot::Behavior behavior = fts::bot::Behavior::hunter;
+  fts::protocol::Encoding encoding = fts::protocol::Encoding::msgpack;
+  std::uint64_t seed = 1;
+  bool probe = false;
+};
+
+bool split_host_port(const std::string& s, Args& a) {
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == s.size()) return false;
+  a.host = s.substr(0, colon);
+  a.port = s.substr(colon + 1);
+  if (a.host.size() > 2 && a.host.front() == '[' && a.host.back() == ']') a.host = a.host.substr(1, a.host.size() - 2);
+  return true;
+}
+
+std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto value = [&]() -> std::optional<std::string> {
+      if (i + 1 >= argc) return std::nullopt;
+      return std::string(argv[++i]);
+    };
+    std::optional<std::string> v;
+    if (k == "--help" || k == "-h") return std::string("help");
+    if (k == "--connect" || k == "--probe") {
+      if (!(v = value()) || !split_host_port(*v, a)) return k + " needs HOST:PORT";
+      a.probe = k == "--probe";
+    } else if (k == "--name") {
+      if (!(v = value()) || v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
+      a.name = *v;
+    } else if (k == "--count") {
+      if (!(v = value())) return std::string("--count needs a number");
+      a.count = std::atoi(v->c_str());
+      if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
+    } else if (k == "--behavior") {
+      if (!(v = value())) return std::string("--behavior needs a value");
+      auto b = fts::bot::parse_behavior(*v);
+      if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
+      a.behavior = *b;
+    } else if (k == "--script") {
+      if (!(v = value())) return std::string("--script needs a file");
+      a.script_path = *v;
+    } else if (k == "--duration") {
+      if (!(v = value())) return std::string("--duration needs seconds");
+      char* end = nullptr;
+      a.duration_s = std::strtod(v->c_str(), &end);
+      if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
+    } else if (k == "--encoding") {
+      if (!(v = value()) || (*v != "json" && *v != "msgpack")) return std::string("--encoding must be json or msgpack");
+      a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
+    } else if (k == "--seed") {
+      if (!(v = value())) return std::string("--seed needs a number");
+      a.seed = std::strtoull(v->c_str(), nullptr, 10);
+    } else if (k == "--token") {
+      if (!(v = value())) return std::string("--token needs a value");
+      a.token = *v;
+    } else if (k == "--report") {
+      if (!(v = value())) return std::string("--report needs a file or -");
+      a.report = *v;
+    } else {
+      return "unknown flag " + k;
+    }
+  }
+  if (a.host.empty()) return std::string("--connect HOST:PORT (or --probe HOST:PORT) is required");
+  return std::nullopt;
+}
+
+struct Slot {
+  explicit Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
+  udp::socket socket;
+  fts::bot::Bot bot;
+  std::array<std::uint8_t, 2048> buffer{};
+  udp::endpoint from;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (auto err = parse_args(argc, argv, a)) {
+    if (*err == "help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    return usage(*err);
+  }
+  std::vector<fts::bot::Step> steps;
+  if (!a.script_path.empty()) {
+    std::ifstream in(a.script_path);
+    if (!in) return usage("cannot read script " + a.script_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    auto parsed = fts::bot::parse_script(text.str());
+    if (auto* e = std::get_if<std::string>(&parsed)) {
+      std::cerr << "fts-bot: " << a.script_path << ": " << *e << "\n";
+      return 2;
+    }
+    steps = std::get<std::vector<fts::bot::Step>>(parsed);
+  }
+
+  asio::io_context io;
+  boost::system::error_code ec;
+  udp::resolver resolver(io);
+  const auto results = resolver.resolve(a.host, a.port, ec);
+  if (ec || results.empty()) {
+    std::cerr << "fts-bot: cannot resolve " << a.host << ":" << a.port << ": " << ec.message() << "\n";
+    return a.probe ? 1 : 2;
+  }
+  const udp::endpoint server = *results.begin();
+
+  const auto t0 = std::chrono::steady_clock::now();
+  auto now_ms = [&] {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count());
+  };
+  std::vector<std::unique_ptr<Slot>> slots;
+  for (int i = 0; i < (a.probe ? 1 : a.count); ++i) {
+    fts::bot::BotOptions o;
+    o.name = a.count > 1 ? a.name + std::to_string(i + 1) : a.name;
+    o.behavior = a.probe ? fts::bot::Behavior::idle : a.behavior;
+    o.script = steps;
+    o.encoding = a.encoding;
+    o.seed = a.seed + static_cast<std::uint64_t>(i);
+    o.token = i == 0 ? a.token : "";
+    o.probe = a.probe;
+    auto slot = std::make_unique<Slot>(io, std::move(o));
+    slot->socket.open(server.protocol(), ec);
+    if (ec) {
+      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
+      return 1;
+    }
+    slot->bot.start(now_ms());
+    slots.push_back(std::move(slot));
+  }
+
+  auto flush = [&](Slot& s) {
+    for (auto& d : s.bot.take_datagrams()) s.socket.send_to(asio::buffer(d), server, 0, ec);
+  };
+  std::function<void(Slot&)> receive = [&](Slot& s) {
+    s.socket.async_receive_from(asio::buffer(s.buffer), s.from, [&, sp = &s](const boost::system::error_code& e, std::size_t n) {
+      if (e == asio::error::operation_aborted) return;
+      if (!e && sp->from == server) sp->bot.receive(std::span<const std::uint8_t>(sp->buffer.data(), n), now_ms());
+      receive(*sp);
+    });
+  };
+  for (auto& s : slots) {
+    flush(*s);
+    receive(*s);
+  }
+
+  const double limit_s = a.probe ? 2.0 : a.duration_s;
+  bool stopping = false;
+  asio::steady_timer timer(io);
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code& e, int) {
+    if (e) return;
+    for (auto& s : slots) {
+      s->bot.stop(now_ms());
+      flush(*s);
+    }
+    io.stop();
+  });
+  std::function<void()> tick = [&] {
+    timer.expires_after(std::chrono::milliseconds(5));
+    timer.async_wait([&](const boost::system::error_code& e) {
+      if (e) return;
+      bool all_done = true;
+      for (auto& s : slots) {
+        s->bot.update(now_ms());
+        flush(*s);
+        all_done = all_done && s->bot.finished();
+      }
+      const bool out_of_time = limit_s > 0 && static_cast<double>(now_ms()) >= limit_s * 1000.0;
+      if (all_done || out_of_time || stopping) {
+        for (auto& s : slots) {
+          if (!s->bot.finished() && a.probe) continue;
+          s->bot.stop(now_ms());
+          flush(*s);
+        }
+        io.stop();
+        return;
+      }
+      tick();
+    });
+  };
+  tick();
+  io.run();
+
+  if (a.probe) {
+    const auto& bot = slots[0]->bot;
+    if (!bot.failed() && bot.report()["snapshots_received"].get<std::uint64_t>() > 0) {
+      std::cout << "ok: " << a.host << ":" << a.port << " answered with a snapshot\n";
+      return 0;
+    }
+    std::cerr << "fts-bot: probe of " << a.host << ":" << a.port << " failed: "
+              << (bot.failed() ? bot.failure() : std::string("no snapshot within 2 s")) << "\n";
+    return 1;
+  }
+  nlohmann::ordered_json report = nlohmann::ordered_json::array();
+  bool ok = true;
+  for (auto& s : slots) {
+    report.push_back(s->bot.report());
+    ok = ok && !s->bot.failed();
+    if (s->bot.failed()) std::cerr << "fts-bot: " << report.back()["name"].get<std::string>() << ": " << s->bot.failure() << "\n";
+  }
+  if (a.report == "-") {
+    std::cout << report.dump(2) << "\n";
+  } else {
+    std::ofstream out(a.report);
+    out << report.dump(2) << "\n";
+    if (!out) {
+      std::cerr << "fts-bot: cannot write " << a.report << "\n";
+      return 1;
+    }
+  }
+  return ok ? 0 : 1;
+}
