@@ -16,10 +16,12 @@ if [[ -n "$BOT" && ! -x "$BOT" ]]; then echo "SKIP: $BOT is not built"; exit 77;
 
 WORK=$(mktemp -d /tmp/fts-e2e.XXXXXX)
 SESSION="fts-e2e-$$"
+SOCK="fts-e2e-$$"  # a private tmux server: never touches the user's sessions
+tm() { tmux -L "$SOCK" "$@"; }
 SERVER_PID=""
 BOT_PID=""
 cleanup() {
-  tmux kill-session -t "$SESSION" 2>/dev/null || true
+  tm kill-server 2>/dev/null || true
   [[ -n "$BOT_PID" ]] && kill "$BOT_PID" 2>/dev/null || true
   [[ -n "$SERVER_PID" ]] && kill "$SERVER_PID" 2>/dev/null || true
   wait 2>/dev/null || true
@@ -30,13 +32,13 @@ trap cleanup EXIT
 fail() {
   echo "FAIL: $*" >&2
   echo "--- pane ---" >&2
-  tmux capture-pane -p -t "$SESSION" 2>/dev/null >&2 || true
+  tm capture-pane -p -t "$SESSION" 2>/dev/null >&2 || true
   echo "--- server log (tail) ---" >&2
   tail -n 20 "$WORK/server.log" >&2 || true
   exit 1
 }
 
-pane() { tmux capture-pane -p -t "$SESSION"; }
+pane() { tm capture-pane -p -t "$SESSION"; }
 
 # wait_for SECONDS REGEX: poll the pane until a line matches.
 wait_for() {
@@ -58,12 +60,13 @@ hud_number() { pane | head -n 1 | sed -nE "s/.*$1: ([0-9,]+).*/\1/p" | tr -d ,; 
 cat >"$WORK/config.json" <<'EOF'
 {"player_coins": 200, "shop_timeout_s": 600}
 EOF
+: >"$WORK/server.log"
 "$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --log-level info >"$WORK/server.log" 2>&1 &
 SERVER_PID=$!
 PORT=""
 deadline=$((SECONDS + 10))
 while ((SECONDS < deadline)) && [[ -z "$PORT" ]]; do
-  PORT=$(sed -nE 's/.*ready .*port=([0-9]+).*/\1/p; s/.*"event":"ready".*"port":([0-9]+).*/\1/p' "$WORK/server.log" | head -n 1)
+  PORT=$(sed -nE 's/.*ready .*port=([0-9]+).*/\1/p; s/.*"event":"ready".*"port":([0-9]+).*/\1/p' "$WORK/server.log" | head -n 1 || true)
   [[ -z "$PORT" ]] && sleep 0.1
 done
 [[ -n "$PORT" ]] || fail "the server did not log its port"
@@ -74,12 +77,12 @@ if [[ -n "$BOT" && -x "$BOT" ]]; then
   BOT_PID=$!
 fi
 
-tmux new-session -d -s "$SESSION" -x 120 -y 40 \
+tm new-session -d -s "$SESSION" -x 120 -y 40 \
   "NO_COLOR=1 '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
 
 wait_for 10 'Players:.*e2e \(you\)'
 echo "connected"
-tmux send-keys -t "$SESSION" Enter  # ready: the match starts
+tm send-keys -t "$SESSION" Enter  # ready: the match starts
 wait_for 15 '^Level: 1 '
 wait_for 10 '@'
 start_col=$(ball_col)
@@ -89,7 +92,7 @@ echo "level 1, our ball at column $start_col"
 deadline=$((SECONDS + 10))
 moved=0
 while ((SECONDS < deadline)); do
-  tmux send-keys -t "$SESSION" d
+  tm send-keys -t "$SESSION" d
   sleep 0.08
   col=$(ball_col)
   if ((col > start_col + 2)); then moved=1; break; fi
@@ -101,7 +104,7 @@ echo "the ball moved to column $col"
 deadline=$((SECONDS + 60))
 while ((SECONDS < deadline)); do
   if pane | grep -q 'Level 1 Complete'; then break; fi
-  tmux send-keys -t "$SESSION" d
+  tm send-keys -t "$SESSION" d
   sleep 0.08
 done
 wait_for 5 'Press Enter to begin next level\.'
@@ -114,7 +117,7 @@ price=$(pane | sed -nE "s/.*To increase Max Speed, press 's' \(([0-9,]+) coins\)
 [[ -n "$price" ]] || fail "no max speed price in the shop"
 ((coins >= price)) || fail "not enough coins ($coins) for max speed ($price)"
 new_price=$((price * 12 / 10))
-tmux send-keys -t "$SESSION" s
+tm send-keys -t "$SESSION" s
 wait_for 5 "To increase Max Speed, press 's' \\($new_price coins\\)"
 wait_for 5 "^Level: 1   Coins: $((coins - price)) "
 wait_for 5 'Current Max Speed: 1\.7[89]'
@@ -133,7 +136,7 @@ wait_for 5 "^Level: 1   Coins: $((coins - price)) "
 echo "reconnected with the session token"
 
 # Quit: the client exits 0 and leaves the alternate screen.
-tmux send-keys -t "$SESSION" q
+tm send-keys -t "$SESSION" q
 wait_for 5 '^CLIENT_EXIT=0'
 pane | grep -q 'Level: 1' && fail "the game screen is still there after quitting"
 echo "PASS"
