@@ -150,4 +150,17 @@ TEST_CASE("snapshot sizes report", "[.report]") {
                   full.size(), datagram_bytes(d1, enc), d1.size(), datagram_bytes(d5, enc), d5.size());
     }
   }
+  // Worst case for players: in the shop every player buys at once (balls at rest).
+  for (Encoding enc : {Encoding::json, Encoding::msgpack}) {
+    const Snapshot s = test::sample_snapshot(8, 48);
+    Snapshot shop = s;
+    shop.tick += 5;
+    for (auto& p : shop.players) {
+      p.coins -= 35, p.mass += 1, p.vmax_u_per_s *= 1.05, p.accel_u_per_s2 *= 1.05;
+      p.multiplier *= 1.1, p.prices[0] += 3, p.ready = true;
+    }
+    const auto d = split_snapshot(make_snapshot_msg(shop, &s), enc);
+    std::printf("| 8 players, 48 enemies, shop: every player changed, balls still | %s | | %zu (%zu) | |\n",
+                enc == Encoding::json ? "JSON" : "MessagePack", datagram_bytes(d, enc), d.size());
+  }
 }
