@@ -48,7 +48,8 @@ long param(const std::vector<std::vector<long>>& f, std::size_t i, std::size_t j
 // One complete CSI sequence: parameters (without a leading private marker) and final byte.
 std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, bool& kitty_answer) {
   if (!params.empty() && params[0] == '?') {
-    if (final_byte == 'u') kitty_answer = true;  // CSI ? flags u: the query's answer
+    // CSI ? flags u: the query's answer; releases come only with "report event types".
+    if (final_byte == 'u') kitty_answer = (param(parse_params(params.substr(1)), 0, 0, 0) & 2) != 0;
     return std::nullopt;
   }
   const auto f = parse_params(params);
@@ -134,8 +135,12 @@ std::vector<KeyEvent> KeyDecoder::feed(std::string_view bytes) {
     const auto fb = static_cast<unsigned char>(buffer_[j]);
     if (fb >= 0x40 && fb < 0x7f) {
       bool answer = false;
-      if (auto e = decode_csi(std::string_view(buffer_).substr(i + 2, j - i - 2), static_cast<char>(fb), answer))
+      if (auto e = decode_csi(std::string_view(buffer_).substr(i + 2, j - i - 2), static_cast<char>(fb), answer)) {
+        // A terminal that answered the kitty query reports releases even for a plain
+        // "CSI A" press (its event type 1 may be left out).
+        if (kitty_supported_) e->kitty = true;
         out.push_back(*e);
+      }
       if (answer) kitty_supported_ = true;
     }
     i = j + 1;

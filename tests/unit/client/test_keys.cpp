@@ -40,6 +40,9 @@ TEST_CASE("legacy key bytes decode", "[client][keys]") {
 TEST_CASE("kitty keyboard protocol events decode with their type", "[client][keys]") {
   KeyDecoder d;
   CHECK(kitty_push() == "\x1b[>11u");
+  KeyDecoder no_events;
+  CHECK(no_events.feed("\x1b[?1u").empty());
+  CHECK_FALSE(no_events.kitty_supported());  // flags without "report event types"
   CHECK(d.feed("\x1b[?11u").empty());
   CHECK(d.kitty_supported());
   auto ev = d.feed("\x1b[119u\x1b[119;1:2u\x1b[119;1:3u\x1b[1;1:3C\x1b[13u\x1b[99;5u\x1b[32;1:1u\x1b[87;2u");
@@ -52,6 +55,10 @@ TEST_CASE("kitty keyboard protocol events decode with their type", "[client][key
   CHECK(ev[5].key == Key::ctrl_c);
   CHECK(ev[6].key == Key::space);
   CHECK(ev[7] == KeyEvent{Key::character, 'w', KeyAction::press, true});  // shift+w
+  // After the query's answer, even a plain arrow press promises a release.
+  auto plain = d.feed("\x1b[A");
+  REQUIRE(plain.size() == 1);
+  CHECK(plain[0] == KeyEvent{Key::up, 0, KeyAction::press, true});
   // Unknown functional keys and modifiers alone are ignored.
   CHECK(d.feed("\x1b[57441u\x1b[15~").empty());
 }
