@@ -18,7 +18,9 @@ using udp = asio::ip::udp;
 constexpr const char* kUsage =
     "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
     "               [--script FILE] [--duration S] [--encoding json|msgpack] [--seed S]\n"
-    "               [--token T] [--report FILE|-]\n"
+    "               [--token T] [--token-file F] [--report FILE|-]\n"
+    "--token-file F: read the session token from F if it exists, and write it there once welcomed\n"
+    "(so a killed bot started again takes its player back within the reconnect window).\n"
     "       fts-bot --probe HOST:PORT      connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s\n"
     "With --count K the bots are named N1..NK. The report (default: stdout) is a JSON array, one object per bot.\n"
     "Exit status: 0 when every bot succeeded, 1 when one failed (a failed expect, a deadline, a refusal), 2 on bad usage.\n";
@@ -29,7 +31,8 @@ int usage(const std::string& m) {
 }
 
 struct Args {
-  std::string host, port, name = "bot", script_path, report = "-", token;
+  std::string host, port, name = "bot", script_path, report = "-", token, token_file;
+  std::uint16_t protocol_version = 0;
   int count = 1;
   double duration_s = 0;  // 0: until the script ends (or forever without one)
   fts::bot::Behavior behavior = fts::bot::Behavior::hunter;
@@ -88,6 +91,12 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
     } else if (k == "--token") {
       if (!(v = value())) return std::string("--token needs a value");
       a.token = *v;
+    } else if (k == "--token-file") {
+      if (!(v = value())) return std::string("--token-file needs a file");
+      a.token_file = *v;
+    } else if (k == "--protocol-version") {  // for tests of the server's version refusal
+      if (!(v = value())) return std::string("--protocol-version needs a number");
+      a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
     } else if (k == "--report") {
       if (!(v = value())) return std::string("--report needs a file or -");
       a.report = *v;
@@ -132,6 +141,10 @@ int main(int argc, char** argv) {
     steps = std::get<std::vector<fts::bot::Step>>(parsed);
   }
 
+  if (!a.token_file.empty() && a.token.empty()) {
+    std::ifstream in(a.token_file);
+    std::getline(in, a.token);
+  }
   asio::io_context io;
   boost::system::error_code ec;
   udp::resolver resolver(io);
@@ -157,6 +170,7 @@ int main(int argc, char** argv) {
     o.seed = a.seed + static_cast<std::uint64_t>(i);
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
+    o.protocol_version = a.protocol_version;
     auto slot = std::make_unique<Slot>(io, std::move(o));
     slot->socket.open(server.protocol(), ec);
     if (ec) {
@@ -184,6 +198,7 @@ int main(int argc, char** argv) {
 
   const double limit_s = a.probe ? 2.0 : a.duration_s;
   bool stopping = false;
+  bool token_written = false;
   asio::steady_timer timer(io);
   asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code& e, int) {
@@ -203,6 +218,10 @@ int main(int argc, char** argv) {
         s->bot.update(now_ms());
         flush(*s);
         all_done = all_done && s->bot.finished();
+      }
+      if (!a.token_file.empty() && !token_written && !slots[0]->bot.token().empty()) {
+        std::ofstream(a.token_file) << slots[0]->bot.token() << "\n";
+        token_written = true;
       }
       const bool out_of_time = limit_s > 0 && static_cast<double>(now_ms()) >= limit_s * 1000.0;
       if (all_done || out_of_time || stopping) {

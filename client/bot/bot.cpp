@@ -62,6 +62,7 @@ void Bot::start(std::uint64_t now_ms) {
   c.encoding = options_.encoding;
   c.name = options_.name;
   c.token = token_;
+  if (options_.protocol_version) c.version = options_.protocol_version;
   endpoint_.emplace(c);
   endpoint_->connect(now_ms);
 }
@@ -105,6 +106,13 @@ void Bot::on_snapshot(const protocol::Snapshot& s) {
   for (const auto& e : s.events) {
     if (e.tick <= last_event_tick_) continue;
     new_events_.push_back(event_name(e.kind));
+    // Coins as the events tell them, to check against the coins in the snapshot.
+    if (e.kind == protocol::EventKind::enemy_fell && e.b == player_id_) earned_ += e.value;
+    if (e.kind == protocol::EventKind::interest && e.a == player_id_) earned_ += e.value;
+    if (e.kind == protocol::EventKind::purchase && e.a == player_id_) {
+      spent_ += e.value;
+      ++purchase_events_;
+    }
   }
   for (const auto& e : s.events) last_event_tick_ = std::max(last_event_tick_, e.tick);
   if (s.phase != last_phase_) {
@@ -256,7 +264,7 @@ void Bot::run_script(std::uint64_t now_ms) {
       step_started_ = true;
       command_sent_ = false;
       step_deadline_ms_ = now_ms + static_cast<std::uint64_t>(timeout_s_ * 1000);
-      step_until_tick_ = (latest_ ? latest_->tick : 0) + static_cast<std::uint32_t>(s.number);
+      step_until_tick_ = (latest_ ? latest_->tick : 0) + static_cast<std::uint32_t>(std::max(0.0, s.number));
     }
     if (!step_script(s, now_ms)) {
       if (!finished_ && now_ms > step_deadline_ms_)
@@ -281,6 +289,7 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
     case Step::Op::wait_phase: return latest_ && s.word == phase_name(latest_->phase);
     case Step::Op::wait_ticks: return latest_ && tick >= step_until_tick_;
     case Step::Op::move: {
+      script_hunting_ = false;
       script_hold_ = {};
       if (s.word == "left") script_hold_.move_x = -1;
       if (s.word == "right") script_hold_.move_x = 1;
@@ -291,6 +300,10 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
       return true;
     }
     case Step::Op::hunt:
+      if (s.number < 0) {
+        script_hunting_ = true;
+        return true;
+      }
       script_hunting_ = tick < step_until_tick_;
       return !script_hunting_;
     case Step::Op::fire: fire_once_ = true; return true;
@@ -366,6 +379,10 @@ nlohmann::ordered_json Bot::report() const {
   r["level"] = latest_ ? latest_->level : 0;
   r["phase"] = latest_ ? phase_name(latest_->phase) : "none";
   r["purchases"] = purchases_ok_;
+  r["purchase_events"] = purchase_events_;
+  r["coins_earned_by_events"] = earned_;
+  r["coins_spent_by_events"] = spent_;
+  r["prices"] = p ? nlohmann::ordered_json(p->prices) : nlohmann::ordered_json::array();
   r["purchases_refused"] = purchases_refused_;
   r["bought"] = bought_;
   r["errors"] = errors_;

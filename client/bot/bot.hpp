@@ -27,6 +27,7 @@ struct BotOptions {
   std::uint64_t seed = 1;
   std::string token;         // take a previous player back
   bool probe = false;        // done at the first snapshot
+  std::uint16_t protocol_version = 0;  // 0: ours; other values test the server's refusal
 };
 
 class Bot {
@@ -44,6 +45,8 @@ class Bot {
   bool finished() const { return finished_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
+  // The session token once welcomed ("" before).
+  const std::string& token() const { return token_; }
   nlohmann::ordered_json report() const;
 
  private:
@@ -92,6 +95,8 @@ class Bot {
   protocol::InputFrame script_hold_;
   bool fire_once_ = false;
   bool disconnected_by_script_ = false;
+  std::int64_t earned_ = 0, spent_ = 0;
+  std::uint64_t purchase_events_ = 0;
   std::vector<std::string> errors_;
   std::string failure_;
   bool finished_ = false;

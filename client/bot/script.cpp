@@ -75,7 +75,9 @@ std::variant<std::vector<Step>, std::string> parse_script(const std::string& tex
       s.word = w[1];
     } else if (k == "hunt") {
       s.op = Step::Op::hunt;
-      if (!need(2) || !to_number(w[1], s.number) || s.number < 0) return err("hunt takes ticks");
+      s.number = -1;  // no count: hunt through the following steps, until a move
+      if (need(2) && (!to_number(w[1], s.number) || s.number < 0)) return err("hunt takes ticks (or nothing)");
+      if (w.size() > 2) return err("hunt takes ticks (or nothing)");
     } else if (k == "fire" && need(1)) {
       s.op = Step::Op::fire;
     } else if (k == "buy") {

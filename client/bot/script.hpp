@@ -4,7 +4,8 @@
 //   wait game_over | wait ticks N          wait for an event or phase (deadline: timeout)
 //   timeout SECONDS                         deadline of the following waits (default 60)
 //   move left|right|up|down|none TICKS      hold a thrust for TICKS server ticks
-//   hunt TICKS                              play as the hunter for TICKS ticks
+//   hunt [TICKS]                            play as the hunter for TICKS ticks (no TICKS:
+//                                           through the following steps, until a move)
 //   fire                                    fire a rocket (this tick)
 //   buy ITEM                                ITEM: mass speed accel rockets life multiplier bank
 //                                           (or m s a r l x b); waits for the result

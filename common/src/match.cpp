@@ -31,6 +31,7 @@ std::string_view to_string(EventKind k) {
     case EventKind::purchase: return "purchase";
     case EventKind::rocket_fired: return "rocket_fired";
     case EventKind::game_over: return "game_over";
+    case EventKind::interest: return "interest";
   }
   return "?";
 }

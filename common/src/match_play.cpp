@@ -150,7 +150,16 @@ void check_level_end(MatchState& s, std::vector<Event>& out) {
   } else if (!enemies) {
     for (Player& p : s.players) {
       p.ready = false;
-      if (p.in_match()) complete_level(p.eco, s.cfg);
+      if (!p.in_match()) continue;
+      const Coins before = p.eco.coins;
+      complete_level(p.eco, s.cfg);
+      if (p.eco.coins != before) {
+        Event e;
+        e.kind = EventKind::interest;
+        e.player = p.id;
+        e.coins = p.eco.coins - before;
+        out.push_back(e);
+      }
     }
     ++s.levels_cleared;
     s.phase = Phase::shop;

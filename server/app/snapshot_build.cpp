@@ -47,6 +47,7 @@ void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events
         break;
       case sim::EventKind::rocket_fired: w = {w.tick, K::rocket_fired, e.player, e.ball, 0}; break;
       case sim::EventKind::game_over: w = {w.tick, K::match_over, 0, 0, e.level}; break;
+      case sim::EventKind::interest: w = {w.tick, K::interest, e.player, 0, e.coins}; break;
       case sim::EventKind::join_refused: continue;
     }
     out.push_back(w);

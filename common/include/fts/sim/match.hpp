@@ -58,6 +58,7 @@ struct TickInputs {
 enum class EventKind : std::uint8_t {
   joined, join_refused, left, level_started, enemy_defeated, player_fell, player_respawned,
   level_complete, purchase, rocket_fired, game_over,
+  interest,  // bank interest paid at a level's end (coins)
 };
 std::string_view to_string(EventKind k);
 
