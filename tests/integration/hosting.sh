@@ -144,6 +144,8 @@ refuse "a bad flag" --no-such-flag -- --no-such-flag 1
 refuse "a bad flag value" --tick-rate -- --tick-rate 5
 refuse "a bad environment value" FTS_TICK_RATE FTS_TICK_RATE=5 --
 refuse "a bad FTS_LOG_FORMAT" FTS_LOG_FORMAT FTS_LOG_FORMAT=xml --
+refuse "a bad bind address" --bind -- --bind not-an-address
+refuse "a bad FTS_PORT" FTS_PORT FTS_PORT=70000 --
 refuse "a config with an unknown key" no_such_setting -- --config "$work/bad-config.json"
 refuse "a missing config file" "$work/missing.json" -- --config "$work/missing.json"
 

@@ -1,0 +1,111 @@
+"""Helpers for the integration tests: real processes on loopback, free ports, and
+waits with deadlines (poll for an event, never sleep and hope)."""
+import json, os, re, signal, subprocess, sys, tempfile, time
+
+BIN = os.environ.get("FTS_BIN_DIR", "build")
+SERVER = os.path.join(BIN, "server", "fts-server")
+BOT = os.path.join(BIN, "client", "fts-bot")
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+class Failure(Exception):
+    pass
+
+
+def check(cond, message):
+    if not cond:
+        raise Failure(message)
+
+
+def wait_for(predicate, timeout_s, what):
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(0.02)
+    raise Failure(f"timed out after {timeout_s} s waiting for {what}")
+
+
+class Server:
+    """fts-server on a free port; its log (stderr) goes to a file we can poll."""
+
+    def __init__(self, *args, env=None):
+        self.dir = tempfile.mkdtemp(prefix="fts-it-")
+        self.log_path = os.path.join(self.dir, "server.log")
+        self.log = open(self.log_path, "w")
+        self.proc = subprocess.Popen([SERVER, "--port", "0", *args], stdout=self.log, stderr=self.log,
+                                     env={**os.environ, **(env or {})})
+        m = wait_for(lambda: re.search(r'ready .*port=(\d+)|"event":"ready".*"port":(\d+)', self.text()), 10,
+                     "the server's ready line")
+        self.port = int(m.group(1) or m.group(2))
+        self.address = f"127.0.0.1:{self.port}"
+
+    def text(self):
+        with open(self.log_path) as f:
+            return f.read()
+
+    def stop(self, sig=signal.SIGINT, timeout_s=10):
+        if self.proc.poll() is None:
+            self.proc.send_signal(sig)
+        try:
+            return self.proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            raise Failure("the server did not exit after SIGINT")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+
+
+def start_bots(*args):
+    """Starts fts-bot with a report file; returns (process, report path)."""
+    fd, report = tempfile.mkstemp(prefix="fts-bot-", suffix=".json")
+    os.close(fd)
+    proc = subprocess.Popen([BOT, *args, "--report", report], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return proc, report
+
+
+def finish_bots(started, timeout_s):
+    proc, report = started
+    try:
+        out, err = proc.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, err = proc.communicate()
+        raise Failure(f"fts-bot did not finish within {timeout_s} s: {err}")
+    with open(report) as f:
+        text = f.read()
+    data = json.loads(text) if text.strip() else []
+    return proc.returncode, data, err
+
+
+def run_bots(*args, timeout_s=120):
+    return finish_bots(start_bots(*args), timeout_s)
+
+
+def write_script(text):
+    fd, path = tempfile.mkstemp(prefix="fts-script-", suffix=".txt")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    return path
+
+
+def main(tests):
+    """Runs the test named by argv[1] (one CTest entry per test)."""
+    name = sys.argv[1] if len(sys.argv) > 1 else ""
+    if name not in tests:
+        print(f"unknown test {name!r}; known: {', '.join(tests)}")
+        return 2
+    try:
+        tests[name]()
+    except Failure as e:
+        print(f"FAIL {name}: {e}")
+        return 1
+    print(f"ok {name}")
+    return 0
