@@ -1,14 +1,39 @@
 #!/usr/bin/env bash
-# Sets everything up and runs the main job. For now (before the server lands): fts-sim
-# on the shipped game-like scene and on a headless 4-player match, printing reports.
+# Sets everything up and runs the main job: a local fts-server with a few bots, and the
+# terminal client on it when this is an interactive terminal (otherwise it says how to
+# join and keeps the server running until Ctrl-C).
+#   FTS_PORT (default 7777)   FTS_BOTS (default 3)   FTS_NAME (default: $USER or "player")
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 bash .ci/deps.sh
 bash .ci/build.sh build
-echo "== fts-sim tests/scenes/game-like.json"
-./build/server/fts-sim tests/scenes/game-like.json
-if ./build/server/fts-sim --help | grep -q -- --match; then
-  echo "== fts-sim --match --players 4 --levels 5 --seed 7"
-  ./build/server/fts-sim --match --players 4 --levels 5 --seed 7
+port=${FTS_PORT:-7777}
+nbots=${FTS_BOTS:-3}
+name=${FTS_NAME:-${USER:-player}}
+log=build/server.log
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
+trap cleanup EXIT INT TERM
+
+./build/server/fts-server --port "$port" >"$log" 2>&1 &
+pids+=($!)
+for _ in $(seq 1 100); do  # up to 10 s for the ready line
+  grep -q " ready " "$log" && break
+  kill -0 "${pids[0]}" 2>/dev/null || { cat "$log"; exit 1; }
+  sleep 0.1
+done
+grep " ready " "$log"
+if ((nbots > 0)); then
+  ./build/client/fts-bot --connect "127.0.0.1:$port" --name bot --count "$nbots" --behavior shopper \
+    --report build/bots.json >/dev/null 2>build/bots.log &
+  pids+=($!)
+fi
+echo "fts-server is on UDP port $port with $nbots bots (log: $log)."
+echo "Join from any terminal:  ./build/client/fts-client --connect 127.0.0.1:$port --name YOURNAME"
+if [[ -t 0 && -t 1 && -x build/client/fts-client ]]; then
+  ./build/client/fts-client --connect "127.0.0.1:$port" --name "${name:0:16}"
+else
+  echo "Press Ctrl-C to stop."
+  wait "${pids[0]}"
 fi
