@@ -11,6 +11,7 @@
 #include "fts/sim/bot_player.hpp"
 #include "fts/sim/match.hpp"
 #include "host/match_config_json.hpp"
+#include "host/record.hpp"
 
 namespace fts::simtool {
 namespace {
@@ -152,9 +153,28 @@ int run_match_cli(const std::vector<std::string>& args) {
       for (const auto& e : events) std::cerr << event_json(t, e).dump() << "\n";
   };
 
+  std::int64_t hashes_checked = -1;
   if (inputs_path) {
     std::ifstream in(*inputs_path);
     if (!in) return usage("cannot read " + *inputs_path);
+    if (in.peek() == '{') {
+      std::string first;
+      std::getline(in, first);
+      in.seekg(0);
+      if (first.find("\"fts_record\"") != std::string::npos) {
+        // A server recording: its own seed and config, every hash checked.
+        auto r = host::replay_record(in);
+        if (auto* err = std::get_if<std::string>(&r)) {
+          std::cerr << "fts-sim: replay of " << *inputs_path << " FAILED: " << *err << "\n";
+          return 1;
+        }
+        auto& rep = std::get<host::ReplayReport>(r);
+        hashes_checked = rep.hashes_checked;
+        s = std::move(rep.state);
+        cfg = s.cfg;
+        max_ticks = s.tick;
+      }
+    }
     std::string line;
     std::int64_t line_no = 0;
     while (std::getline(in, line) && s.tick < max_ticks) {
@@ -192,6 +212,7 @@ int run_match_cli(const std::vector<std::string>& args) {
       {"model", sim::to_string(cfg.model)},
       {"tick_rate_hz", cfg.tick_rate_hz},
       {"replay", inputs_path.has_value()},
+      {"hashes_checked", hashes_checked},
       {"phase", sim::to_string(s.phase)},
       {"level", s.level},
       {"levels_cleared", s.levels_cleared},
