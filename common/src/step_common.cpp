@@ -82,12 +82,23 @@ void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, Grid& grid,
   std::sort(out.begin(), out.end());
 }
 
-void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
-  for (Ball& b : world.balls) b.pos += b.vel * dt;
-  apply_boundary(world, report);
+namespace {
+// Broad-phase buffers reused from step to step (capacity only).
+struct Scratch {
   Grid grid;
   std::vector<Box> boxes;
   std::vector<IndexPair> pairs;
+};
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+}  // namespace
+
+void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
+  for (Ball& b : world.balls) b.pos += b.vel * dt;
+  apply_boundary(world, report);
+  auto& [grid, boxes, pairs] = scratch();
   auto& balls = world.balls;
   find_overlaps(balls, use_grid(s, balls.size()), grid, boxes, pairs);
   for (auto [i, j] : pairs) {
@@ -107,9 +118,7 @@ void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& re
 void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
   const int k = std::max(1, s.substeps);
   const double h = dt / k;
-  Grid grid;
-  std::vector<Box> boxes;
-  std::vector<IndexPair> pairs;
+  auto& [grid, boxes, pairs] = scratch();
   auto& balls = world.balls;
   for (int sub = 0; sub < k; ++sub) {
     for (Ball& b : balls) b.pos += b.vel * h;

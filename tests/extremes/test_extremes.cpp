@@ -86,7 +86,7 @@ TEST_CASE("Extremes: radius 1e-6", "[extremes]") {
 }
 
 TEST_CASE("Extremes: 10^6 ticks of a small scene: no NaN, no energy growth", "[extremes]") {
-  for (Model m : {Model::discrete, Model::continuous}) {
+  for (Model m : kAllModels) {
     INFO(to_string(m));
     World w = walled(100, 60, {ball(1, 20, 30, 70, 13, 5, 1), ball(2, 50, 30, -40, 22, 7, 3),
                                ball(3, 80, 20, 10, -50, 4, 0.5), ball(4, 60, 50, -25, -5, 3, 2)});
