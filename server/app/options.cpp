@@ -1,5 +1,7 @@
 #include "app/options.hpp"
 
+#include <arpa/inet.h>
+
 #include <charconv>
 #include <cstdlib>
 #include <limits>
@@ -33,7 +35,10 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
   if (key == "port") {
     if (!parse_uint<std::uint16_t>(value, o.port, 0, 65535)) return bad("must be a port number 0..65535");
   } else if (key == "bind") {
-    if (value.empty()) return bad("must be an IP address");
+    // Checked here (not at bind time) so a typo is a usage error before anything starts.
+    unsigned char addr[16];
+    if (inet_pton(AF_INET, value.c_str(), addr) != 1 && inet_pton(AF_INET6, value.c_str(), addr) != 1)
+      return bad("must be an IPv4 or IPv6 address");
     o.bind = value;
   } else if (key == "tick-rate") {
     if (!parse_uint<std::uint32_t>(value, o.tick_rate_hz, 10, 1000)) return bad("must be 10..1000 Hz");

@@ -1,0 +1,88 @@
+// Hosting documents that cannot rot: the example server config is loaded through the
+// server's own parser and must equal the built-in defaults, the config table names every
+// key, and README's hosting section lists every server flag with its variable and default.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "app/options.hpp"
+#include "host/match_config_json.hpp"
+
+namespace {
+
+std::string read_repo_file(const std::string& relative) {
+  std::ifstream in(std::string(FTS_SOURCE_DIR) + "/" + relative);
+  INFO("file " << relative);
+  REQUIRE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The lines of README's "## Hosting" section (up to the next level-2 heading).
+std::string readme_hosting_section() {
+  const std::string readme = read_repo_file("README.md");
+  const auto start = readme.find("\n## Hosting");
+  if (start == std::string::npos) return "";
+  const auto end = readme.find("\n## ", start + 1);
+  return readme.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+}  // namespace
+
+TEST_CASE("Hosting: the example server config loads and equals the defaults", "[hosting]") {
+  const std::string text = read_repo_file("docker/server-config.example.json");
+  auto parsed = fts::host::parse_match_config(text);
+  if (auto* err = std::get_if<std::string>(&parsed)) FAIL("example config rejected: " << *err);
+  const auto& cfg = std::get<fts::sim::MatchConfig>(parsed);
+  const auto defaults_json = fts::host::match_config_to_json(fts::sim::MatchConfig{});
+
+  SECTION("it round-trips: parse -> JSON -> parse gives the same JSON") {
+    const auto once = fts::host::match_config_to_json(cfg);
+    auto again = fts::host::parse_match_config(once.dump());
+    REQUIRE(std::holds_alternative<fts::sim::MatchConfig>(again));
+    CHECK(fts::host::match_config_to_json(std::get<fts::sim::MatchConfig>(again)) == once);
+  }
+  SECTION("every setting is present with its default (regenerate with docker/gen-server-config.py)") {
+    const auto file_json = nlohmann::json::parse(text);
+    INFO("expected example:\n" << defaults_json.dump(2));
+    CHECK(file_json.size() == defaults_json.size());
+    for (const auto& [key, value] : defaults_json.items()) {
+      INFO("key " << key);
+      REQUIRE(file_json.contains(key));
+      CHECK(file_json.at(key) == value);
+    }
+    CHECK(fts::host::match_config_to_json(cfg) == defaults_json);
+  }
+  SECTION("the table beside it documents every key") {
+    const std::string table = read_repo_file("docker/server-config.md");
+    for (const auto& [key, value] : defaults_json.items()) {
+      INFO("key " << key);
+      CHECK(table.find("| `" + key + "` | `" + value.dump() + "` |") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("Hosting: a config with an unknown key is refused, naming the key", "[hosting]") {
+  auto parsed = fts::host::parse_match_config(R"({"tick_rate_hz": 100, "tick_rate": 50})");
+  REQUIRE(std::holds_alternative<std::string>(parsed));
+  CHECK_THAT(std::get<std::string>(parsed), Catch::Contains("tick_rate"));
+  CHECK_THAT(std::get<std::string>(parsed), Catch::Contains("unknown key"));
+}
+
+TEST_CASE("Hosting: README's hosting section lists every server option", "[hosting]") {
+  const std::string section = readme_hosting_section();
+  REQUIRE_FALSE(section.empty());
+  for (const auto& d : fts::server::option_docs()) {
+    INFO("option " << d.flag << " / " << d.env);
+    // One table row per option: flag, variable and default on the same line.
+    const auto at = section.find("`" + d.flag + "`");
+    REQUIRE(at != std::string::npos);
+    const auto line_start = section.rfind('\n', at) + 1;
+    const std::string line = section.substr(line_start, section.find('\n', at) - line_start);
+    CHECK_THAT(line, Catch::Contains("`" + d.env + "`"));
+    if (!d.default_value.empty()) CHECK_THAT(line, Catch::Contains("`" + d.default_value + "`"));
+  }
+}
