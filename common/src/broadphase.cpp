@@ -5,6 +5,10 @@
 
 namespace fts::sim {
 
+// Cells a little wider than the widest box: fewer, fuller cells cost fewer empty-cell
+// visits than they add box tests (measured with callgrind on gas-10000).
+constexpr double kCellScale = 2.0;
+
 void Grid::build(const std::vector<Box>& boxes) {
   boxes_ = &boxes;
   const std::size_t n = boxes.size();
@@ -16,14 +20,11 @@ void Grid::build(const std::vector<Box>& boxes) {
     items_.clear();
     return;
   }
-  // Typical extent: the 90th percentile, so a few giants do not set the cell size.
-  scratch_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    scratch_[i] = std::max(boxes[i].x1 - boxes[i].x0, boxes[i].y1 - boxes[i].y0);
-  }
-  const std::size_t k = (n - 1) * 9 / 10;
-  std::nth_element(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(k), scratch_.end());
-  double typical = scratch_[k];
+  // Typical extent: the mean, so a few giants barely move it (a percentile would be
+  // more robust still, but costs an nth_element per build; the mean is one pass).
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) sum += std::max(boxes[i].x1 - boxes[i].x0, boxes[i].y1 - boxes[i].y0);
+  double typical = sum / static_cast<double>(n);
   if (!(typical > 0.0) || !std::isfinite(typical)) typical = 1.0;
   const double overflow_extent = 4.0 * typical;
 
@@ -50,6 +51,7 @@ void Grid::build(const std::vector<Box>& boxes) {
     }
   }
   if (!(cell > 0.0)) cell = 1.0;
+  cell *= kCellScale;
   origin_x_ = lo_x;
   origin_y_ = lo_y;
   // Bound the cell count to a few per box: grow the cell when the boxes are sparse.

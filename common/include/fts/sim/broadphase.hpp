@@ -45,7 +45,6 @@ class Grid {
   std::vector<std::uint32_t> items_;
   std::vector<std::uint32_t> overflow_;
   std::vector<std::uint8_t> overflow_flag_;
-  std::vector<double> scratch_;
   std::vector<std::uint32_t> fill_;
   std::vector<std::uint32_t> home_;
   std::vector<Box> filed_;
