@@ -149,7 +149,7 @@ void GameHost::answer(const std::vector<PendingAnswer>& answers, const std::vect
     std::size_t& i = cursor[a.player];
     while (i < events.size() && !(events[i].kind == sim::EventKind::purchase && events[i].player == a.player)) ++i;
     if (i == events.size()) {
-      endpoint_.send_result(a.player, a.rid, false, "phase", "not in the match", now_ms);
+      endpoint_.send_result(a.player, a.rid, false, "dead", "not in the match", now_ms);
       continue;
     }
     const sim::Event& e = events[i++];
