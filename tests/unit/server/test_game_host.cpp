@@ -1,0 +1,104 @@
+// The server without its socket: real protocol clients against GameHost in memory, time
+// stepped by hand.
+#include <catch2/catch.hpp>
+
+#include <sstream>
+
+#include "app/game_host.hpp"
+#include "fts/protocol/client.hpp"
+#include "host/record.hpp"
+
+using namespace fts;
+
+namespace {
+
+struct Rig {
+  server::Options options;
+  sim::MatchConfig config;
+  std::unique_ptr<server::GameHost> host;
+  std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
+  std::uint64_t now = 1000;
+
+  Rig() {
+    options.seed = 5;
+    host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{});
+  }
+  protocol::ClientEndpoint& add(const std::string& name) {
+    protocol::ClientConfig c;
+    c.name = name;
+    clients.push_back(std::make_unique<protocol::ClientEndpoint>(c));
+    clients.back()->connect(now);
+    return *clients.back();
+  }
+  // Moves every datagram both ways, then one tick of 10 ms.
+  void tick() {
+    for (std::size_t i = 0; i < clients.size(); ++i) {
+      clients[i]->update(now);
+      for (auto& d : clients[i]->take_datagrams()) host->receive("10.0.0." + std::to_string(i + 1) + ":5000", d, now);
+    }
+    host->tick(now);
+    for (auto& out : host->take_datagrams()) {
+      const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
+      clients[idx]->receive(out.bytes, now);
+    }
+    now += 10;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Game host: clients join, ready up and the level starts", "[server][host]") {
+  Rig rig;
+  auto& a = rig.add("ann");
+  auto& b = rig.add("bob");
+  for (int i = 0; i < 50 && (a.state() != protocol::ClientState::connected || b.state() != protocol::ClientState::connected); ++i)
+    rig.tick();
+  REQUIRE(a.state() == protocol::ClientState::connected);
+  REQUIRE(b.state() == protocol::ClientState::connected);
+  rig.tick();
+  CHECK(rig.host->match().players.size() == 2);
+  a.send_command(protocol::CommandOp::ready, 0, rig.now);
+  b.send_command(protocol::CommandOp::ready, 0, rig.now);
+  for (int i = 0; i < 20; ++i) rig.tick();
+  CHECK(rig.host->match().phase == sim::Phase::playing);
+  const auto results = a.take_results();
+  REQUIRE(results.size() == 1);
+  CHECK(results[0].ok);
+  // Snapshots carry the level and both players.
+  const auto snaps = a.take_snapshots();
+  REQUIRE_FALSE(snaps.empty());
+  CHECK(snaps.back().phase == protocol::Phase::play);
+  CHECK(snaps.back().players.size() == 2);
+}
+
+TEST_CASE("Game host: a purchase in the wrong phase is refused with its reason", "[server][host]") {
+  Rig rig;
+  auto& a = rig.add("ann");
+  for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
+  REQUIRE(a.state() == protocol::ClientState::connected);
+  a.send_command(protocol::CommandOp::buy, 'm', rig.now);
+  for (int i = 0; i < 20; ++i) rig.tick();
+  const auto results = a.take_results();
+  REQUIRE(results.size() == 1);
+  CHECK_FALSE(results[0].ok);
+  CHECK(results[0].code == "phase");
+  CHECK(rig.host->match().players[0].eco.coins == 0);
+}
+
+TEST_CASE("Game host: the record of a session replays with every hash equal", "[server][host]") {
+  Rig rig;
+  std::stringstream record;
+  rig.host->record_to(record, "test");
+  auto& a = rig.add("ann");
+  for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
+  a.send_command(protocol::CommandOp::ready, 0, rig.now);
+  for (int i = 0; i < 400; ++i) {
+    if (i % 3 == 0) a.send_input({0, static_cast<std::int8_t>(i % 2 ? 1 : -1), 1, false}, rig.now);
+    rig.tick();
+  }
+  auto replay = host::replay_record(record);
+  REQUIRE(std::holds_alternative<host::ReplayReport>(replay));
+  const auto& rep = std::get<host::ReplayReport>(replay);
+  CHECK(rep.hashes_checked == 4);
+  CHECK(rep.final_hash == sim::match_hash(rig.host->match()));
+}

@@ -1,0 +1,54 @@
+// fts-server's settings: flags over environment, errors naming the setting.
+#include <catch2/catch.hpp>
+
+#include <map>
+
+#include "app/options.hpp"
+
+using namespace fts::server;
+
+namespace {
+EnvLookup env_of(std::map<std::string, std::string> vars) {
+  return [vars](const std::string& k) -> std::optional<std::string> {
+    auto it = vars.find(k);
+    if (it == vars.end()) return std::nullopt;
+    return it->second;
+  };
+}
+std::string error_of(std::vector<std::string> args, std::map<std::string, std::string> env = {}) {
+  auto r = parse_options(args, env_of(env));
+  if (auto* e = std::get_if<OptionError>(&r)) return e->message;
+  return "";
+}
+}  // namespace
+
+TEST_CASE("Server options: defaults, flags and the environment", "[server][options]") {
+  auto r = parse_options({}, env_of({}));
+  REQUIRE(std::holds_alternative<Options>(r));
+  CHECK(std::get<Options>(r).port == 7777);
+  CHECK(std::get<Options>(r).tick_rate_hz == 100);
+
+  r = parse_options({"--port", "9000", "--model=discrete"}, env_of({{"FTS_PORT", "8000"}, {"FTS_SEED", "42"}}));
+  REQUIRE(std::holds_alternative<Options>(r));
+  const auto& o = std::get<Options>(r);
+  CHECK(o.port == 9000);  // the flag wins over FTS_PORT
+  CHECK(o.seed == 42);    // the environment fills what flags leave
+  CHECK(o.model == "discrete");
+}
+
+TEST_CASE("Server options: bad values name the flag or variable and the value", "[server][options]") {
+  CHECK(error_of({"--port", "70000"}) == R"(--port: must be a port number 0..65535, got "70000")");
+  CHECK(error_of({}, {{"FTS_TICK_RATE", "5"}}) == R"(FTS_TICK_RATE: must be 10..1000 Hz, got "5")");
+  CHECK(error_of({"--model", "exact"}) == R"(--model: must be seed, discrete or continuous, got "exact")");
+  CHECK(error_of({"--colour", "red"}) == "unknown flag --colour (see --help)");
+  CHECK(error_of({"--port"}) == "--port: needs a value");
+  CHECK(error_of({"stray"}) == R"(unexpected argument "stray" (see --help))");
+}
+
+TEST_CASE("Server options: every documented flag is in the usage text", "[server][options]") {
+  const std::string usage = usage_text();
+  for (const auto& d : option_docs()) {
+    CHECK(usage.find(d.flag) != std::string::npos);
+    CHECK(usage.find(d.env) != std::string::npos);
+  }
+}
