@@ -244,6 +244,9 @@ class Game {
         break;
       case ActionKind::fire: fire_ = true; break;
       case ActionKind::buy:
+        // 's' and 'a' also steer: a key still held (or repeating) from the level that just
+        // ended must not spend coins. Purchases count from a moment after the shop opens.
+        if (now - shop_opened_ms_ < kShopGraceMs) break;
         if (connected) {
           const std::uint32_t rid = endpoint_.send_command(proto::CommandOp::buy, a.item, now);
           pending_buys_[rid] = a.item;
@@ -295,6 +298,7 @@ class Game {
       lost_since_ms_ = 0;
     }
     for (auto& s : endpoint_.take_snapshots()) {
+      if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
       clock_.observe(s.tick, now);
       if (const auto& w = endpoint_.welcome(); w && w->snapshot_rate_hz > 0)
         loss_.on_snapshot(s.tick, static_cast<double>(w->tick_rate_hz) / w->snapshot_rate_hz);
@@ -411,6 +415,8 @@ class Game {
   proto::InputFrame last_input_;
   std::uint64_t last_input_ms_ = 0, last_key_ms_ = 0, last_rx_ms_ = 0, lost_since_ms_ = 0;
   std::uint64_t window_ms_ = 60000;
+  std::uint64_t shop_opened_ms_ = 0;
+  static constexpr std::uint64_t kShopGraceMs = 700;
   bool fire_ = false;
   bool done_ = false;
   int exit_code_ = 0;
