@@ -167,6 +167,7 @@ Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double a
       put_centred(s, mid + 1, " Press Enter to play again, q to quit ", kHudStyle);
     } else if (snap.phase == Phase::lobby) {
       put_centred(s, mid, " Waiting for the match to start: press Enter when ready ", kTitleStyle);
+      if (!snap.players.empty()) put_centred(s, mid + 2, " " + ready_line(snap) + " ", kHudStyle);
     } else if (me != nullptr && !me->alive) {
       put_centred(s, mid, me->lives > 0 ? " You fell off: respawning... " : " You are out: watching ",
                   kTitleStyle);

@@ -129,4 +129,9 @@ TEST_CASE("game over and lobby overlays", "[client][render]") {
   for (const auto& l : screen.lines()) over = over || l.find("GAME OVER at level 3") != std::string::npos;
   CHECK(over);
   CHECK(screen.line(23).rfind("Game over   Play again: Enter   Quit: q", 0) == 0);
+  s.phase = Phase::lobby;
+  s.players[0].ready = true;
+  bool lobby = false;
+  for (const auto& l : render(s, s, 0, {80, 24}, me1()).lines()) lobby = lobby || l.find("Ready: ann (ready)") != std::string::npos;
+  CHECK(lobby);
 }
