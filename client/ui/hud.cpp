@@ -1,5 +1,6 @@
 #include "ui/hud.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -67,7 +68,7 @@ sim::Economy economy_of(const PlayerState& p) {
   sim::Economy e;
   e.coins = p.coins;
   e.lives = p.lives;
-  e.mass = std::llround(p.mass);
+  e.mass = std::isfinite(p.mass) ? std::llround(std::clamp(p.mass, 0.0, 1e15)) : 0;
   e.vmax_u_per_s = p.vmax_u_per_s;
   e.accel_u_per_s2 = p.accel_u_per_s2;
   e.multiplier = p.multiplier;

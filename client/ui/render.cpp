@@ -60,7 +60,7 @@ bool drawable(const Screen& s, int col, int row) {
 
 void draw_ball(Screen& s, const Viewport& v, const BallState& b, const BallLook& look) {
   if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.radius)) return;
-  const double r = std::max(b.radius, 0.0);
+  const double r = std::clamp(b.radius, 0.0, 1e6);
   const int c0 = v.col_of(b.x - r), c1 = v.col_of(b.x + r);
   const int r0 = v.row_of(b.y + r), r1 = v.row_of(b.y - r);
   const int cc = v.col_of(b.x), rc = v.row_of(b.y);
@@ -73,7 +73,8 @@ void draw_ball(Screen& s, const Viewport& v, const BallState& b, const BallLook&
   if (drawable(s, cc, rc)) s.set(cc, rc, look.fill, look.style);  // even a tiny ball shows
   if (b.kind == BallKind::rocket) return;
   // The mass, centred in the ball as in the seed's pictures.
-  const std::string label = std::to_string(std::llround(std::clamp(b.mass, 0.0, 1e9)));
+  const std::string label =
+      std::isfinite(b.mass) ? std::to_string(std::llround(std::clamp(b.mass, 0.0, 1e9))) : "?";
   const int start = cc - (static_cast<int>(label.size()) - 1) / 2;
   Style label_style = look.style;
   label_style.fg = Color::white;

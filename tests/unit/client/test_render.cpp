@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "seed_situation.hpp"
 #include "ui/render.hpp"
@@ -134,4 +135,27 @@ TEST_CASE("game over and lobby overlays", "[client][render]") {
   bool lobby = false;
   for (const auto& l : render(s, s, 0, {80, 24}, me1()).lines()) lobby = lobby || l.find("Ready: ann (ready)") != std::string::npos;
   CHECK(lobby);
+}
+
+TEST_CASE("tiny and odd terminals and hostile numbers draw without harm", "[client][render]") {
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
+  s.balls = {ball(1, 100, 150, BallKind::player, 1, 40), ball(2, -50, 400, BallKind::enemy, 0, 36),
+             ball(3, 1e300, -1e300, BallKind::enemy, 0, 1e12), ball(4, std::nan(""), 5, BallKind::rocket)};
+  s.balls[2].radius = 1e200;
+  s.balls[1].mass = std::nan("");
+  s.players[0].mass = std::numeric_limits<double>::infinity();
+  ViewState odd = me1();
+  odd.arena_width_u = std::nan("");
+  odd.arena_height_u = -4;
+  CHECK(arena_viewport({80, 24}, odd).cols > 10);
+  const TerminalSize sizes[] = {{1, 1}, {5, 3}, {20, 6}, {0, 0}, {-3, 7}, {400, 100}};
+  for (const auto size : sizes) {
+    for (Phase phase : {Phase::play, Phase::shop, Phase::lobby, Phase::over}) {
+      s.phase = phase;
+      const Screen screen = render(s, s, 0.5, size, me1());
+      CHECK(screen.cols() >= 1);
+      CHECK(screen.rows() >= 1);
+      CHECK_FALSE(to_ansi(screen, true).empty());
+    }
+  }
 }
