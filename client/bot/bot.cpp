@@ -358,7 +358,8 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
 }
 
 void Bot::stop(std::uint64_t now_ms) {
-  if (endpoint_ && endpoint_->state() == protocol::ClientState::connected) endpoint_->disconnect(now_ms, "done");
+  if (endpoint_ && endpoint_->state() == protocol::ClientState::connected)
+    endpoint_->disconnect(now_ms, options_.probe ? protocol::kProbeByeReason : "done");
   finished_ = true;
 }
 

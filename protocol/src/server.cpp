@@ -169,6 +169,8 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
       for (auto& cmd : s.commands.take()) commands_.push_back({s.player_id, cmd});
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
+      // A health check leaves no player behind: its slot is free at once.
+      if (bye->reason == kProbeByeReason) release(s.player_id, kProbeByeReason);
       return;
     }
   }

@@ -34,4 +34,8 @@ inline constexpr std::int64_t kMaxQuantized = std::int64_t{1} << 40;
 // The two payload encodings; the client picks one at connect, the header names it.
 enum class Encoding : std::uint8_t { json = 0, msgpack = 1 };
 
+// The reason of a bye that ends a health-check session: the server frees the player's
+// slot at once instead of holding it for the reconnect window.
+inline constexpr const char* kProbeByeReason = "probe";
+
 }  // namespace fts::protocol
