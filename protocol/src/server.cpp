@@ -96,10 +96,12 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     case CookieCheck::ok: break;
   }
-  // The welcome was lost and the client asks again: same answer.
+  // The welcome was lost and the client asks again (it has no token yet): same answer.
+  // A client that sends the token did get the welcome: it restarted, and is taken back
+  // below with a fresh session state (acks, input sequence, reliable channel).
   if (auto it = by_address_.find(from); it != by_address_.end()) {
     Session& s = sessions_.at(it->second);
-    if (s.connected && (hello.token.empty() || hello.token == s.token)) {
+    if (s.connected && hello.token.empty()) {
       send_welcome(s, from, s.encoding, false, request_bytes);
       return;
     }
