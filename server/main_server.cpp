@@ -10,6 +10,7 @@
 #include "app/options.hpp"
 #include "host/match_config_json.hpp"
 #include "host/record.hpp"
+#include "host/text.hpp"
 #include "net/udp_server.hpp"
 
 namespace {

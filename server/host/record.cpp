@@ -1,18 +1,13 @@
 #include "host/record.hpp"
 
-#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
 #include "host/match_config_json.hpp"
+#include "host/text.hpp"
 
 namespace fts::host {
 
-std::string hex16(std::uint64_t v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
 
 RecordWriter::RecordWriter(std::ostream& out, std::uint64_t seed, const sim::MatchConfig& cfg,
                            const std::string& version)

@@ -43,6 +43,4 @@ struct ReplayReport {
 // Either the report (every hash equal) or a message naming the line and what differed.
 std::variant<ReplayReport, std::string> replay_record(std::istream& in);
 
-std::string hex16(std::uint64_t v);
-
 }  // namespace fts::host

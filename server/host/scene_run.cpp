@@ -2,9 +2,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include <nlohmann/json.hpp>
+
+#include "host/text.hpp"
 
 namespace fts::simtool {
 
@@ -57,8 +58,6 @@ SceneReport run_scene(const sim::Scene& scene, sim::World& world, std::int64_t c
 }
 
 std::string to_json(const SceneReport& r) {
-  char hash[32];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
   nlohmann::ordered_json j;
   j["model"] = r.model;
   j["tick_rate"] = r.tick_rate_hz;
@@ -82,7 +81,7 @@ std::string to_json(const SceneReport& r) {
   j["max_penetration"] = r.max_penetration;
   j["event_cap_hits"] = r.event_cap_hits;
   j["all_finite"] = r.finite;
-  j["state_hash"] = hash;
+  j["state_hash"] = host::hex16(r.state_hash);
   return j.dump();
 }
 

@@ -12,6 +12,7 @@
 #include "fts/sim/match.hpp"
 #include "host/match_config_json.hpp"
 #include "host/record.hpp"
+#include "host/text.hpp"
 
 namespace fts::simtool {
 namespace {
@@ -25,22 +26,6 @@ int usage(const std::string& msg) {
   return 2;
 }
 
-std::optional<std::int64_t> to_int(const std::string& s) {
-  try {
-    std::size_t used = 0;
-    const long long v = std::stoll(s, &used);
-    if (used != s.size()) return std::nullopt;
-    return v;
-  } catch (...) {
-    return std::nullopt;
-  }
-}
-
-std::string hex16(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
 
 nlohmann::json event_json(std::int64_t tick, const sim::Event& e) {
   nlohmann::json j = {{"tick", tick}, {"event", sim::to_string(e.kind)}};
@@ -93,7 +78,7 @@ int run_match_cli(const std::vector<std::string>& args) {
     };
     auto int_flag = [&](std::int64_t& out, std::int64_t lo, std::int64_t hi) -> bool {
       auto v = next();
-      auto n = v ? to_int(*v) : std::nullopt;
+      auto n = v ? host::to_integer(*v) : std::nullopt;
       if (!n || *n < lo || *n > hi) return false;
       out = *n;
       return true;
@@ -130,7 +115,7 @@ int run_match_cli(const std::vector<std::string>& args) {
     cfg.model = *m;
   }
   if (tick_rate) {
-    auto hz = to_int(*tick_rate);
+    auto hz = host::to_integer(*tick_rate);
     if (!hz || *hz < 1 || *hz > 10000) return usage("--tick-rate must be 1..10000 (integer Hz)");
     cfg.tick_rate_hz = static_cast<double>(*hz);
   }
@@ -240,7 +225,7 @@ int run_match_cli(const std::vector<std::string>& args) {
                    {"bank", p.eco.bank},
                    {"rockets", p.eco.rockets}});
   }
-  report["state_hash"] = hex16(sim::match_hash(s));
+  report["state_hash"] = host::hex16(sim::match_hash(s));
   std::cout << report.dump() << "\n";
   return 0;
 }
