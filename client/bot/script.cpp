@@ -1,15 +1,18 @@
 #include "bot/script.hpp"
 
+#include <cmath>
 #include <sstream>
 
 namespace fts::bot {
 namespace {
 
+// A finite number within +-1e9 (ticks, seconds, expected values): anything else in a
+// script is a mistake, and larger values would overflow the tick and time arithmetic.
 bool to_number(const std::string& s, double& out) {
   try {
     std::size_t used = 0;
     out = std::stod(s, &used);
-    return used == s.size();
+    return used == s.size() && std::isfinite(out) && std::fabs(out) <= 1e9;
   } catch (...) {
     return false;
   }

@@ -1,6 +1,8 @@
 // Pieces of the match step shared between its source files (not a public API).
 #pragma once
 
+#include <cmath>
+
 #include <vector>
 
 #include "fts/sim/match.hpp"
@@ -23,11 +25,11 @@ void play_tick(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector
 // Enemy behaviour: goals and thrust for every enemy.
 void steer_enemies(MatchState& s);
 
-// Thrust on one axis: dir in {-1, 0, +1}; applied only while the velocity component in
-// the thrust direction is below vmax (so braking always works).
+// Thrust on one axis: dir in {-1, 0, +1}; applied only while the component's magnitude
+// is below vmax, as the original did (GAME_RULES.md "Balls"). So a ball knocked faster
+// than vmax cannot brake until friction brings it back under vmax.
 inline void thrust_axis(double& v, int dir, double accel, double vmax, double dt) {
-  if (dir > 0 && v < vmax) v += accel * dt;
-  if (dir < 0 && v > -vmax) v -= accel * dt;
+  if (dir != 0 && std::fabs(v) < vmax) v += dir * accel * dt;
 }
 
 }  // namespace fts::sim::detail

@@ -186,6 +186,12 @@ class Solver {
       axis(b.pos.x, b.vel.x, b.radius, a.width_u - b.radius, kWallX);
       axis(b.pos.y, b.vel.y, b.radius, a.height_u - b.radius, kWallY);
     } else {
+      // Already off the platform (pushed out by a separation): it falls now, whatever
+      // its velocity.
+      if (!(b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u)) {
+        heap_.push({t_[i], i, kFall, stamp_[i], 0});
+        return;
+      }
       axis(b.pos.x, b.vel.x, 0.0, a.width_u, kFall);
       axis(b.pos.y, b.vel.y, 0.0, a.height_u, kFall);
     }

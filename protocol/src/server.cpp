@@ -70,6 +70,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.address = from;
   s.encoding = encoding;
   s.connected = true;
+  s.heard = false;
   s.last_receive_ms = now_ms;
   s.last_send_ms = now_ms;
   s.last_input_seq = 0;
@@ -117,6 +118,13 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     }
     Session& s = it->second;
+    // A duplicate or resent token hello for the session just started (nothing heard on
+    // it yet, same address): the welcome was lost or the hello doubled, same answer.
+    // Restarting here would strand a client that already took the first welcome.
+    if (s.connected && !s.heard && s.address == from) {
+      send_welcome(s, from, s.encoding, true, request_bytes);
+      return;
+    }
     start_session(s, from, enc, now_ms);
     events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token"});
     send_welcome(s, from, enc, true, request_bytes);
@@ -155,6 +163,7 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
   std::vector<std::uint16_t> acked;
   if (!s.acks.on_receive(d.header, now_ms, acked)) return rejects_.add(Reject::stale);
   s.last_receive_ms = now_ms;
+  s.heard = true;
   for (auto seq : acked) s.results.on_acked(seq);
   for (const auto& m : d.messages) {
     if (const auto* in = std::get_if<Input>(&m)) {

@@ -78,6 +78,7 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         log_record(spdlog::level::info, "connect", {{"player", e.player_id}, {"name", e.name}});
         break;
       case K::reconnected:
+        held_.erase(e.player_id);  // the new session numbers its inputs from 1 again
         in.back.push_back(e.player_id);
         log_record(spdlog::level::info, "reconnect", {{"player", e.player_id}, {"name", e.name}});
         break;

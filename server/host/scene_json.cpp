@@ -1,5 +1,7 @@
 #include "host/scene_json.hpp"
 
+#include <cmath>
+
 #include "host/json_fields.hpp"
 
 namespace fts::host {
@@ -51,6 +53,7 @@ sim::Generator parse_generator(const nlohmann::json& j, const std::string& path)
     for (int i = 0; i < 4; ++i) {
       if (!r[i].is_number()) f.fail("region", "must hold 4 numbers, got " + r.dump());
       v[i] = r[i].get<double>();
+      if (!std::isfinite(v[i])) f.fail("region", "must hold finite numbers, got " + r.dump());
     }
     if (!(v[0] < v[2] && v[1] < v[3])) f.fail("region", "needs x0 < x1 and y0 < y1, got " + r.dump());
     g.region = sim::Box{v[0], v[1], v[2], v[3]};

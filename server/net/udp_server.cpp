@@ -2,7 +2,8 @@
 
 #include <array>
 #include <chrono>
-#include <map>
+#include <cstdlib>
+#include <optional>
 
 #include "app/log.hpp"
 #include "app/tick_clock.hpp"
@@ -22,6 +23,19 @@ std::int64_t now_ns() {
 std::string to_key(const udp::endpoint& ep) {
   const auto a = ep.address();
   return (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" + std::to_string(ep.port());
+}
+
+std::optional<udp::endpoint> from_key(const std::string& key) {
+  const auto colon = key.rfind(':');
+  if (colon == std::string::npos) return std::nullopt;
+  std::string host = key.substr(0, colon);
+  if (host.size() >= 2 && host.front() == '[') host = host.substr(1, host.size() - 2);
+  boost::system::error_code ec;
+  const auto address = asio::ip::make_address(host, ec);
+  if (ec) return std::nullopt;
+  const unsigned long port = std::strtoul(key.c_str() + colon + 1, nullptr, 10);
+  if (port > 65535) return std::nullopt;
+  return udp::endpoint(address, static_cast<unsigned short>(port));
 }
 
 class Loop {
@@ -77,22 +91,21 @@ class Loop {
     socket_.async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
       if (ec == asio::error::operation_aborted) return;
       if (!ec) {
-        const std::string key = to_key(sender_);
-        if (endpoints_.size() > 4096) endpoints_.clear();  // bounded: refilled as datagrams arrive
-        endpoints_[key] = sender_;
-        host_.receive(key, std::span<const std::uint8_t>(buffer_.data(), n), now_ms());
+        host_.receive(to_key(sender_), std::span<const std::uint8_t>(buffer_.data(), n), now_ms());
         flush();
       }
       receive();
     });
   }
 
+  // Addresses travel as text through the sans-I/O layers and are parsed back here, so
+  // no table of senders can be filled (or flushed) by a flood of spoofed sources.
   void flush() {
     for (auto& d : host_.take_datagrams()) {
-      auto it = endpoints_.find(d.to);
-      if (it == endpoints_.end()) continue;
+      const auto to = from_key(d.to);
+      if (!to) continue;
       boost::system::error_code ec;
-      socket_.send_to(asio::buffer(d.bytes), it->second, 0, ec);
+      socket_.send_to(asio::buffer(d.bytes), *to, 0, ec);
       if (ec) ++send_errors_;
     }
   }
@@ -159,7 +172,6 @@ class Loop {
   TickClock clock_;
   std::array<std::uint8_t, 2048> buffer_{};
   udp::endpoint sender_;
-  std::map<std::string, udp::endpoint> endpoints_;
   std::int64_t epoch_ns_ = 0;
   std::int64_t last_skip_log_ns_ = 0;
   std::uint64_t send_errors_ = 0;

@@ -57,6 +57,20 @@ TEST_CASE("Models: open edges remove a ball whose centre leaves", "[models]") {
   }
 }
 
+TEST_CASE("Models: a ball already off an open edge falls, even standing still", "[models]") {
+  for (Model m : kAllModels) {
+    INFO(to_string(m));
+    World w;
+    w.arena = {500, 300, Boundary::open};
+    w.balls = {ball(1, -0.5, 150, 0, 0, 10, 1), ball(2, 250, 150, 0, 0, 10, 1)};
+    StepReport rep;
+    const auto s = settings(m);
+    step(w, s, make_step_constants(s, 0.01), rep);
+    REQUIRE(rep.fallen.size() == 1);
+    CHECK(rep.fallen[0] == 1);
+  }
+}
+
 TEST_CASE("Models: a fast rocket tunnels in discrete but not in continuous", "[models]") {
   // 100 000 u/s at 10 Hz is 10 000 u per tick: far more than the target's width.
   auto scene = [] {

@@ -102,3 +102,15 @@ TEST_CASE("Game host: the record of a session replays with every hash equal", "[
   CHECK(rep.hashes_checked == 4);
   CHECK(rep.final_hash == sim::match_hash(rig.host->match()));
 }
+
+TEST_CASE("Replay: a damaged record is refused with the line, not simulated for ever", "[server][replay]") {
+  std::stringstream record;
+  host::RecordWriter w(record, 1, sim::MatchConfig{}, "test");
+  record << R"({"tick":1000000000000000,"hash":"0000000000000000"})" << "\n";
+  auto r = host::replay_record(record);
+  REQUIRE(std::holds_alternative<std::string>(r));
+  CHECK(std::get<std::string>(r).rfind("line 2: tick 1000000000000000 is too far ahead", 0) == 0);
+  std::stringstream bad;
+  bad << "not json\n";
+  CHECK(std::holds_alternative<std::string>(host::replay_record(bad)));
+}

@@ -115,6 +115,7 @@ class ServerEndpoint {
     Encoding encoding = Encoding::msgpack;
     bool connected = false;
     std::uint64_t last_receive_ms = 0;
+    bool heard = false;  // a datagram arrived on this session since its welcome
     std::uint64_t last_send_ms = 0;
     std::uint64_t disconnected_ms = 0;
     std::uint32_t last_input_seq = 0;
