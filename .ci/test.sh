@@ -18,6 +18,6 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan -LE soak -j "$jobs" --output-on-failure --timeout 900
 
 if [[ -f .ci/fuzz.sh ]]; then
-  bash .ci/fuzz.sh
+  FUZZ_JOBS="$jobs" bash .ci/fuzz.sh
 fi
 echo "all tests passed"
