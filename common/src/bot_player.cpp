@@ -107,7 +107,9 @@ PlayerInput bot_play_input(const BotSight& sight) {
       Vec2 goal = e - n * (reach + 15.0);
       if (along <= reach * 0.5) {  // on the wrong side: go around the enemy first
         const double s_sign = side >= 0 ? -1.0 : 1.0;  // the side the player is on
-        goal = e + perp * (s_sign * (reach + 20.0)) - n * (reach * 0.5);
+        // The waypoint lies past the switch line (along > reach / 2): reaching it always
+        // hands over to the approach, never parks the bot on the boundary.
+        goal = e + perp * (s_sign * (reach + 20.0)) - n * reach;
       }
       steer(t, me->vel, clamp_len((goal - me->pos) * 3.0, vmax));
     }

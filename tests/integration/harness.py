@@ -57,10 +57,13 @@ class Server:
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, exc_type, exc, tb):
         if self.proc.poll() is None:
             self.proc.kill()
             self.proc.wait()
+        if exc_type is not None:  # a failing test shows what the server saw
+            print("--- server log (tail) ---")
+            print("\n".join(self.text().splitlines()[-25:]))
 
 
 def start_bots(*args):
