@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 
+#include "../../support/seed_shop_lines.hpp"
 #include "seed_situation.hpp"
 #include "ui/hud.hpp"
 #include "ui/render.hpp"
@@ -19,29 +20,7 @@ bool screen_has(const Screen& s, const std::string& text) {
 }  // namespace
 
 TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[client][shop]") {
-  const std::vector<std::string> seed = {
-      "Level: 3",
-      "Coins: 286",
-      "Lives: 1",
-      "Level 3 Complete",
-      "Current Mass: 40",
-      "To increase Mass, press 'm' (35 coins)",
-      "Current Max Speed: 1.70",
-      "To increase Max Speed, press 's' (100 coins)",
-      "Current Acceleration: 2.00",
-      "To increase Acceleration, press 'a' (150 coins)",
-      "Current Weapon: NONE.",
-      "To purchase rockets, press 'r' (1,000,000 coins)",
-      "Current Lives: 1",
-      "To add a life, press 'l' (522 coins)",
-      "Current Multiplier: 1.06",
-      "To increase multiplier, press 'x' (100 coins)",
-      "Increases coins from enemies by 10%",
-      "Bank Purchased: False",
-      "To purchase bank, press 'b' (500 coins)",
-      "Earns 10% interest per round",
-      "Press Enter to begin next level.",
-  };
+  const std::vector<std::string>& seed = fts::test::seed_shop_lines();
   CHECK(shop_screen_lines(test::seed_player(), 3) == seed);
 
   ViewState view;

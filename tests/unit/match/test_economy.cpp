@@ -2,6 +2,7 @@
 // refusals, and the shop screen of the seed.
 #include <catch2/catch.hpp>
 
+#include "../../support/seed_shop_lines.hpp"
 #include "fts/sim/economy.hpp"
 #include "fts/sim/shop_text.hpp"
 
@@ -134,29 +135,7 @@ TEST_CASE("Coins, shop and lives: the shop screen of the seed (level 3, 286 coin
   for (int L = 1; L <= 3; ++L) complete_level(e, cfg);
   e.coins = 286;
   e.lives = 1;
-  const std::vector<std::string> expected = {
-      "Level: 3",
-      "Coins: 286",
-      "Lives: 1",
-      "Level 3 Complete",
-      "Current Mass: 40",
-      "To increase Mass, press 'm' (35 coins)",
-      "Current Max Speed: 1.70",
-      "To increase Max Speed, press 's' (100 coins)",
-      "Current Acceleration: 2.00",
-      "To increase Acceleration, press 'a' (150 coins)",
-      "Current Weapon: NONE.",
-      "To purchase rockets, press 'r' (1,000,000 coins)",
-      "Current Lives: 1",
-      "To add a life, press 'l' (522 coins)",
-      "Current Multiplier: 1.06",
-      "To increase multiplier, press 'x' (100 coins)",
-      "Increases coins from enemies by 10%",
-      "Bank Purchased: False",
-      "To purchase bank, press 'b' (500 coins)",
-      "Earns 10% interest per round",
-      "Press Enter to begin next level.",
-  };
+  const std::vector<std::string>& expected = fts::test::seed_shop_lines();
   CHECK(shop_lines(e, 3) == expected);
   CHECK(with_thousands(0) == "0");
   CHECK(with_thousands(999) == "999");
