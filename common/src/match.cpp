@@ -125,10 +125,10 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
 void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
   switch (c.kind) {
     case CommandKind::ready:
-      if (s.phase == Phase::lobby || (s.phase == Phase::shop && p.in_match())) p.ready = true;
+      if (accepts_ready(s, p)) p.ready = true;
       return;
     case CommandKind::play_again:
-      if (s.phase == Phase::game_over) detail::start_new_match(s, out);
+      if (accepts_play_again(s)) detail::start_new_match(s, out);
       return;
     case CommandKind::buy: break;
   }
@@ -167,6 +167,12 @@ bool all_ready(const MatchState& s, bool only_in_match) {
 }
 
 }  // namespace
+
+bool accepts_ready(const MatchState& s, const Player& p) {
+  return s.phase == Phase::lobby || (s.phase == Phase::shop && p.in_match());
+}
+
+bool accepts_play_again(const MatchState& s) { return s.phase == Phase::game_over; }
 
 std::vector<Event> step(MatchState& s, const TickInputs& in) {
   std::vector<Event> out;

@@ -119,12 +119,12 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         t.commands.push_back({sim::CommandKind::buy, std::string(1, pc.command.item)});
         break;
       case protocol::CommandOp::ready:
-        a.ok = p && (match_.phase == sim::Phase::lobby || (match_.phase == sim::Phase::shop && p->in_match()));
+        a.ok = p && sim::accepts_ready(match_, *p);
         a.code = a.ok ? "ok" : "phase";
         t.commands.push_back({sim::CommandKind::ready, {}});
         break;
       case protocol::CommandOp::play_again:
-        a.ok = p && match_.phase == sim::Phase::game_over;
+        a.ok = p && sim::accepts_play_again(match_);
         a.code = a.ok ? "ok" : "phase";
         t.commands.push_back({sim::CommandKind::play_again, {}});
         break;

@@ -129,6 +129,10 @@ struct MatchState {
 MatchState make_match(const MatchConfig& cfg, std::uint64_t seed);
 // Advances the match by one tick.
 std::vector<Event> step(MatchState& state, const TickInputs& inputs);
+// Whether a ready / play-again command from this player takes effect now (the server
+// answers the command from these, before the step applies it).
+bool accepts_ready(const MatchState& s, const Player& p);
+bool accepts_play_again(const MatchState& s);
 // FNV-1a over every bit of the state, the Rng included.
 std::uint64_t match_hash(const MatchState& state);
 
