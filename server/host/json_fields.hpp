@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -37,6 +38,9 @@ class Fields {
   const nlohmann::json& obj_;
   std::string path_;
 };
+
+// Parses JSON text; on failure nothing, and `why` holds the parser's message.
+std::optional<nlohmann::json> parse_json(const std::string& text, std::string& why);
 
 // Throws FieldError "<path>: must be > 0, got <v>" unless v > 0.
 void require_positive(const Fields& f, std::string_view key, double v);

@@ -56,12 +56,10 @@ const FieldDef* find_field(std::string_view key) {
 }  // namespace
 
 std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string& text, const sim::MatchConfig& base) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    return std::string("match config: invalid JSON: ") + e.what();
-  }
+  std::string why;
+  const auto parsed = parse_json(text, why);
+  if (!parsed) return "match config: invalid JSON: " + why;
+  const nlohmann::json& j = *parsed;
   try {
     Fields f(j, "");
     MatchConfig cfg = base;
@@ -158,12 +156,10 @@ std::int8_t axis(const Fields& f, std::string_view key) {
 }  // namespace
 
 std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::exception& e) {
-    return std::string("input line: invalid JSON: ") + e.what();
-  }
+  std::string why;
+  const auto parsed = parse_json(line, why);
+  if (!parsed) return "input line: invalid JSON: " + why;
+  const nlohmann::json& j = *parsed;
   try {
     Fields f(j, "");
     f.only({"tick", "joins", "leaves", "away", "back", "players"});

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/json_fields.hpp"
 #include "host/match_config_json.hpp"
 #include "host/text.hpp"
 
@@ -33,12 +34,10 @@ void RecordWriter::stepped(const sim::MatchState& state) {
 std::variant<ReplayReport, std::string> replay_record(std::istream& in) {
   std::string line;
   if (!std::getline(in, line)) return std::string("empty record");
-  nlohmann::json head;
-  try {
-    head = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::exception& e) {
-    return "line 1: not a record header: " + std::string(e.what());
-  }
+  std::string why;
+  auto parsed_head = parse_json(line, why);
+  if (!parsed_head) return "line 1: not a record header: " + why;
+  nlohmann::json& head = *parsed_head;
   if (!head.is_object() || !head.contains("fts_record") || !head.contains("seed") || !head.contains("config"))
     return std::string("line 1: not a record header (needs fts_record, seed, config)");
   if (!head["seed"].is_number_unsigned()) return std::string("line 1: seed must be a non-negative integer");
@@ -58,12 +57,9 @@ std::variant<ReplayReport, std::string> replay_record(std::istream& in) {
     if (line.empty()) continue;
     const std::string where = "line " + std::to_string(no) + ": ";
     if (line.find("\"hash\"") != std::string::npos) {
-      nlohmann::json h;
-      try {
-        h = nlohmann::json::parse(line);
-      } catch (const nlohmann::json::exception& e) {
-        return where + e.what();
-      }
+      auto parsed = parse_json(line, why);
+      if (!parsed) return where + why;
+      nlohmann::json& h = *parsed;
       if (!h.contains("tick") || !h["tick"].is_number_integer() || !h["hash"].is_string())
         return where + "a hash line needs an integer tick and a string hash";
       const std::int64_t tick = h["tick"].get<std::int64_t>();

@@ -64,12 +64,10 @@ sim::Generator parse_generator(const nlohmann::json& j, const std::string& path)
 }  // namespace
 
 std::variant<sim::Scene, std::string> parse_scene(const std::string& json_text) {
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
-    return std::string("scene is not valid JSON: ") + e.what();
-  }
+  std::string why;
+  const auto parsed = parse_json(json_text, why);
+  if (!parsed) return "scene is not valid JSON: " + why;
+  const nlohmann::json& doc = *parsed;
   try {
     Fields f(doc, "");
     f.only({"name", "description", "tick_rate", "steps", "model", "substeps", "broadphase", "arena",
