@@ -1,5 +1,7 @@
 #include "fts/protocol/ack.hpp"
 
+#include <algorithm>
+
 namespace fts::protocol {
 
 void AckWindow::stamp(Header& header, std::uint64_t now_ms) {
@@ -7,19 +9,27 @@ void AckWindow::stamp(Header& header, std::uint64_t now_ms) {
   if (next_sequence_ == 0) next_sequence_ = 1;  // 0 is never a sequence: ack 0 means "none yet"
   header.ack = latest_received_;
   header.ack_bits = have_received_ ? received_bits_ : 0;
+  header.ack_delay_ms = 0;
+  if (have_received_ && now_ms > latest_received_ms_)
+    header.ack_delay_ms = static_cast<std::uint16_t>(std::min<std::uint64_t>(now_ms - latest_received_ms_, 0xFFFF));
   Sent& slot = sent_[header.sequence % sent_.size()];
   slot = Sent{header.sequence, true, false, now_ms};
   ++packets_sent_;
 }
 
-void AckWindow::ack_one(std::uint16_t seq, std::uint64_t now_ms, std::vector<std::uint16_t>& out) {
+void AckWindow::ack_one(std::uint16_t seq, std::uint64_t now_ms, std::optional<std::uint16_t> delay_ms,
+                        std::vector<std::uint16_t>& out) {
   Sent& slot = sent_[seq % sent_.size()];
   if (!slot.valid || slot.acked || slot.sequence != seq) return;
   slot.acked = true;
   ++packets_acked_;
   out.push_back(seq);
-  const double sample = now_ms >= slot.time_ms ? static_cast<double>(now_ms - slot.time_ms) : 0.0;
-  rtt_ms_ = rtt_ms_ == 0 ? sample : rtt_ms_ + 0.1 * (sample - rtt_ms_);
+  // Only the header's own `ack` comes with the time it waited at the peer; the packets
+  // acknowledged by bits alone give no RTT sample.
+  if (!delay_ms) return;
+  const std::uint64_t in_flight = now_ms >= slot.time_ms ? now_ms - slot.time_ms : 0;
+  const double sample = static_cast<double>(in_flight > *delay_ms ? in_flight - *delay_ms : 0);
+  rtt_ms_ = rtt_samples_++ == 0 ? sample : rtt_ms_ + 0.1 * (sample - rtt_ms_);
 }
 
 bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
@@ -29,6 +39,7 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
   if (!have_received_) {
     have_received_ = true;
     latest_received_ = seq;
+    latest_received_ms_ = now_ms;
     received_bits_ = 0;
   } else if (sequence_newer(seq, latest_received_)) {
     const unsigned shift = static_cast<std::uint16_t>(seq - latest_received_);
@@ -38,6 +49,7 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
       received_bits_ = shift == 32 ? (1u << 31) : 0;
     }
     latest_received_ = seq;
+    latest_received_ms_ = now_ms;
   } else {
     const unsigned behind = static_cast<std::uint16_t>(latest_received_ - seq);
     if (behind == 0 || behind > 32) return false;
@@ -46,11 +58,11 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
     received_bits_ |= bit;
   }
   if (header.ack == 0) return true;
-  ack_one(header.ack, now_ms, newly_acked);
+  ack_one(header.ack, now_ms, header.ack_delay_ms, newly_acked);
   for (unsigned i = 0; i < 32; ++i)
     if (header.ack_bits & (1u << i)) {
       const auto acked = static_cast<std::uint16_t>(header.ack - 1 - i);
-      if (acked != 0) ack_one(acked, now_ms, newly_acked);
+      if (acked != 0) ack_one(acked, now_ms, std::nullopt, newly_acked);
     }
   return true;
 }

@@ -1,6 +1,8 @@
 #include "fts/protocol/client.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <random>
 
 namespace fts::protocol {
 
@@ -23,6 +25,14 @@ void ClientEndpoint::connect(std::uint64_t now_ms) {
   *this = ClientEndpoint(config);
   state_ = ClientState::connecting;
   connect_start_ms_ = now_ms;
+  std::uint64_t nonce = config_.nonce;
+  if (nonce == 0) {
+    std::random_device rd;
+    nonce = (std::uint64_t{rd()} << 32) ^ rd();
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(nonce));
+  nonce_ = hex;
   send_hello(now_ms);
 }
 
@@ -38,7 +48,7 @@ void ClientEndpoint::send_hello(std::uint64_t now_ms) {
   Header h;
   h.version = config_.version;
   h.encoding = config_.encoding;
-  Hello hello{config_.name, config_.token, cookie_, ""};
+  Hello hello{config_.name, config_.token, cookie_, "", nonce_};
   // Pad to kMinHelloBytes (a longer pad may need a longer length prefix: loop).
   for (;;) {
     const std::size_t size = kHeaderBytes + encode_payload(config_.encoding, {hello}).size();

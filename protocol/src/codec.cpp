@@ -68,10 +68,20 @@ Decoded<Datagram> decode_datagram(std::span<const std::uint8_t> bytes, std::uint
   return Datagram{*header, std::move(*messages)};
 }
 
+std::vector<std::uint8_t> encode_version_refusal(const Header& header, const Error& error) {
+  std::vector<std::uint8_t> out;
+  Header h = header;
+  h.encoding = Encoding::json;
+  write_header_prefix(h, out);
+  const auto payload = encode_payload(Encoding::json, {error});
+  out.insert(out.end(), payload.begin(), payload.end());
+  return out;
+}
+
 Decoded<Error> decode_version_error(std::span<const std::uint8_t> bytes) {
   auto header = read_header_any_version(bytes);
   if (!header) return header.error();
-  auto messages = decode_payload(header->encoding, bytes.subspan(kHeaderBytes));
+  auto messages = decode_payload(header->encoding, bytes.subspan(kHeaderPrefixBytes));
   if (!messages) return messages.error();
   if (messages->size() != 1 || !std::holds_alternative<Error>(messages->front()))
     return Reject::unexpected;

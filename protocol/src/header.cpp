@@ -20,7 +20,7 @@ std::uint32_t get32(std::span<const std::uint8_t> b, std::size_t at) {
 
 }  // namespace
 
-void write_header(const Header& header, std::vector<std::uint8_t>& out) {
+void write_header_prefix(const Header& header, std::vector<std::uint8_t>& out) {
   put32(out, kProtocolId);
   put16(out, header.version);
   out.push_back(static_cast<std::uint8_t>(header.encoding));
@@ -30,9 +30,14 @@ void write_header(const Header& header, std::vector<std::uint8_t>& out) {
   put32(out, header.ack_bits);
 }
 
+void write_header(const Header& header, std::vector<std::uint8_t>& out) {
+  write_header_prefix(header, out);
+  put16(out, header.ack_delay_ms);
+}
+
 Decoded<Header> read_header_any_version(std::span<const std::uint8_t> bytes) {
   if (bytes.size() > kMaxDatagramBytes) return Reject::oversize;
-  if (bytes.size() < kHeaderBytes) return Reject::truncated;
+  if (bytes.size() < kHeaderPrefixBytes) return Reject::truncated;
   if (get32(bytes, 0) != kProtocolId) return Reject::wrong_protocol_id;
   Header h;
   h.version = get16(bytes, 4);
@@ -48,7 +53,10 @@ Decoded<Header> read_header_any_version(std::span<const std::uint8_t> bytes) {
 
 Decoded<Header> read_header(std::span<const std::uint8_t> bytes, std::uint16_t expected_version) {
   auto h = read_header_any_version(bytes);
-  if (h && h->version != expected_version) return Reject::bad_version;
+  if (!h) return h;
+  if (h->version != expected_version) return Reject::bad_version;
+  if (bytes.size() < kHeaderBytes) return Reject::truncated;
+  h->ack_delay_ms = get16(bytes, kHeaderPrefixBytes);
   return h;
 }
 

@@ -11,23 +11,31 @@ using namespace detail;
 namespace {
 constexpr std::size_t kTokenHex = 32;
 constexpr std::size_t kCookieHex = 48;
+constexpr std::size_t kNonceHex = 16;
 
 const char* op_name(CommandOp op) {
   switch (op) {
     case CommandOp::buy: return "buy";
     case CommandOp::ready: return "ready";
     case CommandOp::play_again: return "again";
+    case CommandOp::unknown: return "unknown";
   }
   return "?";
 }
 }  // namespace
 
 void to_json(json& j, const Hello& m) {
-  j = json{{"name", m.name}, {"token", m.token}, {"cookie", m.cookie}, {"pad", m.pad}};
+  j = json{{"name", m.name}, {"token", m.token}, {"cookie", m.cookie}, {"pad", m.pad}, {"nonce", m.nonce}};
 }
 void from_json(const json& j, Hello& m) {
-  m.name = as_text(field(j, "name"), kMaxNameBytes);
-  if (m.name.empty()) fail(Reject::out_of_range);
+  // Any string up to kMaxTextBytes: the server checks the name itself, so that a bad one
+  // gets an answer that says what is wrong instead of a silent drop.
+  const json& name = field(j, "name");
+  if (!name.is_string()) fail(Reject::garbage);
+  m.name = name.get<std::string>();
+  if (m.name.size() > kMaxTextBytes) fail(Reject::out_of_range);
+  m.nonce = as_hex(field(j, "nonce"), kNonceHex);
+  if (m.nonce.empty()) fail(Reject::out_of_range);
   m.token = as_hex(field(j, "token"), kTokenHex);
   m.cookie = as_hex(field(j, "cookie"), kCookieHex);
   m.pad = as_text(field(j, "pad"), kMaxDatagramBytes);
@@ -98,22 +106,25 @@ void to_json(json& j, const Command& m) {
   j = json{{"rid", m.rid}, {"op", op_name(m.op)}};
   if (m.op == CommandOp::buy) j["item"] = std::string(1, m.item);
 }
+// Lenient on purpose: a command the server cannot apply (unknown op, unknown or missing
+// item) still decodes, so that it is consumed and answered with its result code instead
+// of blocking the reliable channel; only its shape (rid, text fields) must be right.
 void from_json(const json& j, Command& m) {
   m.rid = as_u32(field(j, "rid"));
-  if (m.rid == 0) fail(Reject::out_of_range);
-  const std::string op = as_text(field(j, "op"), 8);
+  const std::string op = as_text(field(j, "op"), kMaxTextBytes);
   m.item = 0;
   if (op == "buy") {
     m.op = CommandOp::buy;
-    const std::string item = as_text(field(j, "item"), 1);
-    if (item.size() != 1 || shop_index(item[0]) < 0) fail(Reject::out_of_range);
-    m.item = item[0];
+    if (const json* item = optional_field(j, "item")) {
+      const std::string key = as_text(*item, kMaxTextBytes);
+      if (key.size() == 1) m.item = key[0];
+    }
   } else if (op == "ready") {
     m.op = CommandOp::ready;
   } else if (op == "again") {
     m.op = CommandOp::play_again;
   } else {
-    fail(Reject::out_of_range);
+    m.op = CommandOp::unknown;
   }
 }
 
@@ -158,6 +169,16 @@ Message parse_as(const json& j) {
   return m;
 }
 }  // namespace
+
+std::string name_problem(const std::string& name) {
+  if (name.empty()) return "a name needs at least one character";
+  if (name.size() > kMaxNameBytes)
+    return "a name has at most " + std::to_string(kMaxNameBytes) + " characters, this one " +
+           std::to_string(name.size());
+  for (unsigned char c : name)
+    if (c < 0x20 || c > 0x7E) return "a name may only hold printable ASCII characters (no control codes, no accents)";
+  return "";
+}
 
 const char* message_type(const Message& message) { return std::visit(TypeName{}, message); }
 

@@ -23,8 +23,25 @@ void ServerEndpoint::reply_unconnected(const Address& to, Encoding encoding, std
   emit(to, std::move(bytes));
 }
 
+// The server's own stall (a hitch, a debugger, swap) is not the clients' silence: a gap
+// between two calls longer than stall_threshold_ms moves every session's clocks forward
+// by the gap, so that time-outs and reconnect windows count only time during which the
+// server was receiving.
+void ServerEndpoint::observe_time(std::uint64_t now_ms) {
+  if (last_call_ms_ != 0 && now_ms > last_call_ms_ + config_.stall_threshold_ms) {
+    const std::uint64_t gap = now_ms - last_call_ms_;
+    for (auto& [id, s] : sessions_) {
+      s.last_receive_ms += gap;
+      s.disconnected_ms += gap;
+    }
+    stalled_ms_ += gap;
+  }
+  last_call_ms_ = std::max(last_call_ms_, now_ms);
+}
+
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
+  observe_time(now_ms);
   auto header = read_header_any_version(bytes);
   if (!header) return rejects_.add(header.error());
   if (header->version != config_.version) {
@@ -33,12 +50,25 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
       const std::string text = "protocol version " + std::to_string(header->version) +
                                " is not supported; this server speaks version " +
                                std::to_string(config_.version) + ": update your client";
-      reply_unconnected(from, Encoding::json, 0, Error{"version", text}, bytes.size());
+      Header h;
+      h.version = config_.version;
+      auto reply = encode_version_refusal(h, Error{"version", text});
+      if (reply.size() <= bytes.size()) emit(from, std::move(reply));
     }
     return;
   }
   auto d = decode_datagram(bytes, config_.version);
-  if (!d) return rejects_.add(d.error());
+  if (!d) {
+    rejects_.add(d.error());
+    // A hello-sized datagram of our version that does not decode is most likely a hello
+    // from a client with a bug: say why, in fewer bytes than it sent (no amplification).
+    if (header->session == 0 && bytes.size() >= kMinHelloBytes) {
+      const std::string text = "the server could not read this hello (" + std::string(to_string(d.error())) +
+                               "); see PROTOCOL.md section 4.1";
+      reply_unconnected(from, header->encoding, 0, Error{"bad_hello", text}, bytes.size());
+    }
+    return;
+  }
   if (d->header.session != 0) return handle_session(from, *d, now_ms);
   if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0]))
     return rejects_.add(Reject::unexpected);
@@ -60,7 +90,7 @@ void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding 
 }
 
 void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding,
-                                   std::uint64_t now_ms) {
+                                   const std::string& nonce, std::uint64_t now_ms) {
   if (s.session_id != 0) by_session_id_.erase(s.session_id);
   if (!s.address.empty()) by_address_.erase(s.address);
   ++sessions_made_;
@@ -70,7 +100,9 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.address = from;
   s.encoding = encoding;
   s.connected = true;
-  s.heard = false;
+  s.quit = false;
+  s.nonce = nonce;
+  s.welcomed_as_reconnect = false;
   s.last_receive_ms = now_ms;
   s.last_send_ms = now_ms;
   s.last_input_seq = 0;
@@ -97,15 +129,22 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     case CookieCheck::ok: break;
   }
-  // The welcome was lost and the client asks again (it has no token yet): same answer.
-  // A client that sends the token did get the welcome: it restarted, and is taken back
-  // below with a fresh session state (acks, input sequence, reliable channel).
+  if (const std::string why = name_problem(hello.name); !why.empty()) {
+    rejects_.add(Reject::out_of_range);
+    reply_unconnected(from, enc, 0, Error{"bad_name", why}, request_bytes);
+    return;
+  }
   if (auto it = by_address_.find(from); it != by_address_.end()) {
     Session& s = sessions_.at(it->second);
-    if (s.connected && hello.token.empty()) {
-      send_welcome(s, from, s.encoding, false, request_bytes);
+    // The same connection attempt again (a lost welcome, a duplicated or resent hello):
+    // the same welcome, whatever was heard on the session since. Idempotent.
+    if (s.connected && s.nonce == hello.nonce) {
+      send_welcome(s, from, s.encoding, s.welcomed_as_reconnect, request_bytes);
       return;
     }
+    // A new attempt from the address of a live session: the client there restarted.
+    // With that session's token it is taken back below; otherwise the old client is gone.
+    if (s.connected && hello.token != s.token) drop_connection(s, "replaced by a new connection", now_ms);
   }
   if (!hello.token.empty()) {
     auto it = std::find_if(sessions_.begin(), sessions_.end(),
@@ -118,34 +157,40 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     }
     Session& s = it->second;
-    // A duplicate or resent token hello for the session just started (nothing heard on
-    // it yet, same address): the welcome was lost or the hello doubled, same answer.
-    // Restarting here would strand a client that already took the first welcome.
-    if (s.connected && !s.heard && s.address == from) {
-      send_welcome(s, from, s.encoding, true, request_bytes);
-      return;
-    }
-    start_session(s, from, enc, now_ms);
+    // A player who quit gave its seat up: it comes back only to a free one.
+    if (s.quit && seats_taken() >= config_.max_players) return refuse_full(from, enc, request_bytes);
+    // The token from another address takes the session over; the old address is told.
+    if (s.connected && s.address != from)
+      send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
+    start_session(s, from, enc, hello.nonce, now_ms);
+    s.welcomed_as_reconnect = true;
     events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token"});
     send_welcome(s, from, enc, true, request_bytes);
     return;
   }
-  if (sessions_.size() >= config_.max_players) {
-    rejects_.add(Reject::server_full);
-    const std::string text = "the server is full (" + std::to_string(config_.max_players) +
-                             " players); try again later";
-    reply_unconnected(from, enc, 0, Error{"full", text}, request_bytes);
-    return;
-  }
+  if (seats_taken() >= config_.max_players || sessions_.size() >= config_.max_sessions())
+    return refuse_full(from, enc, request_bytes);
   std::uint32_t player_id = 1;
   while (sessions_.count(player_id)) ++player_id;
   Session& s = sessions_[player_id];
   s.player_id = player_id;
   s.name = hello.name;
   s.token = derive_token(config_.key, sessions_made_ + 1);
-  start_session(s, from, enc, now_ms);
+  start_session(s, from, enc, hello.nonce, now_ms);
   events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, ""});
   send_welcome(s, from, enc, false, request_bytes);
+}
+
+void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
+  rejects_.add(Reject::server_full);
+  const std::string text = "the server is full (" + std::to_string(config_.max_players) +
+                           " players); try again later";
+  reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
+}
+
+std::size_t ServerEndpoint::seats_taken() const {
+  return static_cast<std::size_t>(
+      std::count_if(sessions_.begin(), sessions_.end(), [](const auto& kv) { return !kv.second.quit; }));
 }
 
 void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms) {
@@ -163,7 +208,6 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
   std::vector<std::uint16_t> acked;
   if (!s.acks.on_receive(d.header, now_ms, acked)) return rejects_.add(Reject::stale);
   s.last_receive_ms = now_ms;
-  s.heard = true;
   for (auto seq : acked) s.results.on_acked(seq);
   for (const auto& m : d.messages) {
     if (const auto* in = std::get_if<Input>(&m)) {
@@ -172,14 +216,27 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
       std::sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
       for (const auto& f : frames) {
         if (f.seq <= s.last_input_seq) continue;
+        // A frame far ahead of the last one applied is not from an honest client (one
+        // frame per tick): ignored, so it cannot make the real frames look old.
+        if (f.seq - s.last_input_seq > config_.max_input_lead) {
+          rejects_.add(Reject::out_of_range);
+          continue;
+        }
         s.last_input_seq = f.seq;
         inputs_.push_back({s.player_id, f});
       }
     } else if (const auto* c = std::get_if<Command>(&m)) {
+      // rid 0 names no place in the reliable order: that message alone is dropped.
+      if (c->rid == 0) {
+        rejects_.add(Reject::out_of_range);
+        continue;
+      }
       if (auto why = s.commands.accept(*c)) rejects_.add(*why);
       for (auto& cmd : s.commands.take()) commands_.push_back({s.player_id, cmd});
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
+      // A player who quits gives its seat up at once; its progress stays for the window.
+      s.quit = true;
       // A health check leaves no player behind: its slot is free at once.
       if (bye->reason == kProbeByeReason) release(s.player_id, kProbeByeReason);
       return;
@@ -255,6 +312,7 @@ void ServerEndpoint::shutdown(std::uint64_t now_ms) {
 }
 
 void ServerEndpoint::update(std::uint64_t now_ms) {
+  observe_time(now_ms);
   std::vector<std::uint32_t> expired;
   for (auto& [id, s] : sessions_) {
     if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) drop_connection(s, "timeout", now_ms);

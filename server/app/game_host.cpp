@@ -94,18 +94,23 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         break;
     }
   }
-  // Inputs arrive in (player, seq) order; the newest frame holds until a newer one.
+  // Inputs arrive in (player, seq) order; the newest frame holds until a newer one, or
+  // until input_expiry_ms pass without one: a crashed client's held key goes neutral
+  // (PROTOCOL.md 4.5). The recording holds what the match was given, so a replay
+  // repeats the expiry exactly.
   for (const auto& pi : endpoint_.take_inputs()) {
     Held& h = held_[pi.player_id];
     if (pi.frame.seq >= h.frame.seq) h.frame = pi.frame;
     h.fire = h.fire || pi.frame.fire;
+    h.received_ms = now_ms;
   }
   std::map<std::uint32_t, sim::PlayerTick> ticks;
   for (auto& [id, h] : held_) {
     sim::PlayerTick& t = ticks[id];
     t.player = id;
-    t.input.move_x = static_cast<std::int8_t>(std::clamp<int>(h.frame.move_x, -1, 1));
-    t.input.move_y = static_cast<std::int8_t>(std::clamp<int>(h.frame.move_y, -1, 1));
+    const bool expired = now_ms - h.received_ms > options_.input_expiry_ms;
+    t.input.move_x = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_x, -1, 1));
+    t.input.move_y = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_y, -1, 1));
     t.input.fire = h.fire;
     h.fire = false;
   }
@@ -128,6 +133,9 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         a.code = a.ok ? "ok" : "phase";
         t.commands.push_back({sim::CommandKind::play_again, {}});
         break;
+      case protocol::CommandOp::unknown:
+        a.code = "op";
+        break;
     }
     answers.push_back(std::move(a));
   }
@@ -143,6 +151,10 @@ void GameHost::answer(const std::vector<PendingAnswer>& answers, const std::vect
                       std::uint64_t now_ms) {
   std::map<std::uint32_t, std::size_t> cursor;  // next purchase event per player
   for (const auto& a : answers) {
+    if (a.op == protocol::CommandOp::unknown) {
+      endpoint_.send_result(a.player, a.rid, false, a.code, "unknown command; this server knows buy, ready and again", now_ms);
+      continue;
+    }
     if (a.op != protocol::CommandOp::buy) {
       endpoint_.send_result(a.player, a.rid, a.ok, a.code, a.ok ? "done" : "not now (wrong phase)", now_ms);
       continue;

@@ -42,6 +42,7 @@ class GameHost {
   struct Held {
     protocol::InputFrame frame;  // latest frame by seq
     bool fire = false;           // any fire since the last tick
+    std::uint64_t received_ms = 0;  // when the latest frame arrived
   };
   struct PendingAnswer {
     std::uint32_t player = 0;

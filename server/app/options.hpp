@@ -27,6 +27,7 @@ struct Options {
   std::string log_format = "text";  // text | json
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
+  std::uint32_t input_expiry_ms = 150;  // a held input goes neutral without a new frame
   std::uint32_t stats_interval_ms = 10000;
   double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
   bool help = false;

@@ -113,8 +113,8 @@ inline std::vector<Message> all_messages() {
   delta.players.push_back(pd);
   delta.left = {2};
   return {
-      Hello{"ann", "", "", "...."},
-      Hello{"bob", std::string(32, 'a'), std::string(48, '0'), ""},
+      Hello{"ann", "", "", "....", "0123456789abcdef"},
+      Hello{"bob", std::string(32, 'a'), std::string(48, '0'), "", "fedcba9876543210"},
       Challenge{"00000000000003e8" + std::string(32, 'f')},
       Welcome{3, std::string(32, 'b'), 100, 20, 500, 300, 8, 10000, 60000, 8, 12345, true},
       Error{"version", "protocol version 2 is not supported; this server speaks version 1"},

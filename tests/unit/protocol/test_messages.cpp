@@ -47,12 +47,13 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
   h.sequence = 5;
   h.ack = 4;
   h.ack_bits = 0x3;
+  h.ack_delay_ms = 0x0102;
 
   SECTION("header") {
     std::vector<std::uint8_t> out;
     write_header(h, out);
-    const std::vector<std::uint8_t> golden = {'F', 'T', 'S', 'P', 0, 1, 0, 1, 2, 3, 4,
-                                              0, 5, 0, 4, 0, 0, 0, 3};
+    const std::vector<std::uint8_t> golden = {'F', 'T', 'S', 'P', 0, 2, 0, 1, 2, 3, 4,
+                                              0, 5, 0, 4, 0, 0, 0, 3, 1, 2};
     CHECK(out == golden);
   }
   SECTION("ping in JSON") {

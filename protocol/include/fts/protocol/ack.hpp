@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "fts/protocol/header.hpp"
@@ -22,7 +23,9 @@ class AckWindow {
   // behind the newest (drop it). Otherwise appends our newly acknowledged sequences.
   bool on_receive(const Header& header, std::uint64_t now_ms, std::vector<std::uint16_t>& newly_acked);
 
-  // Smoothed round-trip time (ms); 0 until the first sample.
+  // Smoothed round-trip time (ms) of the network alone: each sample is the time from
+  // sending a packet to the arrival of the header that acks it, minus the ack delay that
+  // header reports. 0 until the first sample.
   double rtt_ms() const { return rtt_ms_; }
   std::uint64_t packets_acked() const { return packets_acked_; }
   std::uint64_t packets_sent() const { return packets_sent_; }
@@ -34,14 +37,17 @@ class AckWindow {
     bool acked = false;
     std::uint64_t time_ms = 0;
   };
-  void ack_one(std::uint16_t seq, std::uint64_t now_ms, std::vector<std::uint16_t>& out);
+  void ack_one(std::uint16_t seq, std::uint64_t now_ms, std::optional<std::uint16_t> delay_ms,
+               std::vector<std::uint16_t>& out);
 
   std::uint16_t next_sequence_ = 1;
   std::array<Sent, 256> sent_{};
   bool have_received_ = false;
   std::uint16_t latest_received_ = 0;
+  std::uint64_t latest_received_ms_ = 0;  // when latest_received_ arrived (for ack delays)
   std::uint32_t received_bits_ = 0;
   double rtt_ms_ = 0;
+  std::uint64_t rtt_samples_ = 0;
   std::uint64_t packets_acked_ = 0;
   std::uint64_t packets_sent_ = 0;
 };

@@ -22,6 +22,9 @@ struct ClientConfig {
   Encoding encoding = Encoding::msgpack;
   std::string name = "player";  // 1..16 printable ASCII
   std::string token;            // a previous welcome's token, to take a player back
+  // Names one connection attempt in its hellos (Hello::nonce). 0: a random one, new at
+  // every connect().
+  std::uint64_t nonce = 0;
   std::uint16_t version = kProtocolVersion;
   std::uint64_t hello_resend_ms = 250;
   std::uint64_t connect_timeout_ms = 10000;
@@ -83,6 +86,7 @@ class ClientEndpoint {
   ClientConfig config_;
   ClientState state_ = ClientState::idle;
   std::string cookie_;
+  std::string nonce_;  // 16 hex digits
   std::uint64_t connect_start_ms_ = 0;
   std::uint64_t last_hello_ms_ = 0;
   std::uint64_t last_send_ms_ = 0;

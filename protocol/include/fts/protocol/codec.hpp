@@ -28,7 +28,9 @@ Decoded<Datagram> decode_datagram(std::span<const std::uint8_t> bytes,
 
 // Decodes a datagram of any version if it holds exactly one Error message: how a client
 // reads the "wrong version" refusal of a server that speaks another version.
+// Such a refusal is the 19-byte header prefix and a JSON payload in every version.
 Decoded<Error> decode_version_error(std::span<const std::uint8_t> bytes);
+std::vector<std::uint8_t> encode_version_refusal(const Header& header, const Error& error);
 
 // The payload alone, in one encoding (for size measurements and debugging).
 std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);

@@ -17,10 +17,13 @@ namespace fts::protocol {
 
 // client -> server, before and during the handshake. Padded to kMinHelloBytes.
 struct Hello {
-  std::string name;    // 1..16 printable ASCII characters
+  std::string name;    // 1..16 printable ASCII characters (checked by the server, which
+                       // answers a bad one with error{code:"bad_name"})
   std::string token;   // "" or the 32-hex-digit session token of a previous welcome
   std::string cookie;  // "" or the 48-hex-digit cookie of a challenge
   std::string pad;     // ignored filler, any printable ASCII
+  std::string nonce;   // 16 hex digits, new for every connection attempt: a repeated
+                       // hello with the same nonce is the same attempt (same welcome)
 
   bool operator==(const Hello&) const = default;
 };
@@ -73,13 +76,14 @@ struct Input {
   bool operator==(const Input&) const = default;
 };
 
-enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2 };
+// unknown: an op this server does not know (answered with code "op", never applied).
+enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3 };
 
 // client -> server, reliable: applied exactly once, in rid order, answered by a Result.
 struct Command {
   std::uint32_t rid = 0;  // reliable id, 1, 2, 3, ... per session
   CommandOp op = CommandOp::ready;
-  char item = 0;  // buy only: one of m s a r l x b
+  char item = 0;  // buy only: one of m s a r l x b; 0 when missing or not one character
   bool operator==(const Command&) const = default;
 };
 
@@ -150,6 +154,9 @@ struct SnapshotMsg {
 
 using Message = std::variant<Hello, Challenge, Welcome, Error, Input, Command, Result, Ping,
                              Bye, SnapshotMsg>;
+
+// Why a player name is refused ("" if it is fine): 1..16 printable ASCII characters.
+std::string name_problem(const std::string& name);
 
 // The wire name of a message type ("hello", "challenge", ... "snap").
 const char* message_type(const Message& message);

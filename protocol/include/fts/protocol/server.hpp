@@ -32,6 +32,15 @@ struct ServerConfig {
   std::uint64_t cookie_lifetime_ms = 10000;
   std::uint64_t heartbeat_ms = 100;
   std::uint64_t resend_ms = 100;
+  // A gap between two calls (receive/update) longer than this is the server's own stall,
+  // not the clients' silence: it does not count towards time-outs (PROTOCOL.md 6).
+  std::uint64_t stall_threshold_ms = 500;
+  // An input frame more than this many sequence numbers ahead of the last one applied is
+  // ignored (PROTOCOL.md 4.5).
+  std::uint32_t max_input_lead = 1024;
+  // Sessions kept at most (seated players plus players who quit and keep their progress
+  // for the reconnect window).
+  std::size_t max_sessions() const { return 4 * static_cast<std::size_t>(max_players); }
   // Settings sent in every welcome (player_id, token, server_tick, reconnected are set
   // per client).
   Welcome settings;
@@ -104,6 +113,8 @@ class ServerEndpoint {
   const RejectCounters& rejects() const { return rejects_; }
   std::vector<SessionInfo> sessions() const;
   std::vector<std::uint32_t> connected_players() const;
+  // Time the server itself stood still (gaps over stall_threshold_ms), in total.
+  std::uint64_t stalled_ms() const { return stalled_ms_; }
 
  private:
   struct Session {
@@ -114,8 +125,10 @@ class ServerEndpoint {
     Address address;
     Encoding encoding = Encoding::msgpack;
     bool connected = false;
+    bool quit = false;  // left with bye "quit": its seat is free, its progress kept
+    std::string nonce;  // the connection attempt this session was started by (Hello::nonce)
+    bool welcomed_as_reconnect = false;
     std::uint64_t last_receive_ms = 0;
-    bool heard = false;  // a datagram arrived on this session since its welcome
     std::uint64_t last_send_ms = 0;
     std::uint64_t disconnected_ms = 0;
     std::uint32_t last_input_seq = 0;
@@ -132,7 +145,11 @@ class ServerEndpoint {
                          const Message& message, std::size_t request_bytes);
   void send_welcome(const Session& s, const Address& to, Encoding encoding, bool reconnected,
                     std::size_t request_bytes);
-  void start_session(Session& s, const Address& from, Encoding encoding, std::uint64_t now_ms);
+  void start_session(Session& s, const Address& from, Encoding encoding, const std::string& nonce,
+                     std::uint64_t now_ms);
+  void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
+  std::size_t seats_taken() const;
+  void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
   void release(std::uint32_t player_id, const std::string& reason);
@@ -144,6 +161,8 @@ class ServerEndpoint {
   std::map<std::uint32_t, std::uint32_t> by_session_id_;
   std::uint64_t sessions_made_ = 0;
   std::uint32_t server_tick_ = 0;
+  std::uint64_t last_call_ms_ = 0;
+  std::uint64_t stalled_ms_ = 0;
   std::vector<Outgoing> out_;
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
