@@ -109,7 +109,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.acks = AckWindow{};
   s.results = ReliableSender<Result>{};
   s.commands = ReliableReceiver<Command>{};
-  s.snapshots.reset();
+  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks);
   by_session_id_[s.session_id] = s.player_id;
   by_address_[from] = s.player_id;
 }

@@ -105,8 +105,10 @@ SnapshotMsg make_snapshot_msg(const Snapshot& current_in, const Snapshot* base_i
     for (const auto& p : base->players)
       if (!find_by_id(current.players, p.id)) m.left.push_back(p.id);
   }
+  // A delta carries the events its base did not have; a full snapshot the recent window.
+  const std::uint32_t base_seq = base && !base->events.empty() ? base->events.back().seq : 0;
   for (const auto& e : current.events)
-    if (!base || e.tick > base->tick) m.events.push_back(e);
+    if (!base || e.seq > base_seq) m.events.push_back(e);
   return m;
 }
 
@@ -221,7 +223,8 @@ std::vector<SnapshotMsg> SnapshotSender::encode(const Snapshot& current_in, Enco
                                                 std::size_t budget) {
   Snapshot current = quantize(current_in);
   const Snapshot* base = nullptr;
-  if (acked_) {
+  // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
+  if (acked_ && *acked_ + max_base_age_ticks_ >= current.tick) {
     for (const auto& h : history_)
       if (h.tick == *acked_ && h.tick < current.tick) base = &h;
   }
@@ -267,7 +270,16 @@ Decoded<std::optional<Snapshot>> SnapshotReceiver::accept(const SnapshotMsg& par
   history_[snapshot->tick] = *snapshot;
   while (history_.size() > kHistory) history_.erase(history_.begin());
   latest_ = *snapshot;
+  std::vector<Event> events = snapshot->events;
+  std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.seq < b.seq; });
+  for (const auto& e : events)
+    if (e.seq > delivered_event_seq_) {
+      delivered_event_seq_ = e.seq;
+      new_events_.push_back(e);
+    }
   return std::optional<Snapshot>{std::move(*snapshot)};
 }
+
+std::vector<Event> SnapshotReceiver::take_events() { return std::exchange(new_events_, {}); }
 
 }  // namespace fts::protocol

@@ -113,7 +113,7 @@ void to_json(json& j, const SnapshotMsg& m) {
   for (const auto& p : m.players) players.push_back(player_to_json(p));
   json events = json::array();
   for (const auto& e : m.events)
-    events.push_back(json::array({e.tick, static_cast<int>(e.kind), e.a, e.b, e.value}));
+    events.push_back(json::array({e.seq, e.tick, static_cast<int>(e.kind), e.a, e.b, e.value}));
   j = json{{"tick", m.tick},
            {"part", m.part},
            {"parts", m.parts},
@@ -153,13 +153,15 @@ void from_json(const json& j, SnapshotMsg& m) {
   if (const json* v = optional_field(j, "left")) m.left = ids_from_json(*v, kMaxPlayersPerMessage);
   if (const json* v = optional_field(j, "events")) {
     for (const auto& e : as_array(*v, kMaxEventsPerMessage)) {
-      if (!e.is_array() || e.size() != 5) fail(Reject::garbage);
+      if (!e.is_array() || e.size() != 6) fail(Reject::garbage);
       Event ev;
-      ev.tick = as_u32(e[0]);
-      ev.kind = static_cast<EventKind>(as_int(e[1], 0, static_cast<int>(EventKind::count_) - 1));
-      ev.a = as_u32(e[2]);
-      ev.b = as_u32(e[3]);
-      ev.value = as_int(e[4], -kMaxCoins, kMaxCoins);
+      ev.seq = as_u32(e[0]);
+      if (ev.seq == 0) fail(Reject::out_of_range);
+      ev.tick = as_u32(e[1]);
+      ev.kind = static_cast<EventKind>(as_int(e[2], 0, static_cast<int>(EventKind::count_) - 1));
+      ev.a = as_u32(e[3]);
+      ev.b = as_u32(e[4]);
+      ev.value = as_int(e[5], -kMaxCoins, kMaxCoins);
       m.events.push_back(ev);
     }
   }

@@ -31,6 +31,7 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.max_players = o.max_players;
   c.timeout_ms = o.timeout_ms;
   c.reconnect_window_ms = o.reconnect_window_ms;
+  c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
   c.settings.arena_width_u = cfg.arena_width_u;
@@ -216,7 +217,10 @@ void GameHost::tick(std::uint64_t now_ms) {
 
   std::vector<protocol::Event> wire;
   append_wire_events(match_.tick, events, wire);
-  for (auto& w : wire) recent_.push_back(w);
+  for (auto& w : wire) {
+    w.seq = ++event_seq_;
+    recent_.push_back(w);
+  }
   while (recent_.size() > kRecentEvents) recent_.pop_front();
 
   endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));

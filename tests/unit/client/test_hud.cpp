@@ -59,8 +59,8 @@ TEST_CASE("events are described for the message line", "[client][hud]") {
   auto snap = test::seed_snapshot(Phase::play);
   using fts::protocol::Event;
   using fts::protocol::EventKind;
-  CHECK(describe_event(Event{1, EventKind::purchase, 1, 'm', 35}, snap, 1) == "You bought mass for 35 coins.");
-  CHECK(describe_event(Event{1, EventKind::enemy_fell, 7, 1, 41}, snap, 2) ==
+  CHECK(describe_event(Event{1, 1, EventKind::purchase, 1, 'm', 35}, snap, 1) == "You bought mass for 35 coins.");
+  CHECK(describe_event(Event{1, 1, EventKind::enemy_fell, 7, 1, 41}, snap, 2) ==
         "ann knocked an enemy off: +41 coins.");
-  CHECK(describe_event(Event{1, EventKind::level_complete, 0, 0, 3}, snap, 1) == "Level 3 Complete");
+  CHECK(describe_event(Event{1, 1, EventKind::level_complete, 0, 0, 3}, snap, 1) == "Level 3 Complete");
 }

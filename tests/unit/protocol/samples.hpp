@@ -59,8 +59,8 @@ inline Snapshot sample_snapshot(int players, int enemies, std::uint32_t tick = 1
     b.kind = BallKind::enemy;
     s.balls.push_back(b);
   }
-  s.events.push_back({tick - 3, EventKind::enemy_fell, 99, 1, 57});
-  s.events.push_back({tick - 1, EventKind::purchase, 1, 'm', 35});
+  s.events.push_back({1, tick - 3, EventKind::enemy_fell, 99, 1, 57});
+  s.events.push_back({2, tick - 1, EventKind::purchase, 1, 'm', 35});
   return s;
 }
 
@@ -97,7 +97,7 @@ inline std::vector<Message> all_messages() {
   p.ready = true;
   p.alive = false;
   full.players.push_back(p);
-  full.events.push_back({40, EventKind::purchase, 1, 'm', 35});
+  full.events.push_back({7, 40, EventKind::purchase, 1, 'm', 35});
   SnapshotMsg delta;
   delta.tick = 50;
   delta.base = 42;

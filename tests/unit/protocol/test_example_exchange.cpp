@@ -61,7 +61,7 @@ TEST_CASE("example exchange", "[.example]") {
   s.players[0].coins -= 36;
   s.players[0].mass += 1;
   s.players[0].prices[0] += 3;
-  s.events.push_back({202, EventKind::purchase, 1, 'm', 36});
+  s.events.push_back({1, 202, EventKind::purchase, 1, 'm', 36});
   server.send_snapshot(1, s, now);
   pump();
 }

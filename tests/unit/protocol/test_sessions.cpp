@@ -257,3 +257,41 @@ TEST_CASE("Sessions: an input frame far ahead is ignored, the real ones still co
   REQUIRE(inputs.size() == 1);
   CHECK(inputs[0].frame.seq == 3);
 }
+
+TEST_CASE("Sessions: events are delivered once each to a client whose acks lag",
+          "[protocol][sessions][events]") {
+  SnapshotSender tx(100);
+  SnapshotReceiver rx;
+  Snapshot s;
+  std::uint32_t seq = 0;
+  std::vector<std::uint32_t> delivered;
+  std::uint32_t acked = 0;
+  bool saw_full_after_lag = false;
+  for (std::uint32_t tick = 5; tick <= 400; tick += 5) {
+    s.tick = tick;
+    s.events.push_back({++seq, tick, EventKind::enemy_fell, 7, 1, 10});
+    if (s.events.size() > 48) s.events.erase(s.events.begin());
+    if (acked) tx.on_ack(acked);
+    const auto parts = tx.encode(s, Encoding::msgpack);
+    if (!parts[0].base && tick > 10) saw_full_after_lag = true;
+    for (const auto& p : parts) REQUIRE(rx.accept(p));
+    for (const auto& e : rx.take_events()) delivered.push_back(e.seq);
+    // The client acknowledges only every 8th snapshot: deltas repeat events.
+    if (tick % 40 == 5) acked = rx.latest_tick();
+  }
+  REQUIRE(delivered.size() == seq);
+  for (std::uint32_t i = 0; i < seq; ++i) CHECK(delivered[i] == i + 1);
+  CHECK_FALSE(saw_full_after_lag);  // acks 40 ticks behind: within the 100-tick bound
+}
+
+TEST_CASE("Sessions: a base older than the bound gets a full snapshot", "[protocol][sessions][events]") {
+  SnapshotSender tx(100);
+  Snapshot s;
+  s.tick = 10;
+  tx.encode(s, Encoding::msgpack);
+  tx.on_ack(10);
+  s.tick = 110;
+  CHECK(tx.encode(s, Encoding::msgpack)[0].base == 10u);  // 100 ticks: still a delta
+  s.tick = 111;
+  CHECK_FALSE(tx.encode(s, Encoding::msgpack)[0].base);  // 101 ticks: full
+}

@@ -62,7 +62,7 @@ TEST_CASE("full and delta snapshots reconstruct the quantized state exactly", "[
       if (i == 9) s.players.pop_back();                             // a player leaves
       if (i == 11) s.phase = Phase::shop, s.level = 8;
       if (i == 12) s.balls[0].mass = 41, s.balls[0].radius = 16;    // bought mass
-      s.events.push_back({s.tick, EventKind::rocket_fired, 1, 900, 0});
+      s.events.push_back({s.tick, s.tick, EventKind::rocket_fired, 1, 900, 0});
       const auto parts = tx.encode(s, enc);
       REQUIRE(!parts.empty());
       CHECK(parts[0].base.has_value());
@@ -97,7 +97,7 @@ TEST_CASE("older and duplicate parts are stale", "[protocol][snapshot]") {
 TEST_CASE("every part of a large snapshot fits a datagram", "[protocol][snapshot]") {
   for (Encoding enc : {Encoding::json, Encoding::msgpack}) {
     Snapshot s = test::sample_snapshot(8, 48);
-    for (int i = 0; i < 200; ++i) s.events.push_back({s.tick, EventKind::enemy_fell, 1, 2, 3});
+    for (int i = 0; i < 200; ++i) s.events.push_back({static_cast<std::uint32_t>(s.tick + i), s.tick, EventKind::enemy_fell, 1, 2, 3});
     const auto parts = split_snapshot(make_snapshot_msg(s, nullptr), enc);
     REQUIRE(parts.size() >= 2);
     for (const auto& p : parts) {

@@ -68,6 +68,9 @@ class ClientEndpoint {
   std::vector<Result> take_results();
   // Complete snapshots, newest last (older ones that arrive late are dropped).
   std::vector<Snapshot> take_snapshots();
+  // The match's events, each exactly once, in seq order (however often snapshots repeat
+  // them).
+  std::vector<Event> take_events() { return snapshots_.take_events(); }
 
   ClientState state() const { return state_; }
   const std::optional<Welcome>& welcome() const { return welcome_; }

@@ -38,6 +38,9 @@ struct ServerConfig {
   // An input frame more than this many sequence numbers ahead of the last one applied is
   // ignored (PROTOCOL.md 4.5).
   std::uint32_t max_input_lead = 1024;
+  // A client whose newest acknowledged snapshot is older than this gets a full snapshot
+  // instead of a delta (the host sets one second of ticks).
+  std::uint32_t snapshot_max_base_age_ticks = 100;
   // Sessions kept at most (seated players plus players who quit and keep their progress
   // for the reconnect window).
   std::size_t max_sessions() const { return 4 * static_cast<std::size_t>(max_players); }

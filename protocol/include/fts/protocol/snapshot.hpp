@@ -65,6 +65,7 @@ enum class EventKind : std::uint8_t {
 };
 
 struct Event {
+  std::uint32_t seq = 0;  // 1, 2, 3, ... per match: each event's identity on the wire
   std::uint32_t tick = 0;
   EventKind kind = EventKind::enemy_fell;
   std::uint32_t a = 0;
@@ -80,7 +81,7 @@ struct Snapshot {
   std::uint32_t level = 0;
   std::vector<BallState> balls;      // sorted by id
   std::vector<PlayerState> players;  // sorted by id
-  std::vector<Event> events;         // recent events, oldest first
+  std::vector<Event> events;         // recent events, oldest first (ascending seq)
 
   bool operator==(const Snapshot&) const = default;
 };

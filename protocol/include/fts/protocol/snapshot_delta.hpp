@@ -37,6 +37,10 @@ class SnapshotSender {
  public:
   static constexpr std::size_t kHistory = 64;
 
+  // A delta is made only against a base at most this many ticks old (default: 1 s at
+  // 100 Hz); a client whose acknowledgements lag further gets a full snapshot.
+  explicit SnapshotSender(std::uint32_t max_base_age_ticks = 100) : max_base_age_ticks_(max_base_age_ticks) {}
+
   // The parts to send for `current` (delta against the acknowledged snapshot if it is
   // still in the history, else full).
   std::vector<SnapshotMsg> encode(const Snapshot& current, Encoding encoding,
@@ -47,6 +51,7 @@ class SnapshotSender {
   void reset() { history_.clear(); acked_.reset(); }
 
  private:
+  std::uint32_t max_base_age_ticks_;
   std::deque<Snapshot> history_;
   std::optional<std::uint32_t> acked_;
 };
@@ -64,12 +69,18 @@ class SnapshotReceiver {
   // Tick of the latest complete snapshot (0: none yet): what the client acknowledges.
   std::uint32_t latest_tick() const { return latest_ ? latest_->tick : 0; }
   const Snapshot* latest() const { return latest_ ? &*latest_ : nullptr; }
+  // Events of the snapshots accepted so far that were not taken before, each exactly
+  // once, in seq order (a delta repeats events while its base lags; a full snapshot
+  // repeats the recent window).
+  std::vector<Event> take_events();
   void reset() { history_.clear(); pending_.clear(); latest_.reset(); }
 
  private:
   std::map<std::uint32_t, Snapshot> history_;
   std::map<std::uint32_t, std::vector<std::optional<SnapshotMsg>>> pending_;
   std::optional<Snapshot> latest_;
+  std::vector<Event> new_events_;
+  std::uint32_t delivered_event_seq_ = 0;
 };
 
 }  // namespace fts::protocol
