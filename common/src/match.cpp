@@ -92,6 +92,48 @@ void handle_leaves(MatchState& s, std::vector<PlayerId> leaves, std::vector<Even
   }
 }
 
+// Players who hold a seat: everyone but those who quit (their progress waits for them).
+std::int64_t seated_players(const MatchState& s) {
+  return std::count_if(s.players.begin(), s.players.end(), [](const Player& p) { return !p.parked; });
+}
+
+// A name no other player of the match has: "ann", then "ann-2", "ann-3", ... (cut so
+// that the whole stays within 16 characters).
+std::string unique_name(const MatchState& s, const std::string& name) {
+  auto taken = [&](const std::string& n) {
+    return std::any_of(s.players.begin(), s.players.end(), [&](const Player& p) { return p.name == n; });
+  };
+  if (!taken(name)) return name;
+  for (int i = 2;; ++i) {
+    const std::string suffix = "-" + std::to_string(i);
+    const std::string candidate = name.substr(0, 16 - std::min<std::size_t>(16, suffix.size())) + suffix;
+    if (!taken(candidate)) return candidate;
+  }
+}
+
+void handle_presence(MatchState& s, const TickInputs& in) {
+  for (PlayerId id : in.away)
+    if (Player* p = find_player(s, id)) p->connected = false;
+  for (PlayerId id : in.quit) {
+    Player* p = find_player(s, id);
+    if (!p) continue;
+    p->connected = false;
+    p->parked = true;
+    p->ready = false;
+    p->respawn_tick = -1;
+    if (p->ball) detail::remove_ball(s, p->ball);  // leaves the field; no life is lost
+  }
+  for (PlayerId id : in.back) {
+    Player* p = find_player(s, id);
+    if (!p) continue;
+    p->connected = true;
+    if (p->parked) {
+      p->parked = false;
+      if (s.phase == Phase::playing && p->in_match() && !p->ball) p->respawn_tick = s.tick;
+    }
+  }
+}
+
 void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Event>& out) {
   std::stable_sort(joins.begin(), joins.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
   for (const JoinRequest& j : joins) {
@@ -99,7 +141,7 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
     e.player = j.player;
     if (j.player == 0) e.text = "bad_id";
     else if (find_player(s, j.player)) e.text = "id_in_use";
-    else if (static_cast<std::int64_t>(s.players.size()) >= s.cfg.max_players) e.text = "match_full";
+    else if (seated_players(s) >= s.cfg.max_players) e.text = "match_full";
     else if (j.name.empty() || j.name.size() > 32) e.text = "bad_name";
     if (!e.text.empty()) {
       e.kind = EventKind::join_refused;
@@ -108,7 +150,7 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
     }
     Player p;
     p.id = j.player;
-    p.name = j.name;
+    p.name = unique_name(s, j.name);
     p.eco = start_economy(s.cfg);
     if (s.phase == Phase::game_over) p.eco.lives = 0;  // watches until "play again"
     auto at = std::lower_bound(s.players.begin(), s.players.end(), p.id,
@@ -166,6 +208,10 @@ bool all_ready(const MatchState& s, bool only_in_match) {
   return any;
 }
 
+bool any_ready(const MatchState& s) {
+  return std::any_of(s.players.begin(), s.players.end(), [](const Player& p) { return p.connected && p.ready; });
+}
+
 }  // namespace
 
 bool accepts_ready(const MatchState& s, const Player& p) {
@@ -178,10 +224,7 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   std::vector<Event> out;
   handle_leaves(s, in.leaves, out);
   handle_joins(s, in.joins, out);
-  for (PlayerId id : in.away)
-    if (Player* p = find_player(s, id)) p->connected = false;
-  for (PlayerId id : in.back)
-    if (Player* p = find_player(s, id)) p->connected = true;
+  handle_presence(s, in);
 
   std::vector<PlayerTick> inputs = in.players;
   std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
@@ -200,7 +243,15 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   }
   switch (s.phase) {
     case Phase::lobby:
-      if (all_ready(s, false)) detail::start_new_match(s, out);
+      if (all_ready(s, false)) {
+        detail::start_new_match(s, out);
+      } else if (!any_ready(s)) {
+        s.lobby_deadline_tick = -1;
+      } else if (s.lobby_deadline_tick < 0) {
+        s.lobby_deadline_tick = s.tick + ticks_for(s.cfg, s.cfg.lobby_timeout_s);
+      } else if (s.tick >= s.lobby_deadline_tick) {
+        detail::start_new_match(s, out);
+      }
       break;
     case Phase::shop:
       if (all_ready(s, true) || s.tick >= s.shop_deadline_tick) detail::start_level(s, s.level + 1, false, out);

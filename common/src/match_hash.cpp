@@ -22,6 +22,9 @@ std::uint64_t match_hash(const MatchState& s) {
   h.add_u64(static_cast<std::uint64_t>(s.phase));
   for (std::int64_t v : {s.tick, s.level, s.levels_cleared, s.shop_deadline_tick, s.matches_started})
     h.add_i64(v);
+  // Fields added later are mixed in only when set, so the hashes of matches that never
+  // use them (every committed golden hash) stay what they were.
+  if (s.lobby_deadline_tick >= 0) h.add_i64(s.lobby_deadline_tick);
   for (std::uint64_t w : s.rng.state()) h.add_u64(w);
   h.add_u64(s.next_ball_id);
   h.add_u64(s.players.size());
@@ -31,6 +34,7 @@ std::uint64_t match_hash(const MatchState& s) {
     add_economy(h, p.eco);
     h.add_u64(p.ready ? 1 : 0);
     h.add_u64(p.connected ? 1 : 0);
+    if (p.parked) h.add_u64(0x9a4ced);
     h.add_u64(p.ball);
     h.add_i64(p.respawn_tick);
     h.add_i64(p.next_fire_tick);

@@ -74,7 +74,7 @@ void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Ev
     p.ball = 0;
     p.respawn_tick = -1;
     p.next_fire_tick = s.tick;
-    if (!p.in_match()) continue;
+    if (!p.in_match() || p.parked) continue;
     place_player(s, p, spawn_slot(s.cfg, slot++, k));
   }
   const std::int64_t n = enemy_count_for_players(level, k, s.cfg);
@@ -103,6 +103,7 @@ void start_new_match(MatchState& s, std::vector<Event>& out) {
     p.ready = false;
   }
   s.levels_cleared = 0;
+  s.lobby_deadline_tick = -1;
   ++s.matches_started;
   start_level(s, 1, false, out);
 }

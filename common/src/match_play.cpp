@@ -135,9 +135,10 @@ void expire_rockets(MatchState& s) {
 }
 
 void check_level_end(MatchState& s, std::vector<Event>& out) {
-  bool anyone = false, on_platform = false, enemies = false;
+  bool anyone = false, active = false, on_platform = false, enemies = false;
   for (const Player& p : s.players) {
     anyone = anyone || p.in_match();
+    active = active || (p.in_match() && !p.parked);
     on_platform = on_platform || p.ball != 0;
   }
   for (const auto& [id, b] : s.bodies) enemies = enemies || b.kind == BodyKind::enemy;
@@ -147,6 +148,8 @@ void check_level_end(MatchState& s, std::vector<Event>& out) {
     e.kind = EventKind::game_over;
     e.level = s.level;
     out.push_back(e);
+  } else if (!active) {
+    // Everyone still in the match quit: the level waits for one of them to come back.
   } else if (!enemies) {
     for (Player& p : s.players) {
       p.ready = false;

@@ -41,7 +41,7 @@ const FieldDef kFields[] = {
     FTS_F(price_speed_growth), FTS_F(speed_upgrade_factor), FTS_F(price_accel), FTS_F(price_accel_growth),
     FTS_F(accel_upgrade_factor), FTS_F(price_rockets), FTS_F(price_life), FTS_F(price_life_growth),
     FTS_F(price_multiplier), FTS_F(price_multiplier_growth), FTS_F(multiplier_upgrade_factor), FTS_F(price_bank),
-    FTS_F(shop_timeout_s), FTS_F(rocket_cooldown_s), FTS_F(rocket_mass), FTS_F(rocket_radius_u),
+    FTS_F(shop_timeout_s), FTS_F(lobby_timeout_s), FTS_F(rocket_cooldown_s), FTS_F(rocket_mass), FTS_F(rocket_radius_u),
     FTS_F(rocket_speed_factor), FTS_F(rocket_lifetime_s), FTS_F(coin_cap), FTS_F(multiplier_cap),
     FTS_F(player_vmax_cap_u_per_s), FTS_F(player_accel_cap_u_per_s2), FTS_F(player_mass_cap), FTS_F(lives_cap),
 };

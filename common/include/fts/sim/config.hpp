@@ -122,6 +122,9 @@ struct MatchConfig {
   double multiplier_upgrade_factor = 1.1;
   std::int64_t price_bank = 500;
   double shop_timeout_s = 30.0;
+  // The lobby starts the match when every connected player is ready, or this long after
+  // the first one became ready (an idle player does not hold the others for ever).
+  double lobby_timeout_s = 30.0;
 
   // Rockets.
   double rocket_cooldown_s = 1.0;

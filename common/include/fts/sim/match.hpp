@@ -52,6 +52,9 @@ struct TickInputs {
   // hold up the lobby or the shop ("every connected player ... is ready").
   std::vector<PlayerId> away;
   std::vector<PlayerId> back;
+  // Players who quit (bye): away, and their ball leaves the platform at once without
+  // costing a life; their progress stays until they leave or come back.
+  std::vector<PlayerId> quit;
   std::vector<PlayerTick> players;
 };
 
@@ -104,6 +107,7 @@ struct Player {
   std::int64_t next_fire_tick = 0;
   Vec2 aim{1.0, 0.0};              // last thrust direction (rockets when standing still)
   bool connected = true;           // false while its client is away (see TickInputs::away)
+  bool parked = false;             // quit: no ball, no seat, progress kept (TickInputs::quit)
   bool in_match() const { return eco.lives > 0; }
 };
 
@@ -114,6 +118,7 @@ struct MatchState {
   std::int64_t level = 0;            // current (or just completed, in the shop) level
   std::int64_t levels_cleared = 0;   // in this match
   std::int64_t shop_deadline_tick = 0;
+  std::int64_t lobby_deadline_tick = -1;  // -1: nobody ready yet (see lobby_timeout_s)
   std::int64_t matches_started = 0;
   Rng rng;
   World world;
