@@ -79,6 +79,7 @@ SnapshotMsg make_snapshot_msg(const Snapshot& current_in, const Snapshot* base_i
   m.tick = current.tick;
   m.phase = current.phase;
   m.level = current.level;
+  m.deadline_tick = current.deadline_tick;
   if (base) m.base = base->tick;
   for (const auto& b : current.balls) {
     const BallState* old = base ? find_by_id(base->balls, b.id) : nullptr;
@@ -130,6 +131,7 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, 
       part.parts = kMaxSnapshotParts;
       part.phase = message.phase;
       part.level = message.level;
+      part.deadline_tick = message.deadline_tick;
       if (out.empty()) {
         part.gone = message.gone;
         part.left = message.left;
@@ -178,6 +180,7 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   s.tick = first.tick;
   s.phase = first.phase;
   s.level = first.level;
+  s.deadline_tick = first.deadline_tick;
   s.events.clear();
   std::map<std::uint32_t, BallState> balls;
   for (const auto& b : s.balls) balls[b.id] = b;
@@ -185,7 +188,7 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   for (const auto& p : s.players) players[p.id] = p;
   for (const auto& part : parts) {
     if (part.tick != first.tick || part.base != first.base || part.parts != first.parts ||
-        part.phase != first.phase || part.level != first.level)
+        part.phase != first.phase || part.level != first.level || part.deadline_tick != first.deadline_tick)
       return Reject::garbage;
     for (auto id : part.gone) balls.erase(id);
     for (auto id : part.left) players.erase(id);

@@ -122,6 +122,7 @@ void to_json(json& j, const SnapshotMsg& m) {
            {"balls", std::move(balls)},
            {"players", std::move(players)}};
   if (m.base) j["base"] = *m.base;
+  if (m.deadline_tick) j["dl"] = m.deadline_tick;
   if (!m.gone.empty()) j["gone"] = m.gone;
   if (!m.left.empty()) j["left"] = m.left;
   if (!m.events.empty()) j["events"] = std::move(events);
@@ -143,6 +144,7 @@ void from_json(const json& j, SnapshotMsg& m) {
     if (phase == kPhaseNames[i]) m.phase = static_cast<Phase>(i), known = true;
   if (!known) fail(Reject::out_of_range);
   m.level = as_u32(field(j, "level"), 1'000'000);
+  if (const json* v = optional_field(j, "dl")) m.deadline_tick = as_u32(*v);
   for (const auto& b : as_array(field(j, "balls"), kMaxBallsPerMessage)) {
     m.balls.push_back(ball_from_json(b));
     if (!m.base && !m.balls.back().full) fail(Reject::out_of_range);  // full needs full entries

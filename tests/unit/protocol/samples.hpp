@@ -81,6 +81,7 @@ inline std::vector<Message> all_messages() {
   full.tick = 42;
   full.phase = Phase::shop;
   full.level = 3;
+  full.deadline_tick = 3042;  // the shop closes in 30 s
   full.balls.push_back({7, true, 800, 2400, -16, 32, 256, 640, BallKind::player, 1});
   PlayerEntry p;
   p.id = 1;

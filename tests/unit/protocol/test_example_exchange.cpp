@@ -54,7 +54,7 @@ TEST_CASE("example exchange", "[.example]") {
   client.send_command(CommandOp::buy, 'm', now);
   pump();
   for (auto& pc : server.take_commands())
-    server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass: 42 -> 43", now);
+    server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass: 41 -> 42", now);
   pump();
   now += 40;
   s = advance(s, 5, 0.05);

@@ -144,6 +144,7 @@ struct SnapshotMsg {
   std::uint32_t parts = 1;
   Phase phase = Phase::lobby;
   std::uint32_t level = 0;
+  std::uint32_t deadline_tick = 0;   // 0: no countdown (absent on the wire)
   std::vector<BallEntry> balls;      // new or changed balls of this part
   std::vector<std::uint32_t> gone;   // balls of the base that no longer exist
   std::vector<PlayerEntry> players;  // new or changed players of this part

@@ -79,6 +79,9 @@ struct Snapshot {
   std::uint32_t tick = 0;
   Phase phase = Phase::lobby;
   std::uint32_t level = 0;
+  // The tick at which the lobby or the shop ends without waiting any longer (0: no
+  // countdown running): a client shows (deadline_tick - tick) / tick_rate_hz seconds.
+  std::uint32_t deadline_tick = 0;
   std::vector<BallState> balls;      // sorted by id
   std::vector<PlayerState> players;  // sorted by id
   std::vector<Event> events;         // recent events, oldest first (ascending seq)
