@@ -78,6 +78,7 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
   } else {
     return OptionError{"unknown setting " + source};
   }
+  o.given.insert(key);
   return std::nullopt;
 }
 
