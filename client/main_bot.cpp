@@ -7,7 +7,10 @@
 #include <memory>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "bot/bot.hpp"
+#include "fts/io/address.hpp"
 #include "net/asio.hpp"
 
 namespace {
@@ -41,69 +44,78 @@ struct Args {
   bool probe = false;
 };
 
-bool split_host_port(const std::string& s, Args& a) {
-  const auto colon = s.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == s.size()) return false;
-  a.host = s.substr(0, colon);
-  a.port = s.substr(colon + 1);
-  if (a.host.size() > 2 && a.host.front() == '[' && a.host.back() == ']') a.host = a.host.substr(1, a.host.size() - 2);
-  return true;
-}
-
 std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::optional<std::string> {
-      if (i + 1 >= argc) return std::nullopt;
-      return std::string(argv[++i]);
-    };
-    std::optional<std::string> v;
-    if (k == "--help" || k == "-h") return std::string("help");
-    if (k == "--connect" || k == "--probe") {
-      if (!(v = value()) || !split_host_port(*v, a)) return k + " needs HOST:PORT";
-      a.probe = k == "--probe";
-    } else if (k == "--name") {
-      if (!(v = value()) || v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
-      a.name = *v;
-    } else if (k == "--count") {
-      if (!(v = value())) return std::string("--count needs a number");
-      a.count = std::atoi(v->c_str());
-      if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
-    } else if (k == "--behavior") {
-      if (!(v = value())) return std::string("--behavior needs a value");
-      auto b = fts::bot::parse_behavior(*v);
-      if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
-      a.behavior = *b;
-    } else if (k == "--script") {
-      if (!(v = value())) return std::string("--script needs a file");
-      a.script_path = *v;
-    } else if (k == "--duration") {
-      if (!(v = value())) return std::string("--duration needs seconds");
-      char* end = nullptr;
-      a.duration_s = std::strtod(v->c_str(), &end);
-      if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
-    } else if (k == "--encoding") {
-      if (!(v = value()) || (*v != "json" && *v != "msgpack")) return std::string("--encoding must be json or msgpack");
-      a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
-    } else if (k == "--seed") {
-      if (!(v = value())) return std::string("--seed needs a number");
-      a.seed = std::strtoull(v->c_str(), nullptr, 10);
-    } else if (k == "--token") {
-      if (!(v = value())) return std::string("--token needs a value");
-      a.token = *v;
-    } else if (k == "--token-file") {
-      if (!(v = value())) return std::string("--token-file needs a file");
-      a.token_file = *v;
-    } else if (k == "--protocol-version") {  // for tests of the server's version refusal
-      if (!(v = value())) return std::string("--protocol-version needs a number");
-      a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
-    } else if (k == "--report") {
-      if (!(v = value())) return std::string("--report needs a file or -");
-      a.report = *v;
-    } else {
-      return "unknown flag " + k;
-    }
+  // Each value flag and the message for a missing value.
+  const std::pair<const char*, const char*> flags[] = {
+      {"--connect", "--connect needs HOST:PORT"}, {"--probe", "--probe needs HOST:PORT"},
+      {"--name", "--name needs 1..12 characters"}, {"--count", "--count needs a number"},
+      {"--behavior", "--behavior needs a value"}, {"--script", "--script needs a file"},
+      {"--duration", "--duration needs seconds"}, {"--encoding", "--encoding must be json or msgpack"},
+      {"--seed", "--seed needs a number"}, {"--token", "--token needs a value"},
+      {"--token-file", "--token-file needs a file"},
+      {"--protocol-version", "--protocol-version needs a number"},  // for tests of the server's version refusal
+      {"--report", "--report needs a file or -"}};
+  CLI::App app{"", "fts-bot"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  const CLI::Option* help = app.add_flag("-h,--help");
+  for (const auto& f : flags) app.add_option(f.first);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ArgumentMismatch&) {
+    // Only a flag at the very end lacks its value (any next argument is taken).
+    const std::string flag = std::string(argv[argc - 1]).substr(0, std::string(argv[argc - 1]).find('='));
+    for (const auto& [name, message] : flags)
+      if (flag == name) return std::string(message);
+    return flag + " needs a value";
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
   }
+  if (help->count() > 0) return std::string("help");
+  if (!app.remaining().empty()) return "unknown flag " + app.remaining().front();
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* o = app.get_option(flag);
+    if (o->count() == 0) return std::nullopt;
+    return o->results().back();
+  };
+  for (const char* flag : {"--connect", "--probe"}) {
+    const auto v = value(flag);
+    if (!v) continue;
+    const auto hp = fts::io::parse_host_port(*v);
+    if (!hp) return std::string(flag) + " needs HOST:PORT";
+    a.host = hp->host;
+    a.port = hp->port;
+    a.probe = std::string(flag) == "--probe";
+  }
+  if (const auto v = value("--name")) {
+    if (v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
+    a.name = *v;
+  }
+  if (const auto v = value("--count")) {
+    a.count = std::atoi(v->c_str());
+    if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
+  }
+  if (const auto v = value("--behavior")) {
+    auto b = fts::bot::parse_behavior(*v);
+    if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
+    a.behavior = *b;
+  }
+  if (const auto v = value("--script")) a.script_path = *v;
+  if (const auto v = value("--duration")) {
+    char* end = nullptr;
+    a.duration_s = std::strtod(v->c_str(), &end);
+    if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
+  }
+  if (const auto v = value("--encoding")) {
+    if (*v != "json" && *v != "msgpack") return std::string("--encoding must be json or msgpack");
+    a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
+  }
+  if (const auto v = value("--seed")) a.seed = std::strtoull(v->c_str(), nullptr, 10);
+  if (const auto v = value("--token")) a.token = *v;
+  if (const auto v = value("--token-file")) a.token_file = *v;
+  if (const auto v = value("--protocol-version")) a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
+  if (const auto v = value("--report")) a.report = *v;
   if (a.host.empty()) return std::string("--connect HOST:PORT (or --probe HOST:PORT) is required");
   return std::nullopt;
 }

@@ -13,10 +13,14 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
 
+#include <CLI/CLI.hpp>
+
+#include "fts/io/address.hpp"
 #include "fts/protocol/client.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
@@ -64,42 +68,52 @@ int usage_error(const std::string& msg) {
 
 // Returns -1 on success, else the exit code.
 int parse(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--no-kitty") {
-      o.kitty = false;
-    } else if (a == "--connect" && value(v)) {
-      const auto colon = v.rfind(':');
-      if (colon == std::string::npos || colon == 0 || colon + 1 == v.size())
-        return usage_error("--connect wants HOST:PORT, got '" + v + "'");
-      o.host = v.substr(0, colon);
-      o.port = v.substr(colon + 1);
-      if (o.host.size() > 2 && o.host.front() == '[' && o.host.back() == ']') o.host = o.host.substr(1, o.host.size() - 2);
-    } else if (a == "--name" && value(v)) {
-      o.name = v;
-    } else if (a == "--encoding" && value(v)) {
-      if (v == "json") o.encoding = proto::Encoding::json;
-      else if (v == "msgpack") o.encoding = proto::Encoding::msgpack;
-      else return usage_error("--encoding is json or msgpack, got '" + v + "'");
-    } else if ((a == "--interp-delay-ms" || a == "--fps") && value(v)) {
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      const bool fps = a == "--fps";
-      if (end == v.c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
-        return usage_error(a + (fps ? " is 1..240" : " is 0..2000") + ", got '" + v + "'");
-      (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
-    } else {
-      return usage_error("unknown or incomplete option '" + a + "'");
-    }
+  CLI::App app{"", "fts-client"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  const CLI::Option* help = app.add_flag("-h,--help");
+  const CLI::Option* no_kitty = app.add_flag("--no-kitty");
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps"}) app.add_option(flag);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ArgumentMismatch&) {
+    return usage_error("unknown or incomplete option '" + std::string(argv[argc - 1]) + "'");
+  } catch (const CLI::ParseError& e) {
+    return usage_error(e.what());
+  }
+  if (help->count() > 0) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!app.remaining().empty()) return usage_error("unknown or incomplete option '" + app.remaining().front() + "'");
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* opt = app.get_option(flag);
+    if (opt->count() == 0) return std::nullopt;
+    return opt->results().back();
+  };
+  o.kitty = no_kitty->count() == 0;
+  if (const auto v = value("--connect")) {
+    const auto hp = fts::io::parse_host_port(*v);
+    if (!hp) return usage_error("--connect wants HOST:PORT, got '" + *v + "'");
+    o.host = hp->host;
+    o.port = hp->port;
+  }
+  if (const auto v = value("--name")) o.name = *v;
+  if (const auto v = value("--encoding")) {
+    if (*v == "json") o.encoding = proto::Encoding::json;
+    else if (*v == "msgpack") o.encoding = proto::Encoding::msgpack;
+    else return usage_error("--encoding is json or msgpack, got '" + *v + "'");
+  }
+  for (const bool fps : {false, true}) {
+    const std::string flag = fps ? "--fps" : "--interp-delay-ms";
+    const auto v = value(flag);
+    if (!v) continue;
+    char* end = nullptr;
+    const long n = std::strtol(v->c_str(), &end, 10);
+    if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
+      return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
+    (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
   }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "fts/sim/bot_player.hpp"
+#include "fts/sim/percentile.hpp"
 
 namespace fts::bot {
 namespace {
@@ -36,13 +37,6 @@ const char* phase_name(protocol::Phase p) {
     case protocol::Phase::over: return "over";
   }
   return "?";
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
 }
 
 }  // namespace
@@ -372,8 +366,9 @@ nlohmann::ordered_json Bot::report() const {
   r["snapshots_received"] = snapshots_;
   const std::uint64_t expected = snapshots_ ? (last_tick_ - first_tick_) / ticks_per_snapshot_ + 1 : 0;
   r["snapshots_lost"] = expected > snapshots_ ? expected - snapshots_ : 0;
-  r["rtt_p50_ms"] = percentile(rtt_samples_, 0.5);
-  r["rtt_p99_ms"] = percentile(rtt_samples_, 0.99);
+  std::vector<double> rtt = rtt_samples_;
+  r["rtt_p50_ms"] = sim::percentile(rtt, 0.5);
+  r["rtt_p99_ms"] = sim::percentile(rtt, 0.99);
   const auto* p = me();
   r["coins"] = p ? p->coins : 0;
   r["lives"] = p ? p->lives : 0;
