@@ -11,12 +11,12 @@
 
 #include "bot/bot.hpp"
 #include "fts/io/address.hpp"
-#include "net/asio.hpp"
+#include "fts/io/udp.hpp"
 
 namespace {
 
-namespace asio = boost::asio;
-using udp = asio::ip::udp;
+namespace asio = fts::io::asio;
+using fts::io::udp;
 
 constexpr const char* kUsage =
     "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
@@ -120,12 +120,12 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
   return std::nullopt;
 }
 
+// One bot and its socket; each connection attempt of the bot gets a fresh socket.
 struct Slot {
-  explicit Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
-  udp::socket socket;
+  Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
+  fts::io::UdpSocket socket;
   fts::bot::Bot bot;
-  std::array<std::uint8_t, 2048> buffer{};
-  udp::endpoint from;
+  std::uint64_t socket_attempt = 0;
 };
 
 }  // namespace
@@ -158,14 +158,13 @@ int main(int argc, char** argv) {
     std::getline(in, a.token);
   }
   asio::io_context io;
-  boost::system::error_code ec;
-  udp::resolver resolver(io);
-  const auto results = resolver.resolve(a.host, a.port, ec);
-  if (ec || results.empty()) {
-    std::cerr << "fts-bot: cannot resolve " << a.host << ":" << a.port << ": " << ec.message() << "\n";
+  std::string why;
+  const auto resolved = fts::io::resolve(io, a.host, a.port, why);
+  if (!resolved) {
+    std::cerr << "fts-bot: cannot resolve " << a.host << ":" << a.port << ": " << why << "\n";
     return a.probe ? 1 : 2;
   }
-  const udp::endpoint server = *results.begin();
+  const udp::endpoint server = *resolved;
 
   const auto t0 = std::chrono::steady_clock::now();
   auto now_ms = [&] {
@@ -183,29 +182,29 @@ int main(int argc, char** argv) {
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
     o.protocol_version = a.protocol_version;
-    auto slot = std::make_unique<Slot>(io, std::move(o));
-    slot->socket.open(server.protocol(), ec);
-    if (ec) {
-      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
-      return 1;
-    }
-    slot->bot.start(now_ms());
-    slots.push_back(std::move(slot));
+    slots.push_back(std::make_unique<Slot>(io, std::move(o)));
+    slots.back()->bot.start(now_ms());
   }
 
-  auto flush = [&](Slot& s) {
-    for (auto& d : s.bot.take_datagrams()) s.socket.send_to(asio::buffer(d), server, 0, ec);
-  };
-  std::function<void(Slot&)> receive = [&](Slot& s) {
-    s.socket.async_receive_from(asio::buffer(s.buffer), s.from, [&, sp = &s](const boost::system::error_code& e, std::size_t n) {
-      if (e == asio::error::operation_aborted) return;
-      if (!e && sp->from == server) sp->bot.receive(std::span<const std::uint8_t>(sp->buffer.data(), n), now_ms());
-      receive(*sp);
+  // A new connection attempt (the bot's reconnect) sends from a fresh local port.
+  auto open_socket = [&](Slot& s) -> bool {
+    s.socket_attempt = s.bot.attempt();
+    if (const auto ec = s.socket.connect(server)) {
+      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
+      return false;
+    }
+    s.socket.start_receiving([&, sp = &s](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
+      sp->bot.receive(bytes, now_ms());
     });
+    return true;
+  };
+  auto flush = [&](Slot& s) {
+    if (s.bot.attempt() != s.socket_attempt && !open_socket(s)) return;
+    for (auto& d : s.bot.take_datagrams()) s.socket.send(d);
   };
   for (auto& s : slots) {
+    if (!open_socket(*s)) return 1;
     flush(*s);
-    receive(*s);
   }
 
   const double limit_s = a.probe ? 2.0 : a.duration_s;
