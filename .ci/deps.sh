@@ -2,7 +2,7 @@
 # Installs the build and test dependencies from Debian 12's packages (idempotent).
 set -euo pipefail
 packages=(build-essential cmake ninja-build ccache pkg-config
-          libboost-dev nlohmann-json3-dev libspdlog-dev catch2 libsodium-dev
+          libboost-dev nlohmann-json3-dev libspdlog-dev catch2 libsodium-dev libcli11-dev
           clang libclang-rt-14-dev tmux gnuplot-nox python3)
 missing=()
 for p in "${packages[@]}"; do

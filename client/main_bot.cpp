@@ -7,13 +7,16 @@
 #include <memory>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "bot/bot.hpp"
-#include "net/asio.hpp"
+#include "fts/io/address.hpp"
+#include "fts/io/udp.hpp"
 
 namespace {
 
-namespace asio = boost::asio;
-using udp = asio::ip::udp;
+namespace asio = fts::io::asio;
+using fts::io::udp;
 
 constexpr const char* kUsage =
     "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
@@ -41,79 +44,88 @@ struct Args {
   bool probe = false;
 };
 
-bool split_host_port(const std::string& s, Args& a) {
-  const auto colon = s.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == s.size()) return false;
-  a.host = s.substr(0, colon);
-  a.port = s.substr(colon + 1);
-  if (a.host.size() > 2 && a.host.front() == '[' && a.host.back() == ']') a.host = a.host.substr(1, a.host.size() - 2);
-  return true;
-}
-
 std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::optional<std::string> {
-      if (i + 1 >= argc) return std::nullopt;
-      return std::string(argv[++i]);
-    };
-    std::optional<std::string> v;
-    if (k == "--help" || k == "-h") return std::string("help");
-    if (k == "--connect" || k == "--probe") {
-      if (!(v = value()) || !split_host_port(*v, a)) return k + " needs HOST:PORT";
-      a.probe = k == "--probe";
-    } else if (k == "--name") {
-      if (!(v = value()) || v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
-      a.name = *v;
-    } else if (k == "--count") {
-      if (!(v = value())) return std::string("--count needs a number");
-      a.count = std::atoi(v->c_str());
-      if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
-    } else if (k == "--behavior") {
-      if (!(v = value())) return std::string("--behavior needs a value");
-      auto b = fts::bot::parse_behavior(*v);
-      if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
-      a.behavior = *b;
-    } else if (k == "--script") {
-      if (!(v = value())) return std::string("--script needs a file");
-      a.script_path = *v;
-    } else if (k == "--duration") {
-      if (!(v = value())) return std::string("--duration needs seconds");
-      char* end = nullptr;
-      a.duration_s = std::strtod(v->c_str(), &end);
-      if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
-    } else if (k == "--encoding") {
-      if (!(v = value()) || (*v != "json" && *v != "msgpack")) return std::string("--encoding must be json or msgpack");
-      a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
-    } else if (k == "--seed") {
-      if (!(v = value())) return std::string("--seed needs a number");
-      a.seed = std::strtoull(v->c_str(), nullptr, 10);
-    } else if (k == "--token") {
-      if (!(v = value())) return std::string("--token needs a value");
-      a.token = *v;
-    } else if (k == "--token-file") {
-      if (!(v = value())) return std::string("--token-file needs a file");
-      a.token_file = *v;
-    } else if (k == "--protocol-version") {  // for tests of the server's version refusal
-      if (!(v = value())) return std::string("--protocol-version needs a number");
-      a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
-    } else if (k == "--report") {
-      if (!(v = value())) return std::string("--report needs a file or -");
-      a.report = *v;
-    } else {
-      return "unknown flag " + k;
-    }
+  // Each value flag and the message for a missing value.
+  const std::pair<const char*, const char*> flags[] = {
+      {"--connect", "--connect needs HOST:PORT"}, {"--probe", "--probe needs HOST:PORT"},
+      {"--name", "--name needs 1..12 characters"}, {"--count", "--count needs a number"},
+      {"--behavior", "--behavior needs a value"}, {"--script", "--script needs a file"},
+      {"--duration", "--duration needs seconds"}, {"--encoding", "--encoding must be json or msgpack"},
+      {"--seed", "--seed needs a number"}, {"--token", "--token needs a value"},
+      {"--token-file", "--token-file needs a file"},
+      {"--protocol-version", "--protocol-version needs a number"},  // for tests of the server's version refusal
+      {"--report", "--report needs a file or -"}};
+  CLI::App app{"", "fts-bot"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  const CLI::Option* help = app.add_flag("-h,--help");
+  for (const auto& f : flags) app.add_option(f.first);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ArgumentMismatch&) {
+    // Only a flag at the very end lacks its value (any next argument is taken).
+    const std::string flag = std::string(argv[argc - 1]).substr(0, std::string(argv[argc - 1]).find('='));
+    for (const auto& [name, message] : flags)
+      if (flag == name) return std::string(message);
+    return flag + " needs a value";
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
   }
+  if (help->count() > 0) return std::string("help");
+  if (!app.remaining().empty()) return "unknown flag " + app.remaining().front();
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* o = app.get_option(flag);
+    if (o->count() == 0) return std::nullopt;
+    return o->results().back();
+  };
+  for (const char* flag : {"--connect", "--probe"}) {
+    const auto v = value(flag);
+    if (!v) continue;
+    const auto hp = fts::io::parse_host_port(*v);
+    if (!hp) return std::string(flag) + " needs HOST:PORT";
+    a.host = hp->host;
+    a.port = hp->port;
+    a.probe = std::string(flag) == "--probe";
+  }
+  if (const auto v = value("--name")) {
+    if (v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
+    a.name = *v;
+  }
+  if (const auto v = value("--count")) {
+    a.count = std::atoi(v->c_str());
+    if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
+  }
+  if (const auto v = value("--behavior")) {
+    auto b = fts::bot::parse_behavior(*v);
+    if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
+    a.behavior = *b;
+  }
+  if (const auto v = value("--script")) a.script_path = *v;
+  if (const auto v = value("--duration")) {
+    char* end = nullptr;
+    a.duration_s = std::strtod(v->c_str(), &end);
+    if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
+  }
+  if (const auto v = value("--encoding")) {
+    if (*v != "json" && *v != "msgpack") return std::string("--encoding must be json or msgpack");
+    a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
+  }
+  if (const auto v = value("--seed")) a.seed = std::strtoull(v->c_str(), nullptr, 10);
+  if (const auto v = value("--token")) a.token = *v;
+  if (const auto v = value("--token-file")) a.token_file = *v;
+  if (const auto v = value("--protocol-version")) a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
+  if (const auto v = value("--report")) a.report = *v;
   if (a.host.empty()) return std::string("--connect HOST:PORT (or --probe HOST:PORT) is required");
   return std::nullopt;
 }
 
+// One bot and its socket; each connection attempt of the bot gets a fresh socket.
 struct Slot {
-  explicit Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
-  udp::socket socket;
+  Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
+  fts::io::UdpSocket socket;
   fts::bot::Bot bot;
-  std::array<std::uint8_t, 2048> buffer{};
-  udp::endpoint from;
+  std::uint64_t socket_attempt = 0;
 };
 
 }  // namespace
@@ -146,14 +158,13 @@ int main(int argc, char** argv) {
     std::getline(in, a.token);
   }
   asio::io_context io;
-  boost::system::error_code ec;
-  udp::resolver resolver(io);
-  const auto results = resolver.resolve(a.host, a.port, ec);
-  if (ec || results.empty()) {
-    std::cerr << "fts-bot: cannot resolve " << a.host << ":" << a.port << ": " << ec.message() << "\n";
+  std::string why;
+  const auto resolved = fts::io::resolve(io, a.host, a.port, why);
+  if (!resolved) {
+    std::cerr << "fts-bot: cannot resolve " << a.host << ":" << a.port << ": " << why << "\n";
     return a.probe ? 1 : 2;
   }
-  const udp::endpoint server = *results.begin();
+  const udp::endpoint server = *resolved;
 
   const auto t0 = std::chrono::steady_clock::now();
   auto now_ms = [&] {
@@ -171,29 +182,29 @@ int main(int argc, char** argv) {
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
     o.protocol_version = a.protocol_version;
-    auto slot = std::make_unique<Slot>(io, std::move(o));
-    slot->socket.open(server.protocol(), ec);
-    if (ec) {
-      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
-      return 1;
-    }
-    slot->bot.start(now_ms());
-    slots.push_back(std::move(slot));
+    slots.push_back(std::make_unique<Slot>(io, std::move(o)));
+    slots.back()->bot.start(now_ms());
   }
 
-  auto flush = [&](Slot& s) {
-    for (auto& d : s.bot.take_datagrams()) s.socket.send_to(asio::buffer(d), server, 0, ec);
-  };
-  std::function<void(Slot&)> receive = [&](Slot& s) {
-    s.socket.async_receive_from(asio::buffer(s.buffer), s.from, [&, sp = &s](const boost::system::error_code& e, std::size_t n) {
-      if (e == asio::error::operation_aborted) return;
-      if (!e && sp->from == server) sp->bot.receive(std::span<const std::uint8_t>(sp->buffer.data(), n), now_ms());
-      receive(*sp);
+  // A new connection attempt (the bot's reconnect) sends from a fresh local port.
+  auto open_socket = [&](Slot& s) -> bool {
+    s.socket_attempt = s.bot.attempt();
+    if (const auto ec = s.socket.connect(server)) {
+      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
+      return false;
+    }
+    s.socket.start_receiving([&, sp = &s](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
+      sp->bot.receive(bytes, now_ms());
     });
+    return true;
+  };
+  auto flush = [&](Slot& s) {
+    if (s.bot.attempt() != s.socket_attempt && !open_socket(s)) return;
+    for (auto& d : s.bot.take_datagrams()) s.socket.send(d);
   };
   for (auto& s : slots) {
+    if (!open_socket(*s)) return 1;
     flush(*s);
-    receive(*s);
   }
 
   const double limit_s = a.probe ? 2.0 : a.duration_s;

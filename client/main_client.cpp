@@ -1,32 +1,32 @@
 // fts-client: the terminal game. Drives the protocol's client endpoint over one UDP
 // socket, reads keys from the raw terminal, and draws at its own frame rate a fixed delay
-// behind the newest snapshot. The only translation unit of the client with Asio in it.
-#include <utility>
-#define BOOST_ASIO_DISABLE_CO_AWAIT 1
-#include <boost/asio.hpp>
-
-#include <unistd.h>
-
+// behind the newest snapshot. The only translation unit of the client with Asio in it
+// (through fts_net's socket).
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <map>
-#include <set>
+#include <optional>
 #include <string>
-#include <tuple>
 
-#include "fts/protocol/client.hpp"
+#include <CLI/CLI.hpp>
+
+#include "fts/io/address.hpp"
+#include "fts/io/udp.hpp"
+#include "fts/protocol/connection.hpp"
+#include "term/io.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
+#include "ui/link_meters.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 
-namespace asio = boost::asio;
-using asio::ip::udp;
+namespace asio = fts::io::asio;
+using fts::io::udp;
 namespace proto = fts::protocol;
 using namespace fts::client;
 
@@ -64,42 +64,52 @@ int usage_error(const std::string& msg) {
 
 // Returns -1 on success, else the exit code.
 int parse(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--no-kitty") {
-      o.kitty = false;
-    } else if (a == "--connect" && value(v)) {
-      const auto colon = v.rfind(':');
-      if (colon == std::string::npos || colon == 0 || colon + 1 == v.size())
-        return usage_error("--connect wants HOST:PORT, got '" + v + "'");
-      o.host = v.substr(0, colon);
-      o.port = v.substr(colon + 1);
-      if (o.host.size() > 2 && o.host.front() == '[' && o.host.back() == ']') o.host = o.host.substr(1, o.host.size() - 2);
-    } else if (a == "--name" && value(v)) {
-      o.name = v;
-    } else if (a == "--encoding" && value(v)) {
-      if (v == "json") o.encoding = proto::Encoding::json;
-      else if (v == "msgpack") o.encoding = proto::Encoding::msgpack;
-      else return usage_error("--encoding is json or msgpack, got '" + v + "'");
-    } else if ((a == "--interp-delay-ms" || a == "--fps") && value(v)) {
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      const bool fps = a == "--fps";
-      if (end == v.c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
-        return usage_error(a + (fps ? " is 1..240" : " is 0..2000") + ", got '" + v + "'");
-      (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
-    } else {
-      return usage_error("unknown or incomplete option '" + a + "'");
-    }
+  CLI::App app{"", "fts-client"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  const CLI::Option* help = app.add_flag("-h,--help");
+  const CLI::Option* no_kitty = app.add_flag("--no-kitty");
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps"}) app.add_option(flag);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ArgumentMismatch&) {
+    return usage_error("unknown or incomplete option '" + std::string(argv[argc - 1]) + "'");
+  } catch (const CLI::ParseError& e) {
+    return usage_error(e.what());
+  }
+  if (help->count() > 0) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!app.remaining().empty()) return usage_error("unknown or incomplete option '" + app.remaining().front() + "'");
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* opt = app.get_option(flag);
+    if (opt->count() == 0) return std::nullopt;
+    return opt->results().back();
+  };
+  o.kitty = no_kitty->count() == 0;
+  if (const auto v = value("--connect")) {
+    const auto hp = fts::io::parse_host_port(*v);
+    if (!hp) return usage_error("--connect wants HOST:PORT, got '" + *v + "'");
+    o.host = hp->host;
+    o.port = hp->port;
+  }
+  if (const auto v = value("--name")) o.name = *v;
+  if (const auto v = value("--encoding")) {
+    if (*v == "json") o.encoding = proto::Encoding::json;
+    else if (*v == "msgpack") o.encoding = proto::Encoding::msgpack;
+    else return usage_error("--encoding is json or msgpack, got '" + *v + "'");
+  }
+  for (const bool fps : {false, true}) {
+    const std::string flag = fps ? "--fps" : "--interp-delay-ms";
+    const auto v = value(flag);
+    if (!v) continue;
+    char* end = nullptr;
+    const long n = std::strtol(v->c_str(), &end, 10);
+    if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
+      return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
+    (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
   }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
@@ -112,39 +122,19 @@ std::uint64_t now_ms() {
   return static_cast<std::uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
 }
 
-// Snapshots lost, from the gaps in their ticks, over the last few seconds.
-struct LossMeter {
-  std::uint32_t last_tick = 0;
-  double expected = 0, received = 0;
-  void on_snapshot(std::uint32_t tick, double ticks_per_snapshot) {
-    if (last_tick != 0 && tick > last_tick && ticks_per_snapshot > 0) {
-      expected += std::max(1.0, (tick - last_tick) / ticks_per_snapshot);
-      received += 1;
-      if (expected > 100) {  // keep it recent
-        expected /= 2;
-        received /= 2;
-      }
-    }
-    last_tick = tick;
-  }
-  double percent() const { return expected > 0 ? std::max(0.0, 100.0 * (1.0 - received / expected)) : -1; }
-};
-
+// The game loop: keys in, commands and input out through the connection, snapshots in,
+// a frame drawn. The socket is fts_net's, the reconnect rule the protocol's
+// ClientConnection, and the loss meter, event feed and input pacing are ui/ pieces.
 class Game {
  public:
   Game(asio::io_context& io, Options o, udp::endpoint server)
-      : io_(io), opts_(std::move(o)), socket_(io), timer_(io), server_(server) {
-    socket_.open(server.protocol());
-    socket_.connect(server);
+      : io_(io), opts_(std::move(o)), socket_(io), timer_(io), server_(server),
+        conn_(connection_config(opts_), /*resume_when_lost=*/true) {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
-    proto::ClientConfig cfg;
-    cfg.name = opts_.name;
-    cfg.encoding = opts_.encoding;
-    endpoint_ = proto::ClientEndpoint(cfg);
-    endpoint_.connect(now_ms());
+    conn_.connect(now_ms());
     last_rx_ms_ = now_ms();
+    open_socket();
     flush();
-    receive();
     frame();
   }
 
@@ -152,39 +142,33 @@ class Game {
   const std::string& exit_message() const { return exit_message_; }
 
  private:
-  void receive() {
-    socket_.async_receive(asio::buffer(rx_), [this](boost::system::error_code ec, std::size_t n) {
-      if (done_ || ec == asio::error::operation_aborted) return;  // closed: a new socket reads
-      if (!ec) {
-        last_rx_ms_ = now_ms();
-        endpoint_.receive(std::span<const std::uint8_t>(rx_.data(), n), last_rx_ms_);
-      }
-      receive();  // errors such as "connection refused" (ICMP) just mean: not there yet
+  static proto::ClientConfig connection_config(const Options& o) {
+    proto::ClientConfig cfg;
+    cfg.name = o.name;
+    cfg.encoding = o.encoding;
+    return cfg;
+  }
+
+  // A fresh local port for each attempt: to the server a reconnect is a new address
+  // carrying our token, which takes the player back with a fresh session (the same
+  // address would get the old session's answer again).
+  void open_socket() {
+    socket_attempt_ = conn_.attempt();
+    if (const auto ec = socket_.connect(server_)) throw std::runtime_error("cannot open a socket: " + ec.message());
+    socket_.start_receiving([this](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
+      if (done_) return;
+      last_rx_ms_ = now_ms();
+      conn_.endpoint().receive(bytes, last_rx_ms_);
     });
   }
 
-  // A fresh local port for a reconnect: to the server it is a new address carrying our
-  // token, which takes the player back with a fresh session (the same address would get
-  // the old session's answer again).
-  void new_socket() {
-    boost::system::error_code ec;
-    socket_.close(ec);
-    socket_ = udp::socket(io_);
-    socket_.open(server_.protocol());
-    socket_.connect(server_);
-    receive();
-  }
-
   void flush() {
-    for (auto& d : endpoint_.take_datagrams()) {
-      boost::system::error_code ec;
-      socket_.send(asio::buffer(d), 0, ec);  // a lost datagram is the protocol's business
-    }
+    for (auto& d : conn_.endpoint().take_datagrams()) socket_.send(d);
   }
 
   void finish(int code, std::string message) {
-    if (endpoint_.state() == proto::ClientState::connected) {
-      endpoint_.disconnect(now_ms());
+    if (conn_.state() == proto::ClientState::connected) {
+      conn_.endpoint().disconnect(now_ms());
       flush();
     }
     done_ = true;
@@ -200,7 +184,8 @@ class Game {
     if (const int sig = term::stop_signal()) return finish(0, "stopped by signal " + std::to_string(sig));
     read_keys(now);
     if (done_) return;
-    endpoint_.update(now);
+    conn_.update(now);
+    if (conn_.attempt() != socket_attempt_) open_socket();
     absorb(now);
     if (done_) return;
     send_input(now);
@@ -218,25 +203,12 @@ class Game {
   }
 
   void read_keys(std::uint64_t now) {
-    char buf[256];
-    std::vector<KeyEvent> events;
-    for (;;) {
-      const ssize_t n = ::read(STDIN_FILENO, buf, sizeof buf);
-      if (n <= 0) break;
-      auto more = keys_.feed(std::string_view(buf, static_cast<std::size_t>(n)));
-      events.insert(events.end(), more.begin(), more.end());
-      last_key_ms_ = now;
-    }
-    if (keys_.pending() && now - last_key_ms_ > 50) {
-      auto more = keys_.flush();
-      events.insert(events.end(), more.begin(), more.end());
-    }
-    for (const KeyEvent& e : events) handle_key(e, now);
+    for (const KeyEvent& e : keys_.read(now)) handle_key(e, now);
   }
 
   void handle_key(const KeyEvent& e, std::uint64_t now) {
     const Action a = action_of(e, phase());
-    const bool connected = endpoint_.state() == proto::ClientState::connected;
+    const bool connected = conn_.state() == proto::ClientState::connected;
     switch (a.kind) {
       case ActionKind::quit: return finish(0, "");
       case ActionKind::move:
@@ -248,14 +220,14 @@ class Game {
         // ended must not spend coins. Purchases count from a moment after the shop opens.
         if (now - shop_opened_ms_ < kShopGraceMs) break;
         if (connected) {
-          const std::uint32_t rid = endpoint_.send_command(proto::CommandOp::buy, a.item, now);
+          const std::uint32_t rid = conn_.endpoint().send_command(proto::CommandOp::buy, a.item, now);
           pending_buys_[rid] = a.item;
           view_.shop_result = std::string("Buying ") + a.item + "...";
         }
         break;
       case ActionKind::ready:
         if (connected)
-          endpoint_.send_command(phase() == proto::Phase::over ? proto::CommandOp::play_again : proto::CommandOp::ready,
+          conn_.endpoint().send_command(phase() == proto::Phase::over ? proto::CommandOp::play_again : proto::CommandOp::ready,
                                  0, now);
         break;
       case ActionKind::none: break;
@@ -263,7 +235,7 @@ class Game {
   }
 
   void send_input(std::uint64_t now) {
-    if (endpoint_.state() != proto::ClientState::connected) return;
+    if (conn_.state() != proto::ClientState::connected) return;
     proto::InputFrame f;
     if (phase() == proto::Phase::play) {
       f.move_x = static_cast<std::int8_t>(hold_.move_x(now));
@@ -272,40 +244,33 @@ class Game {
       hold_.release_all();
     }
     f.fire = fire_;
-    const bool changed = f.move_x != last_input_.move_x || f.move_y != last_input_.move_y || f.fire;
-    if (changed || now - last_input_ms_ >= 50) {
-      endpoint_.send_input(f, now);
-      last_input_ = f;
-      last_input_ms_ = now;
+    if (const auto send = pacer_.pace(f, now)) {
+      conn_.endpoint().send_input(*send, now);
       fire_ = false;
     }
   }
 
   void absorb(std::uint64_t now) {
     using S = proto::ClientState;
-    if (endpoint_.state() == S::connected && endpoint_.welcome()) {
-      const proto::Welcome& w = *endpoint_.welcome();
-      if (!welcome_seen_) {
-        welcome_seen_ = true;
-        token_ = w.token;
-        view_.my_player_id = w.player_id;
-        view_.arena_width_u = w.arena_width_u;
-        view_.arena_height_u = w.arena_height_u;
-        clock_.set_tick_rate(w.tick_rate_hz);
-        window_ms_ = w.reconnect_window_ms;
-        note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
-      }
-      lost_since_ms_ = 0;
+    proto::ClientEndpoint& endpoint = conn_.endpoint();
+    if (conn_.state() == S::connected && endpoint.welcome() && noted_attempt_ != conn_.attempt()) {
+      noted_attempt_ = conn_.attempt();
+      const proto::Welcome& w = *endpoint.welcome();
+      view_.my_player_id = w.player_id;
+      view_.arena_width_u = w.arena_width_u;
+      view_.arena_height_u = w.arena_height_u;
+      clock_.set_tick_rate(w.tick_rate_hz);
+      note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
     }
-    for (auto& s : endpoint_.take_snapshots()) {
+    for (auto& s : endpoint.take_snapshots()) {
       if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
       clock_.observe(s.tick, now);
-      if (const auto& w = endpoint_.welcome(); w && w->snapshot_rate_hz > 0)
+      if (const auto& w = endpoint.welcome(); w && w->snapshot_rate_hz > 0)
         loss_.on_snapshot(s.tick, static_cast<double>(w->tick_rate_hz) / w->snapshot_rate_hz);
       read_events(s);
       buffer_.push(std::move(s));
     }
-    for (const auto& r : endpoint_.take_results()) {
+    for (const auto& r : endpoint.take_results()) {
       auto it = pending_buys_.find(r.command_rid);
       if (it == pending_buys_.end()) continue;
       const std::string msg = sanitize(r.message, 120);
@@ -313,32 +278,22 @@ class Game {
                                : "Cannot buy '" + std::string(1, it->second) + "': " + (msg.empty() ? sanitize(r.code) : msg);
       pending_buys_.erase(it);
     }
-    // Connection trouble: show it after 2 s of silence, resume with the token.
-    const S st = endpoint_.state();
+    // Connection trouble: show it after 2 s of silence; the connection resumes with the
+    // token by itself (ClientConnection) until the reconnect window has passed.
+    const S st = conn_.state();
     if (st == S::refused) {
-      const auto& err = endpoint_.error();
+      const auto& err = endpoint.error();
       return finish(1, "server: " + (err ? sanitize(err->message, 200) : std::string("refused")));
     }
-    if (token_.empty()) {
+    if (conn_.token().empty()) {
       if (st == S::timed_out) return finish(1, "no answer from the server at " + opts_.host + ":" + opts_.port);
       view_.status = "connecting to " + opts_.host + ":" + opts_.port + "...";
       return;
     }
+    if (conn_.gone()) return finish(1, "connection lost: the server is gone");
     const bool silent = now - last_rx_ms_ > 2000;
-    if (st == S::timed_out || st == S::disconnected) {
-      if (lost_since_ms_ == 0) lost_since_ms_ = now;
-      if (now - lost_since_ms_ > window_ms_) return finish(1, "connection lost: the server is gone");
-      proto::ClientConfig cfg;
-      cfg.name = opts_.name;
-      cfg.encoding = opts_.encoding;
-      cfg.token = token_;
-      endpoint_ = proto::ClientEndpoint(cfg);
-      endpoint_.connect(now);
-      welcome_seen_ = false;
-      new_socket();
-    }
-    view_.status = (silent || endpoint_.state() != S::connected) ? "connection lost, reconnecting..." : "";
-    view_.ping_ms = endpoint_.stats().rtt_ms > 0 ? endpoint_.stats().rtt_ms : -1;
+    view_.status = (silent || st != S::connected) ? "connection lost, reconnecting..." : "";
+    view_.ping_ms = endpoint.stats().rtt_ms > 0 ? endpoint.stats().rtt_ms : -1;
     view_.loss_percent = loss_.percent();
   }
 
@@ -348,25 +303,16 @@ class Game {
   }
 
   void read_events(const proto::Snapshot& s) {
-    for (const auto& e : s.events) {
-      const auto key = std::make_tuple(e.tick, static_cast<int>(e.kind), e.a, e.b, e.value);
-      if (e.tick + 2000 < s.tick || !seen_.insert(key).second) continue;
+    for (const auto& e : events_.fresh(s)) {
       const std::string line = describe_event(e, s, view_.my_player_id);
       if (!line.empty()) note(line);
       if (e.kind == proto::EventKind::purchase && e.a == view_.my_player_id) view_.shop_result = line;
       if (e.kind == proto::EventKind::level_started) view_.shop_result.clear();
     }
-    while (!seen_.empty() && std::get<0>(*seen_.begin()) + 2000 < s.tick) seen_.erase(seen_.begin());
   }
 
   void draw(std::uint64_t now) {
-    TerminalSize size = term::size();
-    std::string out;
-    if (term::take_resized() || size.cols != size_.cols || size.rows != size_.rows) {
-      out += "\x1b[0m\x1b[2J";
-      last_frame_.clear();
-    }
-    size_ = size;
+    const TerminalSize size = painter_.size();
     Screen screen(size);
     if (const proto::Snapshot* newest = buffer_.newest()) {
       if (newest->phase == proto::Phase::play) {
@@ -380,41 +326,33 @@ class Game {
       proto::Snapshot empty;
       screen = render(empty, empty, 0, size, view_);
     }
-    const std::string frame = to_ansi(screen, view_.color);
-    if (frame != last_frame_) {
-      out += frame;
-      last_frame_ = frame;
-    }
-    if (!out.empty()) term::write_all(out);
+    painter_.paint(screen, view_.color);
   }
 
   double clock_rate() const {
-    const auto& w = endpoint_.welcome();
+    const auto& w = conn_.endpoint().welcome();
     return w && w->tick_rate_hz > 0 ? w->tick_rate_hz : 100.0;
   }
 
   asio::io_context& io_;
   Options opts_;
-  udp::socket socket_;
+  fts::io::UdpSocket socket_;
   asio::steady_timer timer_;
   udp::endpoint server_;
-  std::array<std::uint8_t, 2048> rx_{};
-  proto::ClientEndpoint endpoint_;
-  KeyDecoder keys_;
+  proto::ClientConnection conn_;
+  std::uint64_t socket_attempt_ = 0;  // the connection attempt the socket was opened for
+  std::uint64_t noted_attempt_ = 0;   // the attempt whose welcome was shown
+  term::KeyReader keys_;
+  term::Painter painter_;
   HoldTracker hold_;
+  InputPacer pacer_;
   SnapshotBuffer buffer_;
   ServerClock clock_;
   LossMeter loss_;
+  EventFeed events_;
   ViewState view_;
-  TerminalSize size_{0, 0};
-  std::string last_frame_;
-  std::string token_;  // the session token: a reconnect takes our player back with it
-  bool welcome_seen_ = false;
   std::map<std::uint32_t, char> pending_buys_;
-  std::set<std::tuple<std::uint32_t, int, std::uint32_t, std::uint32_t, std::int64_t>> seen_;
-  proto::InputFrame last_input_;
-  std::uint64_t last_input_ms_ = 0, last_key_ms_ = 0, last_rx_ms_ = 0, lost_since_ms_ = 0;
-  std::uint64_t window_ms_ = 60000;
+  std::uint64_t last_rx_ms_ = 0;
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
   bool fire_ = false;
@@ -429,12 +367,10 @@ int main(int argc, char** argv) {
   Options opts;
   if (const int code = parse(argc, argv, opts); code >= 0) return code;
   asio::io_context io;
-  udp::endpoint server;
-  try {
-    udp::resolver resolver(io);
-    server = *resolver.resolve(opts.host, opts.port).begin();
-  } catch (const std::exception& e) {
-    std::cerr << "fts-client: cannot resolve " << opts.host << ":" << opts.port << ": " << e.what() << "\n";
+  std::string why;
+  const auto server = fts::io::resolve(io, opts.host, opts.port, why);
+  if (!server) {
+    std::cerr << "fts-client: cannot resolve " << opts.host << ":" << opts.port << ": " << why << "\n";
     return 1;
   }
   if (!term::enter(opts.kitty)) {
@@ -444,7 +380,7 @@ int main(int argc, char** argv) {
   int code = 0;
   std::string message;
   try {
-    Game game(io, opts, server);
+    Game game(io, opts, *server);
     io.run();
     code = game.exit_code();
     message = game.exit_message();

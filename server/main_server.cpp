@@ -3,12 +3,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "app/game_host.hpp"
 #include "app/log.hpp"
+#include "app/match_settings.hpp"
 #include "app/options.hpp"
-#include "host/match_config_json.hpp"
 #include "host/record.hpp"
 #include "host/text.hpp"
 #include "net/udp_server.hpp"
@@ -57,21 +56,10 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  sim::MatchConfig config;
-  if (!options.config_path.empty()) {
-    std::ifstream in(options.config_path);
-    if (!in) return fail("--config: cannot read " + options.config_path);
-    std::stringstream text;
-    text << in.rdbuf();
-    auto c = host::parse_match_config(text.str());
-    if (auto* err = std::get_if<std::string>(&c)) return fail(options.config_path + ": " + *err);
-    config = std::get<sim::MatchConfig>(c);
-  }
-  // Flags and environment override the file.
-  config.tick_rate_hz = options.tick_rate_hz;
-  config.max_players = options.max_players;
-  config.model = *sim::parse_model(options.model);
-  if (auto err = sim::validate(config); !err.empty()) return fail("configuration: " + err);
+  // Defaults < --config file < FTS_* variables < flags.
+  auto resolved = server::resolve_match_config(options);
+  if (auto* err = std::get_if<std::string>(&resolved)) return fail(*err);
+  const auto& config = std::get<sim::MatchConfig>(resolved);
 
   std::ofstream record;
   if (!options.record_path.empty()) {

@@ -12,7 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bot/script.hpp"
-#include "fts/protocol/client.hpp"
+#include "bot/tally.hpp"
+#include "fts/protocol/connection.hpp"
 #include "fts/sim/rng.hpp"
 
 namespace fts::bot {
@@ -30,6 +31,31 @@ struct BotOptions {
   std::uint16_t protocol_version = 0;  // 0: ours; other values test the server's refusal
 };
 
+// Where a bot is in its script, and what the script holds it to.
+struct ScriptCursor {
+  std::size_t pc = 0;  // the step being run
+  bool step_started = false;
+  std::uint64_t step_deadline_ms = 0;
+  std::uint32_t step_until_tick = 0;
+  double timeout_s = 60;          // "timeout S": how long a step may take
+  bool command_sent = false;      // the step's command is in flight
+  bool reconnect_started = false;
+  bool hunting = false;           // "hunt": the hunter's input instead of `hold`
+  protocol::InputFrame hold;      // "move": the input held until the step ends
+  bool fire_once = false;
+  bool disconnected = false;      // "disconnect": a bye we asked for is no failure
+};
+
+// The wander behavior: a random direction, held for a random 20..80 ticks.
+class Wander {
+ public:
+  protocol::InputFrame input(std::uint32_t tick, sim::Rng& rng);
+
+ private:
+  std::uint64_t until_tick_ = 0;
+  protocol::InputFrame frame_;
+};
+
 class Bot {
  public:
   explicit Bot(BotOptions options);
@@ -45,8 +71,10 @@ class Bot {
   bool finished() const { return finished_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
-  // The session token once welcomed ("" before).
-  const std::string& token() const { return token_; }
+  // The session token once welcomed ("" before, unless the options gave one).
+  const std::string& token() const { return conn_.token(); }
+  // One more for each connection attempt: the caller sends each from a fresh socket.
+  std::uint64_t attempt() const { return conn_.attempt(); }
   nlohmann::ordered_json report() const;
 
  private:
@@ -60,49 +88,28 @@ class Bot {
   double field(const std::string& name) const;
 
   BotOptions options_;
-  std::optional<protocol::ClientEndpoint> endpoint_;
+  protocol::ClientConnection conn_;
   sim::Rng rng_;
   std::optional<protocol::Snapshot> latest_;
+  Tally tally_;  // the report's figures
   std::uint32_t player_id_ = 0;
-  std::string token_;
-  std::uint32_t first_tick_ = 0, last_tick_ = 0;
   std::uint64_t last_input_ms_ = 0;
-  std::uint64_t snapshots_ = 0;
   std::uint32_t ticks_per_snapshot_ = 5;
   std::uint32_t last_event_tick_ = 0;
   std::vector<std::string> new_events_;  // names of events seen since the last update
-  std::vector<double> rtt_samples_;
-  std::uint64_t last_rtt_sample_ms_ = 0;
   // Commands in flight and their results.
   std::uint32_t pending_rid_ = 0;
   protocol::CommandOp pending_op_ = protocol::CommandOp::ready;
   char pending_item_ = 0;
-  bool command_sent_ = false;
-  bool reconnect_started_ = false;
   std::optional<protocol::Result> last_result_;
-  std::uint64_t purchases_ok_ = 0, purchases_refused_ = 0;
-  std::vector<std::string> bought_;
   bool sent_ready_for_phase_ = false;
   protocol::Phase last_phase_ = protocol::Phase::lobby;
   std::uint32_t shop_wait_tick_ = 0;  // shopper: decide again after a snapshot past this tick
-  // Script state.
-  std::size_t pc_ = 0;
-  bool step_started_ = false;
-  std::uint64_t step_deadline_ms_ = 0;
-  std::uint32_t step_until_tick_ = 0;
-  double timeout_s_ = 60;
-  bool script_hunting_ = false;
-  protocol::InputFrame script_hold_;
-  bool fire_once_ = false;
-  bool disconnected_by_script_ = false;
-  std::int64_t earned_ = 0, spent_ = 0;
-  std::uint64_t purchase_events_ = 0;
+  ScriptCursor script_;
   std::vector<std::string> errors_;
   std::string failure_;
   bool finished_ = false;
-  std::uint64_t now_ms_ = 0;
-  std::uint64_t wander_until_tick_ = 0;
-  protocol::InputFrame wander_;
+  Wander wander_;
 };
 
 std::optional<Behavior> parse_behavior(const std::string& s);

@@ -4,8 +4,26 @@
 
 namespace fts::server {
 namespace {
+
 bool g_json = false;
+
+std::string json_text(const nlohmann::ordered_json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
+
+// A field's value as JSON text, except that a text record prints strings unquoted.
+std::string value_text(const LogField::Value& value, bool json) {
+  return std::visit(
+      [json](const auto& v) -> std::string {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, const nlohmann::ordered_json*>) return json_text(*v);
+        else if constexpr (std::is_same_v<T, std::string_view>) return json ? json_text(std::string(v)) : std::string(v);
+        else return json_text(v);
+      },
+      value);
+}
+
+}  // namespace
 
 void init_logging(const std::string& level, const std::string& format) {
   g_json = format == "json";
@@ -22,24 +40,20 @@ void init_logging(const std::string& level, const std::string& format) {
   spdlog::flush_on(spdlog::level::info);
 }
 
-void log_record(spdlog::level::level_enum level, std::string_view event, const nlohmann::ordered_json& fields) {
+void log_record(spdlog::level::level_enum level, std::string_view event, std::initializer_list<LogField> fields) {
   if (!spdlog::should_log(level)) return;
+  std::string line;
   if (g_json) {
-    nlohmann::ordered_json rec;
-    rec["event"] = event;
-    if (fields.is_object())
-      for (const auto& [k, v] : fields.items()) rec[k] = v;
-    const std::string text = rec.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    spdlog::log(level, "{}", std::string_view(text).substr(1));  // drop the opening brace
-    return;
-  }
-  std::string line(event);
-  if (fields.is_object()) {
-    for (const auto& [k, v] : fields.items()) {
+    line = "\"event\":" + json_text(std::string(event));
+    for (const auto& f : fields) line += "," + json_text(std::string(f.key)) + ":" + value_text(f.value, true);
+    line += '}';
+  } else {
+    line = event;
+    for (const auto& f : fields) {
       line += ' ';
-      line += k;
+      line += f.key;
       line += '=';
-      line += v.is_string() ? v.get<std::string>() : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+      line += value_text(f.value, false);
     }
   }
   spdlog::log(level, "{}", line);

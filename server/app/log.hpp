@@ -2,8 +2,12 @@
 // "event key=value ..." (text) or one JSON object per line (json, for log shippers).
 #pragma once
 
+#include <concepts>
+#include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -13,6 +17,29 @@ namespace fts::server {
 // level: trace debug info warn error off; format: text | json.
 void init_logging(const std::string& level, const std::string& format);
 
-void log_record(spdlog::level::level_enum level, std::string_view event, const nlohmann::ordered_json& fields = {});
+// One field of a record: a key and a value held by reference for the duration of the
+// log_record call. Nothing is formatted (no JSON, no string) unless the record's level
+// is on, so debug records on the tick path cost a level check when debug is off.
+struct LogField {
+  using Value = std::variant<std::int64_t, std::uint64_t, double, bool, std::string_view, const nlohmann::ordered_json*>;
+
+  template <std::integral T>
+    requires(!std::same_as<T, bool>)
+  LogField(std::string_view k, T v) : key(k) {
+    if constexpr (std::is_signed_v<T>) value = static_cast<std::int64_t>(v);
+    else value = static_cast<std::uint64_t>(v);
+  }
+  LogField(std::string_view k, bool v) : key(k), value(v) {}
+  LogField(std::string_view k, double v) : key(k), value(v) {}
+  LogField(std::string_view k, const char* v) : key(k), value(std::string_view(v)) {}
+  LogField(std::string_view k, std::string_view v) : key(k), value(v) {}
+  LogField(std::string_view k, const std::string& v) : key(k), value(std::string_view(v)) {}
+  LogField(std::string_view k, const nlohmann::ordered_json& v) : key(k), value(&v) {}
+
+  std::string_view key;
+  Value value;
+};
+
+void log_record(spdlog::level::level_enum level, std::string_view event, std::initializer_list<LogField> fields = {});
 
 }  // namespace fts::server

@@ -1,10 +1,12 @@
 #include "app/options.hpp"
 
-#include <arpa/inet.h>
-
 #include <charconv>
 #include <cstdlib>
 #include <limits>
+
+#include <CLI/CLI.hpp>
+
+#include "fts/io/address.hpp"
 
 namespace fts::server {
 namespace {
@@ -36,9 +38,7 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint16_t>(value, o.port, 0, 65535)) return bad("must be a port number 0..65535");
   } else if (key == "bind") {
     // Checked here (not at bind time) so a typo is a usage error before anything starts.
-    unsigned char addr[16];
-    if (inet_pton(AF_INET, value.c_str(), addr) != 1 && inet_pton(AF_INET6, value.c_str(), addr) != 1)
-      return bad("must be an IPv4 or IPv6 address");
+    if (!io::is_ip_address(value)) return bad("must be an IPv4 or IPv6 address");
     o.bind = value;
   } else if (key == "tick-rate") {
     if (!parse_uint<std::uint32_t>(value, o.tick_rate_hz, 10, 1000)) return bad("must be 10..1000 Hz");
@@ -78,6 +78,7 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
   } else {
     return OptionError{"unknown setting " + source};
   }
+  o.given.insert(key);
   return std::nullopt;
 }
 
@@ -123,37 +124,43 @@ std::string usage_text() {
 }
 
 std::variant<Options, OptionError> parse_options(const std::vector<std::string>& args, const EnvLookup& env) {
+  // CLI11 splits the command line (--flag V, --flag=V, the last of a repeated flag);
+  // apply() checks each value, so a flag and its variable give the same message.
+  CLI::App app{"", "fts-server"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  std::vector<CLI::Option*> flags;
+  for (const auto& d : option_docs()) flags.push_back(app.add_option(d.flag));
+  auto* help = app.add_flag("-h,--help");
+  auto* version = app.add_flag("--version");
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
+  } catch (const CLI::ArgumentMismatch&) {
+    // Only a value flag at the very end lacks its value (any next argument is taken).
+    return OptionError{args.back().substr(0, args.back().find('=')) + ": needs a value"};
+  } catch (const CLI::ParseError& e) {
+    return OptionError{std::string(e.what()) + " (see --help)"};
+  }
+  if (!app.remaining().empty()) {
+    const std::string a = app.remaining().front();
+    if (a.rfind("--", 0) == 0) return OptionError{"unknown flag " + a.substr(0, a.find('=')) + " (see --help)"};
+    return OptionError{"unexpected argument \"" + a + "\" (see --help)"};
+  }
+
   Options o;
-  for (const auto& d : option_docs()) {
-    const std::string key = d.flag.substr(2);
+  o.help = help->count() > 0;
+  o.version = version->count() > 0;
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    const std::string key = option_docs()[i].flag.substr(2);
     if (auto v = env(env_name(key))) {
       if (auto err = apply(o, key, *v, env_name(key))) return *err;
     }
   }
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-      continue;
-    }
-    if (a == "--version") {
-      o.version = true;
-      continue;
-    }
-    if (a.rfind("--", 0) != 0) return OptionError{"unexpected argument \"" + a + "\" (see --help)"};
-    std::string key = a.substr(2), value;
-    const auto eq = key.find('=');
-    if (eq != std::string::npos) {
-      value = key.substr(eq + 1);
-      key.resize(eq);
-    } else {
-      bool known = false;
-      for (const auto& d : option_docs()) known = known || d.flag == a;
-      if (!known) return OptionError{"unknown flag " + a + " (see --help)"};
-      if (i + 1 >= args.size()) return OptionError{a + ": needs a value"};
-      value = args[++i];
-    }
-    if (auto err = apply(o, key, value, "--" + key)) return *err;
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    if (flags[i]->count() == 0) continue;
+    const std::string& flag = option_docs()[i].flag;
+    if (auto err = apply(o, flag.substr(2), flags[i]->results().back(), flag)) return *err;
   }
   return o;
 }

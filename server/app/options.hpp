@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -32,6 +33,9 @@ struct Options {
   double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
   bool help = false;
   bool version = false;
+  // The settings given by a flag or an FTS_* variable, by flag name without dashes
+  // ("tick-rate"); only these override the --config file (see resolve_match_config).
+  std::set<std::string> given;
 };
 
 struct OptionError {

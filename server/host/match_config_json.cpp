@@ -159,7 +159,10 @@ std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
   std::string why;
   const auto parsed = parse_json(line, why);
   if (!parsed) return "input line: invalid JSON: " + why;
-  const nlohmann::json& j = *parsed;
+  return input_line_from_json(*parsed);
+}
+
+std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& j) {
   try {
     Fields f(j, "");
     f.only({"tick", "joins", "leaves", "away", "back", "players"});

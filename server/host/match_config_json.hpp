@@ -28,5 +28,7 @@ struct InputLine {
 };
 std::string to_input_line(std::int64_t tick, const sim::TickInputs& inputs);
 std::variant<InputLine, std::string> parse_input_line(const std::string& line);
+// The same from an already parsed line (a record reads each line once, then dispatches).
+std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& line);
 
 }  // namespace fts::host

@@ -56,24 +56,27 @@ std::variant<ReplayReport, std::string> replay_record(std::istream& in) {
   for (std::int64_t no = 2; std::getline(in, line); ++no) {
     if (line.empty()) continue;
     const std::string where = "line " + std::to_string(no) + ": ";
-    if (line.find("\"hash\"") != std::string::npos) {
-      auto parsed = parse_json(line, why);
-      if (!parsed) return where + why;
-      nlohmann::json& h = *parsed;
-      if (!h.contains("tick") || !h["tick"].is_number_integer() || !h["hash"].is_string())
-        return where + "a hash line needs an integer tick and a string hash";
-      const std::int64_t tick = h["tick"].get<std::int64_t>();
+    // Each line is parsed once and dispatched on its keys: a hash line is the object
+    // {"tick","hash"}; anything else must be an input line. (Searching the text for
+    // "hash" took a player named hash for a hash line.)
+    auto json_line = parse_json(line, why);
+    if (!json_line) return where + "invalid JSON: " + why;
+    const nlohmann::json& j = *json_line;
+    if (j.is_object() && j.contains("hash")) {
+      if (j.size() != 2 || !j.contains("tick") || !j["tick"].is_number_integer() || !j["hash"].is_string())
+        return where + "a hash line needs an integer tick and a string hash, and nothing else";
+      const std::int64_t tick = j["tick"].get<std::int64_t>();
       if (tick < r.state.tick) return where + "tick " + std::to_string(tick) + " goes back in time";
       if (too_far(tick)) return where + "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(r.state.tick);
       step_until(tick);
       const std::string got = hex16(sim::match_hash(r.state));
-      if (got != h["hash"].get<std::string>())
+      if (got != j["hash"].get<std::string>())
         return where + "hash mismatch at tick " + std::to_string(tick) + ": recorded " +
-               h["hash"].get<std::string>() + ", replayed " + got;
+               j["hash"].get<std::string>() + ", replayed " + got;
       ++r.hashes_checked;
       continue;
     }
-    auto parsed = parse_input_line(line);
+    auto parsed = input_line_from_json(j);
     if (auto* err = std::get_if<std::string>(&parsed)) return where + *err;
     const auto& il = std::get<InputLine>(parsed);
     if (il.tick < r.state.tick) return where + "tick " + std::to_string(il.tick) + " goes back in time";

@@ -7,35 +7,18 @@
 
 #include "app/log.hpp"
 #include "app/tick_clock.hpp"
-#include "net/asio.hpp"
+#include "fts/io/udp.hpp"
 
 namespace fts::server {
 namespace {
 
 namespace asio = boost::asio;
 using udp = asio::ip::udp;
+using io::UdpSocket;
 using Clock = std::chrono::steady_clock;
 
 std::int64_t now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
-}
-
-std::string to_key(const udp::endpoint& ep) {
-  const auto a = ep.address();
-  return (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" + std::to_string(ep.port());
-}
-
-std::optional<udp::endpoint> from_key(const std::string& key) {
-  const auto colon = key.rfind(':');
-  if (colon == std::string::npos) return std::nullopt;
-  std::string host = key.substr(0, colon);
-  if (host.size() >= 2 && host.front() == '[') host = host.substr(1, host.size() - 2);
-  boost::system::error_code ec;
-  const auto address = asio::ip::make_address(host, ec);
-  if (ec) return std::nullopt;
-  const unsigned long port = std::strtoul(key.c_str() + colon + 1, nullptr, 10);
-  if (port > 65535) return std::nullopt;
-  return udp::endpoint(address, static_cast<unsigned short>(port));
 }
 
 class Loop {
@@ -53,14 +36,12 @@ class Loop {
       return 1;
     }
     const udp::endpoint local(address, options_.port);
-    socket_.open(local.protocol(), ec);
-    if (!ec) socket_.bind(local, ec);
+    ec = socket_.bind(local);
     if (ec) {
       log_record(spdlog::level::err, "bind_failed",
                  {{"address", options_.bind}, {"port", options_.port}, {"error", ec.message()}});
       return 1;
     }
-    socket_.non_blocking(true, ec);
     epoch_ns_ = now_ns();
     const auto bound = socket_.local_endpoint();
     log_record(spdlog::level::info, "ready",
@@ -88,13 +69,9 @@ class Loop {
   std::uint64_t now_ms() const { return static_cast<std::uint64_t>((now_ns() - epoch_ns_) / 1'000'000); }
 
   void receive() {
-    socket_.async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
-      if (ec == asio::error::operation_aborted) return;
-      if (!ec) {
-        host_.receive(to_key(sender_), std::span<const std::uint8_t>(buffer_.data(), n), now_ms());
-        flush();
-      }
-      receive();
+    socket_.start_receiving([this](const udp::endpoint& from, std::span<const std::uint8_t> bytes) {
+      host_.receive(io::to_text(from), bytes, now_ms());
+      flush();
     });
   }
 
@@ -102,11 +79,7 @@ class Loop {
   // no table of senders can be filled (or flushed) by a flood of spoofed sources.
   void flush() {
     for (auto& d : host_.take_datagrams()) {
-      const auto to = from_key(d.to);
-      if (!to) continue;
-      boost::system::error_code ec;
-      socket_.send_to(asio::buffer(d.bytes), *to, 0, ec);
-      if (ec) ++send_errors_;
+      if (const auto to = io::endpoint_from_text(d.to)) socket_.send(d.bytes, *to);
     }
   }
 
@@ -155,7 +128,7 @@ class Loop {
                   {"ticks_skipped_total", clock_.skipped()},
                   {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
                   {"bytes_in", s.bytes_in}, {"bytes_out", s.bytes_out},
-                  {"send_errors", send_errors_}, {"drops", drops}});
+                  {"send_errors", socket_.send_errors()}, {"drops", drops}});
       s.reset_interval();
       schedule_stats();
     });
@@ -165,16 +138,13 @@ class Loop {
   GameHost& host_;
   std::ostream* record_;
   asio::io_context io_;
-  udp::socket socket_;
+  UdpSocket socket_;
   asio::steady_timer tick_timer_;
   asio::steady_timer stats_timer_;
   asio::signal_set signals_;
   TickClock clock_;
-  std::array<std::uint8_t, 2048> buffer_{};
-  udp::endpoint sender_;
   std::int64_t epoch_ns_ = 0;
   std::int64_t last_skip_log_ns_ = 0;
-  std::uint64_t send_errors_ = 0;
   protocol::RejectCounters last_rejects_;
 };
 

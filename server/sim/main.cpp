@@ -6,8 +6,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "host/scene_json.hpp"
@@ -31,28 +33,42 @@ int usage_error(const std::string& message) {
 }
 
 int run_scene_mode(const std::vector<std::string>& args) {
-  std::string scene_path, dump_path;
-  std::optional<std::string> model, broadphase, substeps, tick_rate, steps;
-  std::string check_every = "1";
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](std::optional<std::string>& out) -> bool {
-      if (i + 1 >= args.size()) return false;
-      out = args[++i];
-      return true;
-    };
-    std::optional<std::string> tmp;
-    if (a == "--model") { if (!value(model)) return usage_error("--model needs a value"); }
-    else if (a == "--broadphase") { if (!value(broadphase)) return usage_error("--broadphase needs a value"); }
-    else if (a == "--substeps") { if (!value(substeps)) return usage_error("--substeps needs a value"); }
-    else if (a == "--tick-rate") { if (!value(tick_rate)) return usage_error("--tick-rate needs a value"); }
-    else if (a == "--steps") { if (!value(steps)) return usage_error("--steps needs a value"); }
-    else if (a == "--dump-state") { if (!value(tmp)) return usage_error("--dump-state needs a file"); dump_path = *tmp; }
-    else if (a == "--check-every") { if (!value(tmp)) return usage_error("--check-every needs a value"); check_every = *tmp; }
-    else if (a.rfind("--", 0) == 0) return usage_error("unknown flag " + a);
-    else if (scene_path.empty()) scene_path = a;
-    else return usage_error("more than one scene file: " + a);
+  CLI::App app{"", "fts-sim"};
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  // Each value flag and what its missing value is called.
+  const std::vector<std::pair<std::string, std::string>> flags = {
+      {"--model", "a value"}, {"--broadphase", "a value"}, {"--substeps", "a value"}, {"--tick-rate", "a value"},
+      {"--steps", "a value"}, {"--dump-state", "a file"}, {"--check-every", "a value"}};
+  for (const auto& f : flags) app.add_option(f.first);
+  std::vector<std::string> scenes;
+  app.add_option("scene", scenes);
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
+  } catch (const CLI::ArgumentMismatch&) {
+    // Only a flag at the very end lacks its value (any next argument is taken).
+    const std::string flag = args.back().substr(0, args.back().find('='));
+    for (const auto& [name, needs] : flags)
+      if (name == flag) return usage_error(flag + " needs " + needs);
+    return usage_error(flag + " needs a value");
+  } catch (const CLI::ParseError& e) {
+    return usage_error(e.what());
   }
+  for (const auto& a : app.remaining()) {
+    if (a.rfind("--", 0) == 0) return usage_error("unknown flag " + a);
+    scenes.push_back(a);  // e.g. "-": not a flag
+  }
+  if (scenes.size() > 1) return usage_error("more than one scene file: " + scenes[1]);
+  const std::string scene_path = scenes.empty() ? "" : scenes[0];
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* o = app.get_option(flag);
+    if (o->count() == 0) return std::nullopt;
+    return o->results().back();
+  };
+  const auto model = value("--model"), broadphase = value("--broadphase"), substeps = value("--substeps"),
+             tick_rate = value("--tick-rate"), steps = value("--steps");
+  const std::string dump_path = value("--dump-state").value_or("");
+  const std::string check_every = value("--check-every").value_or("1");
   if (scene_path.empty()) return usage_error("no scene file given");
   std::ifstream in(scene_path);
   if (!in) return usage_error("cannot read scene file " + scene_path);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "fts/sim/bot_player.hpp"
@@ -68,33 +69,56 @@ struct Tally {
 
 int run_match_cli(const std::vector<std::string>& args) {
   std::int64_t players = 1, levels = 5, max_ticks = 1'000'000, seed = 1;
-  std::optional<std::string> model, config_path, inputs_path, record_path, tick_rate;
-  bool print_events = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto next = [&]() -> std::optional<std::string> {
-      if (i + 1 >= args.size()) return std::nullopt;
-      return args[++i];
-    };
-    auto int_flag = [&](std::int64_t& out, std::int64_t lo, std::int64_t hi) -> bool {
-      auto v = next();
-      auto n = v ? host::to_integer(*v) : std::nullopt;
-      if (!n || *n < lo || *n > hi) return false;
-      out = *n;
-      return true;
-    };
-    if (a == "--players") { if (!int_flag(players, 1, 64)) return usage("--players must be 1..64"); }
-    else if (a == "--levels") { if (!int_flag(levels, 0, 1'000'000)) return usage("--levels must be 0..1000000"); }
-    else if (a == "--max-ticks") { if (!int_flag(max_ticks, 0, 1'000'000'000'000)) return usage("--max-ticks must be >= 0"); }
-    else if (a == "--seed") { if (!int_flag(seed, 0, INT64_MAX)) return usage("--seed must be >= 0"); }
-    else if (a == "--model") { if (!(model = next())) return usage("--model needs a value"); }
-    else if (a == "--tick-rate") { if (!(tick_rate = next())) return usage("--tick-rate needs a value"); }
-    else if (a == "--config") { if (!(config_path = next())) return usage("--config needs a file"); }
-    else if (a == "--inputs") { if (!(inputs_path = next())) return usage("--inputs needs a file"); }
-    else if (a == "--record") { if (!(record_path = next())) return usage("--record needs a file"); }
-    else if (a == "--events") print_events = true;
-    else return usage("unknown argument " + a);
+  struct IntFlag {
+    const char* flag;
+    std::int64_t* out;
+    std::int64_t lo, hi;
+    const char* message;  // for a missing or bad value
+  };
+  const IntFlag int_flags[] = {{"--players", &players, 1, 64, "--players must be 1..64"},
+                               {"--levels", &levels, 0, 1'000'000, "--levels must be 0..1000000"},
+                               {"--max-ticks", &max_ticks, 0, 1'000'000'000'000, "--max-ticks must be >= 0"},
+                               {"--seed", &seed, 0, INT64_MAX, "--seed must be >= 0"}};
+  const std::pair<const char*, const char*> text_flags[] = {
+      {"--model", "--model needs a value"}, {"--tick-rate", "--tick-rate needs a value"},
+      {"--config", "--config needs a file"}, {"--inputs", "--inputs needs a file"},
+      {"--record", "--record needs a file"}};
+  CLI::App app{"", "fts-sim --match"};
+  app.set_help_flag();
+  app.allow_extras();
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  for (const auto& f : int_flags) app.add_option(f.flag);
+  for (const auto& f : text_flags) app.add_option(f.first);
+  const CLI::Option* events = app.add_flag("--events");
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
+  } catch (const CLI::ArgumentMismatch&) {
+    // Only a flag at the very end lacks its value (any next argument is taken).
+    const std::string flag = args.back().substr(0, args.back().find('='));
+    for (const auto& f : int_flags)
+      if (flag == f.flag) return usage(f.message);
+    for (const auto& [name, message] : text_flags)
+      if (flag == name) return usage(message);
+    return usage(flag + " needs a value");
+  } catch (const CLI::ParseError& e) {
+    return usage(e.what());
   }
+  if (!app.remaining().empty()) return usage("unknown argument " + app.remaining().front());
+  auto value = [&](const std::string& flag) -> std::optional<std::string> {
+    const CLI::Option* o = app.get_option(flag);
+    if (o->count() == 0) return std::nullopt;
+    return o->results().back();
+  };
+  for (const auto& f : int_flags) {
+    if (const auto v = value(f.flag)) {
+      const auto n = host::to_integer(*v);
+      if (!n || *n < f.lo || *n > f.hi) return usage(f.message);
+      *f.out = *n;
+    }
+  }
+  const bool print_events = events->count() > 0;
+  const auto model = value("--model"), tick_rate = value("--tick-rate"), config_path = value("--config"),
+             inputs_path = value("--inputs"), record_path = value("--record");
 
   sim::MatchConfig cfg;
   if (config_path) {

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <map>
+#include <set>
 
 #include "app/options.hpp"
 
@@ -43,6 +44,23 @@ TEST_CASE("Server options: bad values name the flag or variable and the value", 
   CHECK(error_of({"--colour", "red"}) == "unknown flag --colour (see --help)");
   CHECK(error_of({"--port"}) == "--port: needs a value");
   CHECK(error_of({"stray"}) == R"(unexpected argument "stray" (see --help))");
+}
+
+TEST_CASE("Server options: the command line's forms", "[server][options]") {
+  auto options = [](std::vector<std::string> args) {
+    auto r = parse_options(args, env_of({}));
+    REQUIRE(std::holds_alternative<Options>(r));
+    return std::get<Options>(r);
+  };
+  CHECK(options({"--port=9000"}).port == 9000);
+  CHECK(options({"--port", "9000", "--port", "9001"}).port == 9001);  // the last one wins
+  CHECK(options({"--help"}).help);
+  CHECK(options({"-h"}).help);
+  CHECK(options({"--version"}).version);
+  CHECK(options({"--seed", "3", "--model", "seed"}).given == std::set<std::string>{"seed", "model"});
+  CHECK(error_of({"--seed", "3", "--port"}) == "--port: needs a value");
+  CHECK(error_of({"--colour=red"}) == "unknown flag --colour (see --help)");
+  CHECK(error_of({"-x"}) == R"(unexpected argument "-x" (see --help))");
 }
 
 TEST_CASE("Server options: every documented flag is in the usage text", "[server][options]") {

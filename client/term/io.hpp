@@ -1,0 +1,39 @@
+// The terminal's two streams as the game loop uses them: keys read from stdin (a lone
+// ESC is decided after a pause), and frames painted to stdout (only what changed).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "term/keys.hpp"
+#include "ui/screen.hpp"
+
+namespace fts::client::term {
+
+class KeyReader {
+ public:
+  // Every key read from stdin since the last call (non-blocking), decoded; an escape
+  // sequence left incomplete for kPauseMs is taken as typed.
+  std::vector<KeyEvent> read(std::uint64_t now_ms);
+  static constexpr std::uint64_t kPauseMs = 50;
+
+ private:
+  KeyDecoder decoder_;
+  std::uint64_t last_key_ms_ = 0;
+};
+
+class Painter {
+ public:
+  // Writes the frame unless it equals the last one; clears first after a resize.
+  void paint(const Screen& screen, bool color);
+  // The size to draw the next frame at (noting a resize).
+  TerminalSize size();
+
+ private:
+  TerminalSize size_{0, 0};
+  bool clear_ = true;
+  std::string last_frame_;
+};
+
+}  // namespace fts::client::term

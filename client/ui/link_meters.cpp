@@ -1,0 +1,42 @@
+#include "ui/link_meters.hpp"
+
+#include <algorithm>
+
+namespace fts::client {
+
+void LossMeter::on_snapshot(std::uint32_t tick, double ticks_per_snapshot) {
+  if (last_tick_ != 0 && tick > last_tick_ && ticks_per_snapshot > 0) {
+    expected_ += std::max(1.0, (tick - last_tick_) / ticks_per_snapshot);
+    received_ += 1;
+    if (expected_ > 100) {  // keep it recent
+      expected_ /= 2;
+      received_ /= 2;
+    }
+  }
+  last_tick_ = tick;
+}
+
+double LossMeter::percent() const {
+  return expected_ > 0 ? std::max(0.0, 100.0 * (1.0 - received_ / expected_)) : -1;
+}
+
+std::vector<protocol::Event> EventFeed::fresh(const protocol::Snapshot& s) {
+  std::vector<protocol::Event> out;
+  for (const auto& e : s.events) {
+    const auto key = std::make_tuple(e.tick, static_cast<int>(e.kind), e.a, e.b, e.value);
+    if (e.tick + kHorizonTicks < s.tick || !seen_.insert(key).second) continue;
+    out.push_back(e);
+  }
+  while (!seen_.empty() && std::get<0>(*seen_.begin()) + kHorizonTicks < s.tick) seen_.erase(seen_.begin());
+  return out;
+}
+
+std::optional<protocol::InputFrame> InputPacer::pace(const protocol::InputFrame& f, std::uint64_t now_ms) {
+  const bool changed = f.move_x != last_.move_x || f.move_y != last_.move_y || f.fire;
+  if (!changed && now_ms - last_ms_ < kRepeatMs) return std::nullopt;
+  last_ = f;
+  last_ms_ = now_ms;
+  return f;
+}
+
+}  // namespace fts::client

@@ -1,0 +1,52 @@
+// The small pieces of the client's game loop that keep state between frames, each with
+// one job: how many snapshots are lost, which events are new, when to send input.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "fts/protocol/messages.hpp"
+#include "fts/protocol/snapshot.hpp"
+
+namespace fts::client {
+
+// Snapshots lost, from the gaps in their ticks, over the last few seconds.
+class LossMeter {
+ public:
+  void on_snapshot(std::uint32_t tick, double ticks_per_snapshot);
+  // 0..100, or < 0 before there is anything to judge.
+  double percent() const;
+
+ private:
+  std::uint32_t last_tick_ = 0;
+  double expected_ = 0, received_ = 0;
+};
+
+// Each snapshot repeats the events of the last moments; this passes each one once.
+class EventFeed {
+ public:
+  // The events of `s` not seen before, in order (events older than kHorizonTicks are
+  // forgotten, and not passed again).
+  std::vector<protocol::Event> fresh(const protocol::Snapshot& s);
+  static constexpr std::uint32_t kHorizonTicks = 2000;
+
+ private:
+  std::set<std::tuple<std::uint32_t, int, std::uint32_t, std::uint32_t, std::int64_t>> seen_;
+};
+
+// Input is sent when it changes (or fires), and at least every kRepeatMs otherwise.
+class InputPacer {
+ public:
+  // The frame to send now, if any.
+  std::optional<protocol::InputFrame> pace(const protocol::InputFrame& f, std::uint64_t now_ms);
+  static constexpr std::uint64_t kRepeatMs = 50;
+
+ private:
+  protocol::InputFrame last_;
+  std::uint64_t last_ms_ = 0;
+};
+
+}  // namespace fts::client

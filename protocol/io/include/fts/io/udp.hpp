@@ -1,0 +1,62 @@
+// The one UDP socket of the edges (fts-server, fts-client, fts-bot): open, bind or
+// connect, a receive loop that hands every datagram to a callback, and sends whose
+// failures are counted, not thrown (a lost datagram is the protocol's business).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "fts/io/asio.hpp"
+
+namespace fts::io {
+
+namespace asio = boost::asio;
+using udp = asio::ip::udp;
+
+// "1.2.3.4:5" or "[::1]:5": how the sans-I/O layers name a peer.
+std::string to_text(const udp::endpoint& endpoint);
+// The reverse; nothing for text that is not a numeric address and port.
+std::optional<udp::endpoint> endpoint_from_text(const std::string& text);
+// The first address HOST:PORT resolves to; nothing (and `error` set) when none.
+std::optional<udp::endpoint> resolve(asio::io_context& io, const std::string& host, const std::string& port,
+                                     std::string& error);
+
+class UdpSocket {
+ public:
+  using Handler = std::function<void(const udp::endpoint& from, std::span<const std::uint8_t> bytes)>;
+
+  explicit UdpSocket(asio::io_context& io) : socket_(io) {}
+  UdpSocket(const UdpSocket&) = delete;
+  UdpSocket& operator=(const UdpSocket&) = delete;
+
+  // A server's socket on a local address (port 0: any free port).
+  boost::system::error_code bind(const udp::endpoint& local);
+  // A client's socket: a fresh local port that hears only `server`. Calling it again
+  // closes the old socket first (a reconnect from a new address).
+  boost::system::error_code connect(const udp::endpoint& server);
+  // Hands every datagram received from now on to `on_datagram`, until close() or the
+  // next bind/connect; receive errors (an ICMP "port unreachable") are skipped.
+  void start_receiving(Handler on_datagram);
+  // Sends one datagram (to the connected peer when `to` is not given); false on error.
+  bool send(std::span<const std::uint8_t> bytes, const std::optional<udp::endpoint>& to = std::nullopt);
+  void close();
+
+  udp::endpoint local_endpoint() const;
+  std::uint64_t send_errors() const { return send_errors_; }
+
+ private:
+  void receive_next(std::uint64_t generation);
+
+  udp::socket socket_;
+  std::array<std::uint8_t, 2048> buffer_{};
+  udp::endpoint sender_;
+  Handler on_datagram_;
+  std::uint64_t generation_ = 0;  // a callback of a closed socket's read ends there
+  std::uint64_t send_errors_ = 0;
+};
+
+}  // namespace fts::io

@@ -1,7 +1,0 @@
-// The one way to include Boost.Asio: Boost 1.74's awaitable.hpp uses std::exchange
-// without including <utility> (fails with g++ 12 in C++20), and we use no coroutines.
-#pragma once
-
-#include <utility>
-#define BOOST_ASIO_DISABLE_CO_AWAIT 1
-#include <boost/asio.hpp>

@@ -1,0 +1,48 @@
+// The game loop's small stateful pieces: loss meter, event feed, input pacing.
+#include <catch2/catch.hpp>
+
+#include "ui/link_meters.hpp"
+
+using namespace fts;
+using namespace fts::client;
+
+TEST_CASE("Loss meter: gaps in snapshot ticks count as lost snapshots", "[client][link]") {
+  LossMeter m;
+  CHECK(m.percent() < 0);  // nothing to judge yet
+  for (std::uint32_t t = 5; t <= 100; t += 5) m.on_snapshot(t, 5);
+  CHECK(m.percent() == Approx(0));
+  LossMeter lossy;
+  for (std::uint32_t t = 10; t <= 400; t += 10) lossy.on_snapshot(t, 5);  // every other one lost
+  CHECK(lossy.percent() == Approx(50).margin(1));
+}
+
+TEST_CASE("Event feed: each event passes once, however many snapshots repeat it", "[client][link]") {
+  EventFeed feed;
+  protocol::Snapshot s;
+  s.tick = 10;
+  s.events = {{8, protocol::EventKind::purchase, 1, 0, 30}, {9, protocol::EventKind::level_started, 0, 0, 1}};
+  CHECK(feed.fresh(s).size() == 2);
+  s.tick = 15;
+  s.events.push_back({14, protocol::EventKind::purchase, 1, 0, 30});  // same kind, a new tick: new
+  const auto again = feed.fresh(s);
+  REQUIRE(again.size() == 1);
+  CHECK(again[0].tick == 14);
+  s.tick = 8 + EventFeed::kHorizonTicks + 1;  // too old to show, and forgotten
+  CHECK(feed.fresh(s).size() == 0);
+}
+
+TEST_CASE("Input pacing: on change or fire at once, else every 50 ms", "[client][link]") {
+  InputPacer p;
+  protocol::InputFrame still;
+  protocol::InputFrame right;
+  right.move_x = 1;
+  CHECK(p.pace(still, 100));  // the first
+  CHECK_FALSE(p.pace(still, 120));
+  CHECK(p.pace(right, 121));  // a change
+  CHECK_FALSE(p.pace(right, 140));
+  CHECK(p.pace(right, 121 + InputPacer::kRepeatMs));
+  protocol::InputFrame fire = right;
+  fire.fire = true;
+  CHECK(p.pace(fire, 172));
+  CHECK(p.pace(fire, 173));  // fire is never held back
+}

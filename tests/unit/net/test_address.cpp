@@ -1,0 +1,31 @@
+// HOST:PORT on the command lines of fts-client and fts-bot, and bind addresses.
+#include <catch2/catch.hpp>
+
+#include "fts/io/address.hpp"
+
+using fts::io::parse_host_port;
+
+TEST_CASE("Address: HOST:PORT splits at the last colon", "[net][address]") {
+  auto hp = parse_host_port("127.0.0.1:7777");
+  REQUIRE(hp);
+  CHECK(hp->host == "127.0.0.1");
+  CHECK(hp->port == "7777");
+  hp = parse_host_port("[::1]:9000");
+  REQUIRE(hp);
+  CHECK(hp->host == "::1");
+  CHECK(hp->port == "9000");
+  hp = parse_host_port("server:http");
+  REQUIRE(hp);
+  CHECK(hp->port == "http");
+  for (const char* bad : {"", "x", ":7777", "host:", "7777"}) {
+    INFO(bad);
+    CHECK_FALSE(parse_host_port(bad));
+  }
+}
+
+TEST_CASE("Address: a bind address is a numeric IPv4 or IPv6 address", "[net][address]") {
+  CHECK(fts::io::is_ip_address("0.0.0.0"));
+  CHECK(fts::io::is_ip_address("::1"));
+  CHECK_FALSE(fts::io::is_ip_address("localhost"));
+  CHECK_FALSE(fts::io::is_ip_address("300.1.1.1"));
+}
