@@ -104,12 +104,13 @@ double Bot::field(const std::string& name) const {
 
 void Bot::on_snapshot(const protocol::Snapshot& s) {
   tally_.on_snapshot(s);
+  // Each event once, by its seq (snapshots repeat them; PROTOCOL.md 8.4).
   for (const auto& e : s.events) {
-    if (e.tick <= last_event_tick_) continue;
+    if (e.seq <= last_event_seq_) continue;
+    last_event_seq_ = e.seq;
     new_events_.push_back(event_name(e.kind));
     tally_.on_event(e, player_id_);
   }
-  for (const auto& e : s.events) last_event_tick_ = std::max(last_event_tick_, e.tick);
   if (s.phase != last_phase_) {
     sent_ready_for_phase_ = false;
     last_phase_ = s.phase;

@@ -95,7 +95,7 @@ class Bot {
   std::uint32_t player_id_ = 0;
   std::uint64_t last_input_ms_ = 0;
   std::uint32_t ticks_per_snapshot_ = 5;
-  std::uint32_t last_event_tick_ = 0;
+  std::uint32_t last_event_seq_ = 0;
   std::vector<std::string> new_events_;  // names of events seen since the last update
   // Commands in flight and their results.
   std::uint32_t pending_rid_ = 0;

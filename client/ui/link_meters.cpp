@@ -22,12 +22,10 @@ double LossMeter::percent() const {
 
 std::vector<protocol::Event> EventFeed::fresh(const protocol::Snapshot& s) {
   std::vector<protocol::Event> out;
-  for (const auto& e : s.events) {
-    const auto key = std::make_tuple(e.tick, static_cast<int>(e.kind), e.a, e.b, e.value);
-    if (e.tick + kHorizonTicks < s.tick || !seen_.insert(key).second) continue;
-    out.push_back(e);
-  }
-  while (!seen_.empty() && std::get<0>(*seen_.begin()) + kHorizonTicks < s.tick) seen_.erase(seen_.begin());
+  for (const auto& e : s.events)
+    if (e.seq > last_seq_) out.push_back(e);
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
+  if (!out.empty()) last_seq_ = out.back().seq;
   return out;
 }
 

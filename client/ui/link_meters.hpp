@@ -25,16 +25,15 @@ class LossMeter {
   double expected_ = 0, received_ = 0;
 };
 
-// Each snapshot repeats the events of the last moments; this passes each one once.
+// Snapshots repeat the events of the last moments; this passes each one once, by its
+// seq (PROTOCOL.md 8.4).
 class EventFeed {
  public:
-  // The events of `s` not seen before, in order (events older than kHorizonTicks are
-  // forgotten, and not passed again).
+  // The events of `s` newer than every event passed before, in seq order.
   std::vector<protocol::Event> fresh(const protocol::Snapshot& s);
-  static constexpr std::uint32_t kHorizonTicks = 2000;
 
  private:
-  std::set<std::tuple<std::uint32_t, int, std::uint32_t, std::uint32_t, std::int64_t>> seen_;
+  std::uint32_t last_seq_ = 0;
 };
 
 // Input is sent when it changes (or fires), and at least every kRepeatMs otherwise.

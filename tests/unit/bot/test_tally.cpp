@@ -14,10 +14,10 @@ TEST_CASE("Tally: snapshots lost from tick gaps, coins from events, purchases", 
   }
   CHECK(t.snapshots() == 4);
   CHECK(t.snapshots_lost(5) == 1);
-  t.on_event({3, protocol::EventKind::enemy_fell, 9, 1, 40}, 1);  // we pushed it
-  t.on_event({4, protocol::EventKind::enemy_fell, 9, 2, 40}, 1);  // someone else did
-  t.on_event({5, protocol::EventKind::interest, 1, 0, 4}, 1);
-  t.on_event({6, protocol::EventKind::purchase, 1, 0, 30}, 1);
+  t.on_event({1, 3, protocol::EventKind::enemy_fell, 9, 1, 40}, 1);  // we pushed it
+  t.on_event({2, 4, protocol::EventKind::enemy_fell, 9, 2, 40}, 1);  // someone else did
+  t.on_event({3, 5, protocol::EventKind::interest, 1, 0, 4}, 1);
+  t.on_event({4, 6, protocol::EventKind::purchase, 1, 0, 30}, 1);
   CHECK(t.coins_earned() == 44);
   CHECK(t.coins_spent() == 30);
   CHECK(t.purchase_events() == 1);

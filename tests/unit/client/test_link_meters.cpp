@@ -20,15 +20,17 @@ TEST_CASE("Event feed: each event passes once, however many snapshots repeat it"
   EventFeed feed;
   protocol::Snapshot s;
   s.tick = 10;
-  s.events = {{8, protocol::EventKind::purchase, 1, 0, 30}, {9, protocol::EventKind::level_started, 0, 0, 1}};
+  s.events = {{1, 8, protocol::EventKind::purchase, 1, 0, 30}, {2, 9, protocol::EventKind::level_started, 0, 0, 1}};
   CHECK(feed.fresh(s).size() == 2);
   s.tick = 15;
-  s.events.push_back({14, protocol::EventKind::purchase, 1, 0, 30});  // same kind, a new tick: new
+  // The same purchase again in the same tick is a new event: it has its own seq.
+  s.events.push_back({3, 9, protocol::EventKind::purchase, 1, 0, 30});
   const auto again = feed.fresh(s);
   REQUIRE(again.size() == 1);
-  CHECK(again[0].tick == 14);
-  s.tick = 8 + EventFeed::kHorizonTicks + 1;  // too old to show, and forgotten
-  CHECK(feed.fresh(s).size() == 0);
+  CHECK(again[0].seq == 3);
+  CHECK(feed.fresh(s).empty());  // the same snapshot once more: nothing new
+  s.events = {{2, 9, protocol::EventKind::level_started, 0, 0, 1}};  // an old window
+  CHECK(feed.fresh(s).empty());
 }
 
 TEST_CASE("Input pacing: on change or fire at once, else every 50 ms", "[client][link]") {
