@@ -24,6 +24,7 @@
 #include "ui/link_meters.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
+#include "ui/session_store.hpp"
 
 namespace asio = fts::io::asio;
 using fts::io::udp;
@@ -44,10 +45,12 @@ constexpr const char* kUsage =
     "  --interp-delay-ms N     draw this far behind the newest snapshot (default 100)\n"
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
+    "  --new                   start a new player (default: take back the player of the\n"
+    "                          last session on this server, kept in $XDG_STATE_HOME)\n"
     "  --help                  this text\n"
     "\n"
     "Controls: arrows or WASD thrust, space fires rockets, m s a r l x b buy in the shop,\n"
-    "Enter is ready (and play again), q quits. NO_COLOR=1 turns colours off.\n";
+    "Enter is ready (and play again), q twice quits. NO_COLOR=1 turns colours off.\n";
 
 struct Options {
   std::string host, port, name;
@@ -55,6 +58,7 @@ struct Options {
   int interp_delay_ms = 100;
   int fps = 60;
   bool kitty = true;
+  bool fresh = false;  // --new: ignore the saved session token
 };
 
 int usage_error(const std::string& msg) {
@@ -70,6 +74,7 @@ int parse(int argc, char** argv, Options& o) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   const CLI::Option* help = app.add_flag("-h,--help");
   const CLI::Option* no_kitty = app.add_flag("--no-kitty");
+  const CLI::Option* fresh = app.add_flag("--new");
   for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps"}) app.add_option(flag);
   try {
     app.parse(argc, argv);
@@ -89,6 +94,7 @@ int parse(int argc, char** argv, Options& o) {
     return opt->results().back();
   };
   o.kitty = no_kitty->count() == 0;
+  o.fresh = fresh->count() > 0;
   if (const auto v = value("--connect")) {
     const auto hp = fts::io::parse_host_port(*v);
     if (!hp) return usage_error("--connect wants HOST:PORT, got '" + *v + "'");
@@ -129,7 +135,8 @@ class Game {
  public:
   Game(asio::io_context& io, Options o, udp::endpoint server)
       : io_(io), opts_(std::move(o)), socket_(io), timer_(io), server_(server),
-        conn_(connection_config(opts_), /*resume_when_lost=*/true) {
+        store_(state_dir(std::getenv("XDG_STATE_HOME"), std::getenv("HOME")), opts_.host + ":" + opts_.port),
+        conn_(connection_config(opts_, store_), /*resume_when_lost=*/true) {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
     conn_.connect(now_ms());
     last_rx_ms_ = now_ms();
@@ -142,11 +149,25 @@ class Game {
   const std::string& exit_message() const { return exit_message_; }
 
  private:
-  static proto::ClientConfig connection_config(const Options& o) {
+  // The saved token of this server takes our player back after a restart (--new: not).
+  static proto::ClientConfig connection_config(const Options& o, const SessionStore& store) {
     proto::ClientConfig cfg;
     cfg.name = o.name;
     cfg.encoding = o.encoding;
+    if (!o.fresh)
+      if (auto token = store.load()) cfg.token = *token;
     return cfg;
+  }
+
+  // The saved token was refused (expired, or the server restarted): a new player.
+  void start_fresh(std::uint64_t now) {
+    store_.forget();
+    opts_.fresh = true;
+    conn_ = proto::ClientConnection(connection_config(opts_, store_), /*resume_when_lost=*/true);
+    conn_.connect(now);
+    noted_attempt_ = 0;
+    open_socket();
+    note("The old session has expired: playing as a new player.");
   }
 
   // A fresh local port for each attempt: to the server a reconnect is a new address
@@ -168,7 +189,7 @@ class Game {
 
   void finish(int code, std::string message) {
     if (conn_.state() == proto::ClientState::connected) {
-      conn_.endpoint().disconnect(now_ms());
+      conn_.leave(now_ms());
       flush();
     }
     done_ = true;
@@ -209,8 +230,21 @@ class Game {
   void handle_key(const KeyEvent& e, std::uint64_t now) {
     const Action a = action_of(e, phase());
     const bool connected = conn_.state() == proto::ClientState::connected;
+    // Quitting asks first: q (or Ctrl-C) once asks, q or y again quits, any other key stays.
+    const bool yes = e.key == Key::character && e.ch == 'y';
+    if (quit_asked_ && (a.kind == ActionKind::quit || yes)) return finish(0, "");
+    if (quit_asked_ && e.action != KeyAction::release) {
+      quit_asked_ = false;
+      view_.status.clear();
+      note("Staying.");
+      return;
+    }
     switch (a.kind) {
-      case ActionKind::quit: return finish(0, "");
+      case ActionKind::quit:
+        quit_asked_ = true;
+        note("Quit? Press q again (or y) to leave, any other key to stay. Your coins are kept " +
+             std::to_string(reconnect_window_s()) + " s.");
+        return;
       case ActionKind::move:
         if (auto d = direction_of(e)) hold_.on_key(*d, e, now);
         break;
@@ -261,6 +295,8 @@ class Game {
       view_.arena_height_u = w.arena_height_u;
       clock_.set_tick_rate(w.tick_rate_hz);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
+      std::string why;
+      if (!store_.save(w.token, why)) note("Cannot keep the session for a restart: " + sanitize(why, 100));
     }
     for (auto& s : endpoint.take_snapshots()) {
       if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
@@ -281,6 +317,8 @@ class Game {
     // Connection trouble: show it after 2 s of silence; the connection resumes with the
     // token by itself (ClientConnection) until the reconnect window has passed.
     const S st = conn_.state();
+    if (st == S::refused && endpoint.error() && endpoint.error()->code == "bad_token" && !opts_.fresh)
+      return start_fresh(now);
     if (st == S::refused) {
       const auto& err = endpoint.error();
       return finish(1, "server: " + (err ? sanitize(err->message, 200) : std::string("refused")));
@@ -329,6 +367,11 @@ class Game {
     painter_.paint(screen, view_.color);
   }
 
+  std::uint64_t reconnect_window_s() const {
+    const auto& w = conn_.endpoint().welcome();
+    return (w ? w->reconnect_window_ms : 60000) / 1000;
+  }
+
   double clock_rate() const {
     const auto& w = conn_.endpoint().welcome();
     return w && w->tick_rate_hz > 0 ? w->tick_rate_hz : 100.0;
@@ -339,7 +382,9 @@ class Game {
   fts::io::UdpSocket socket_;
   asio::steady_timer timer_;
   udp::endpoint server_;
+  SessionStore store_;
   proto::ClientConnection conn_;
+  bool quit_asked_ = false;
   std::uint64_t socket_attempt_ = 0;  // the connection attempt the socket was opened for
   std::uint64_t noted_attempt_ = 0;   // the attempt whose welcome was shown
   term::KeyReader keys_;

@@ -70,7 +70,10 @@ protocol::ClientConfig connection_config(const BotOptions& o) {
 
 }  // namespace
 
-Bot::Bot(BotOptions options) : options_(std::move(options)), conn_(connection_config(options_)), rng_(options_.seed) {}
+// A bot (not a probe) resumes a lost connection with its token, like the client does.
+Bot::Bot(BotOptions options)
+    : options_(std::move(options)), conn_(connection_config(options_), /*resume_when_lost=*/!options_.probe),
+      rng_(options_.seed) {}
 
 void Bot::start(std::uint64_t now_ms) { conn_.connect(now_ms); }
 
@@ -159,6 +162,13 @@ protocol::InputFrame Bot::behave() {
 void Bot::update(std::uint64_t now_ms) {
   if (conn_.attempt() == 0 || finished_) return;
   conn_.update(now_ms);
+  if (conn_.gone()) return fail("connection lost: no answer within the reconnect window");
+  if (conn_.attempt() != seen_attempt_) {
+    // A new session: a command in flight on the old one may or may not have been applied
+    // (its result died with that session); the snapshots tell, so stop waiting for it.
+    seen_attempt_ = conn_.attempt();
+    pending_rid_ = 0;
+  }
   switch (conn_.endpoint().state()) {
     case protocol::ClientState::refused: {
       const auto& e = conn_.endpoint().error();
@@ -169,7 +179,7 @@ void Bot::update(std::uint64_t now_ms) {
       fail(options_.probe ? "no answer from the server (timed out)" : "connection timed out");
       return;
     case protocol::ClientState::disconnected:
-      if (!script_.disconnected) {
+      if (!script_.disconnected && !conn_.resuming()) {
         const auto& e = conn_.endpoint().error();
         fail("disconnected by the server" + (e ? ": " + e->code + ": " + e->message : std::string()));
         return;
@@ -320,7 +330,7 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
     }
     case Step::Op::disconnect:
       script_.disconnected = true;
-      conn_.endpoint().disconnect(now_ms, "script");
+      conn_.leave(now_ms, "script");
       return true;
     case Step::Op::reconnect:
       if (!script_.reconnect_started) {
@@ -341,7 +351,7 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
 
 void Bot::stop(std::uint64_t now_ms) {
   if (conn_.state() == protocol::ClientState::connected)
-    conn_.endpoint().disconnect(now_ms, options_.probe ? protocol::kProbeByeReason : "done");
+    conn_.leave(now_ms, options_.probe ? protocol::kProbeByeReason : "done");
   finished_ = true;
 }
 

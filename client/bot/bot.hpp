@@ -89,6 +89,7 @@ class Bot {
 
   BotOptions options_;
   protocol::ClientConnection conn_;
+  std::uint64_t seen_attempt_ = 0;  // the connection attempt whose commands we wait for
   sim::Rng rng_;
   std::optional<protocol::Snapshot> latest_;
   Tally tally_;  // the report's figures

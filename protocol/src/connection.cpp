@@ -11,6 +11,12 @@ void ClientConnection::connect(std::uint64_t now_ms) {
   endpoint_ = ClientEndpoint(c);
   endpoint_.connect(now_ms);
   ++attempt_;
+  left_ = false;
+}
+
+void ClientConnection::leave(std::uint64_t now_ms, const std::string& reason) {
+  endpoint_.disconnect(now_ms, reason);
+  left_ = true;
 }
 
 void ClientConnection::update(std::uint64_t now_ms) {
@@ -23,7 +29,7 @@ void ClientConnection::update(std::uint64_t now_ms) {
     lost_since_ms_ = 0;
     return;
   }
-  if (!resume_when_lost_ || !welcomed_ || gone_) return;
+  if (!resume_when_lost_ || !welcomed_ || gone_ || left_) return;
   if (st != ClientState::timed_out && st != ClientState::disconnected) return;
   if (lost_since_ms_ == 0) lost_since_ms_ = now_ms;
   if (now_ms - lost_since_ms_ > window_ms_) {

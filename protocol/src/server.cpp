@@ -234,9 +234,9 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
       if (auto why = s.commands.accept(*c)) rejects_.add(*why);
       for (auto& cmd : s.commands.take()) commands_.push_back({s.player_id, cmd});
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
-      drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
       // A player who quits gives its seat up at once; its progress stays for the window.
       s.quit = true;
+      drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
       // A health check leaves no player behind: its slot is free at once.
       if (bye->reason == kProbeByeReason) release(s.player_id, kProbeByeReason);
       return;
@@ -284,7 +284,7 @@ void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std:
   s.disconnected_ms = now_ms;
   by_session_id_.erase(s.session_id);
   by_address_.erase(s.address);
-  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason});
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit});
 }
 
 void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {

@@ -85,7 +85,8 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
         break;
       case K::disconnected:
         held_.erase(e.player_id);  // a gone client stops pushing
-        in.away.push_back(e.player_id);
+        // A quit takes the ball off at once; a lost connection leaves it (for a resume).
+        (e.quit ? in.quit : in.away).push_back(e.player_id);
         log_record(spdlog::level::info, "disconnect", {{"player", e.player_id}, {"reason", e.reason}});
         break;
       case K::released:
@@ -207,6 +208,10 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
 }
 
 void GameHost::tick(std::uint64_t now_ms) {
+  if (const auto stalled = endpoint_.stalled_ms(); stalled != stalled_logged_ms_) {
+    log_record(spdlog::level::warn, "stall", {{"ms", stalled - stalled_logged_ms_}, {"total_ms", stalled}});
+    stalled_logged_ms_ = stalled;
+  }
   std::vector<PendingAnswer> answers;
   const sim::TickInputs in = gather(answers, now_ms);
   if (recorder_) recorder_->inputs(match_.tick, in);

@@ -65,7 +65,8 @@ class GameHost {
   std::vector<sim::JoinRequest> joins_;
   std::vector<sim::PlayerId> leaves_;
   std::deque<protocol::Event> recent_;
-  std::uint32_t event_seq_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
+  std::uint32_t event_seq_ = 0;
+  std::uint64_t stalled_logged_ms_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
   std::unique_ptr<host::RecordWriter> recorder_;
   std::uint32_t ticks_per_snapshot_ = 5;
   sim::Phase last_phase_ = sim::Phase::lobby;

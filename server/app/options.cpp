@@ -69,6 +69,8 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.timeout_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
   } else if (key == "reconnect-window-ms") {
     if (!parse_uint<std::uint32_t>(value, o.reconnect_window_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
+  } else if (key == "input-expiry-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.input_expiry_ms, 10, 10000)) return bad("must be 10..10000 ms");
   } else if (key == "stats-interval-ms") {
     if (!parse_uint<std::uint32_t>(value, o.stats_interval_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
   } else if (key == "time-scale") {
@@ -106,6 +108,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--log-format", "FTS_LOG_FORMAT", "text", "text or json (one JSON record per line)"},
       {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
       {"--reconnect-window-ms", "FTS_RECONNECT_WINDOW_MS", "60000", "how long a dropped player's slot is kept (ms)"},
+      {"--input-expiry-ms", "FTS_INPUT_EXPIRY_MS", "150", "a held input goes neutral after this long without a new frame (ms)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
   };

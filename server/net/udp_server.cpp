@@ -25,7 +25,9 @@ class Loop {
  public:
   Loop(const Options& o, GameHost& host, std::ostream* record)
       : options_(o), host_(host), record_(record), socket_(io_), tick_timer_(io_), stats_timer_(io_),
-        signals_(io_, SIGINT, SIGTERM),
+        // SIGHUP (the terminal closed, or a supervisor's stop) ends the server like
+        // SIGTERM: clients are told. It does not reload the configuration.
+        signals_(io_, SIGINT, SIGTERM, SIGHUP),
         clock_(static_cast<std::uint32_t>(o.tick_rate_hz * o.time_scale + 0.5), 5) {}
 
   int run() {

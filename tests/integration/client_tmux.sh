@@ -2,7 +2,8 @@
 # End to end: a real fts-server (and fts-bot, when given), the real fts-client in a tmux
 # pane. Sends keys, reads the pane, and checks what a person would see: the ball moves,
 # the HUD changes, level 1 is finished, a purchase in the shop makes the coins fall and
-# the price rise, and q quits with the terminal given back. Every wait polls the pane
+# the price rise, q asks and q again quits with the terminal given back, and a restarted
+# client takes its player back (its token is kept per server). Every wait polls the pane
 # against a deadline; nothing sleeps for a fixed time to "let things happen".
 #
 # usage: client_tmux.sh FTS_SERVER FTS_CLIENT [FTS_BOT]
@@ -99,8 +100,8 @@ if [[ -n "$BOT" && -x "$BOT" ]]; then
   BOT_PID=$!
 fi
 
-tm new-session -d -s "$SESSION" -x 120 -y 40 \
-  "NO_COLOR=1 '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
+CLIENT_CMD="NO_COLOR=1 XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
+tm new-session -d -s "$SESSION" -x 120 -y 40 "$CLIENT_CMD"
 
 wait_for 10 'Players:.*e2e \(you\)'
 echo "connected"
@@ -185,8 +186,33 @@ done
 grep -q 'reconnect player=' "$WORK/server.log" || fail "the server logged no reconnect"
 echo "reconnected with the session token"
 
-# Quit: the client exits 0 and leaves the alternate screen.
+# Quit: q asks first, a second q quits; the client exits 0 and leaves the alternate screen.
+tm send-keys -t "$SESSION" q
+wait_for 5 'Quit\? Press q again'
 tm send-keys -t "$SESSION" q
 wait_for 5 '^CLIENT_EXIT=0'
 pane | grep -qE '^Level: [0-9]+   Coins' && fail "the game screen is still there after quitting"
+deadline=$((SECONDS + 5))
+until grep -qE 'disconnect player=[0-9]+ reason=quit' "$WORK/server.log"; do
+  ((SECONDS < deadline)) || fail "the server did not see the quit"
+  sleep 0.1
+done
+echo "quit: the server saw the bye"
+
+# A restarted client takes its player back with the token it kept: the same coins.
+[[ -f "$WORK/state/fear-the-sphere/sessions/127.0.0.1_$PORT" ]] || fail "no session file was kept"
+[[ $(stat -c %a "$WORK/state/fear-the-sphere/sessions/127.0.0.1_$PORT") == 600 ]] || fail "the session file is not 0600"
+reconnects=$(grep -c 'reconnect player=' "$WORK/server.log" || true)
+tm respawn-pane -k -t "$SESSION" "$CLIENT_CMD"
+wait_for 10 "^Level: [0-9]+   Coins: $((coins - price)) "
+deadline=$((SECONDS + 5))
+until (($(grep -c 'reconnect player=' "$WORK/server.log" || true) > reconnects)); do
+  ((SECONDS < deadline)) || fail "the restarted client was not taken back by its token"
+  sleep 0.1
+done
+echo "restarted: the same player, coins $((coins - price))"
+tm send-keys -t "$SESSION" q
+wait_for 5 'Quit\? Press q again'
+tm send-keys -t "$SESSION" y
+wait_for 5 '^CLIENT_EXIT=0'
 echo "PASS"

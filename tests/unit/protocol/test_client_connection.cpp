@@ -93,3 +93,13 @@ TEST_CASE("ClientConnection: without resuming, a lost connection stays lost; con
   REQUIRE(rig.run_until([&] { return rig.connected(); }, 2000));
   CHECK(rig.conn.endpoint().welcome()->player_id == player);
 }
+
+TEST_CASE("ClientConnection: our own bye is never resumed, even when resuming is on", "[protocol][connection]") {
+  Rig rig(true);
+  REQUIRE(rig.run_until([&] { return rig.connected(); }, 2000));
+  rig.conn.leave(rig.now, "quit");
+  CHECK(rig.conn.state() == ClientState::disconnected);
+  rig.run_until([] { return false; }, 15000);
+  CHECK(rig.conn.attempt() == 1);
+  CHECK_FALSE(rig.conn.resuming());
+}

@@ -24,6 +24,8 @@ class ClientConnection {
   void connect(std::uint64_t now_ms);
   // The endpoint's timers, then the token of a new welcome and the resume rule.
   void update(std::uint64_t now_ms);
+  // Our own clean disconnect (bye with `reason`): never resumed by itself.
+  void leave(std::uint64_t now_ms, const std::string& reason = "quit");
 
   ClientEndpoint& endpoint() { return endpoint_; }
   const ClientEndpoint& endpoint() const { return endpoint_; }
@@ -47,6 +49,7 @@ class ClientConnection {
   std::uint64_t lost_since_ms_ = 0;
   bool welcomed_ = false;  // some attempt was welcomed: there is a player to resume
   bool gone_ = false;
+  bool left_ = false;  // we said bye: not a lost connection
 };
 
 }  // namespace fts::protocol

@@ -60,6 +60,7 @@ struct ServerEvent {
   std::uint32_t player_id = 0;
   std::string name;
   std::string reason;
+  bool quit = false;  // disconnected by the client's bye: its seat is free (PROTOCOL.md 5.4)
 };
 
 struct Outgoing {
