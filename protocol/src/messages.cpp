@@ -104,7 +104,7 @@ void from_json(const json& j, Input& m) {
 
 void to_json(json& j, const Command& m) {
   j = json{{"rid", m.rid}, {"op", op_name(m.op)}};
-  if (m.op == CommandOp::buy) j["item"] = std::string(1, m.item);
+  if (m.op == CommandOp::buy && m.item != 0) j["item"] = std::string(1, m.item);
 }
 // Lenient on purpose: a command the server cannot apply (unknown op, unknown or missing
 // item) still decodes, so that it is consumed and answered with its result code instead

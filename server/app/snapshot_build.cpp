@@ -32,22 +32,22 @@ void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events
     protocol::Event w;
     w.tick = u32(tick);
     switch (e.kind) {
-      case sim::EventKind::joined: w = {w.tick, K::player_joined, e.player, 0, 0}; break;
-      case sim::EventKind::left: w = {w.tick, K::player_left, e.player, 0, 0}; break;
+      case sim::EventKind::joined: w = {0, w.tick, K::player_joined, e.player, 0, 0}; break;
+      case sim::EventKind::left: w = {0, w.tick, K::player_left, e.player, 0, 0}; break;
       case sim::EventKind::level_started:
-        w = {w.tick, e.restart ? K::level_restarted : K::level_started, 0, 0, e.level};
+        w = {0, w.tick, e.restart ? K::level_restarted : K::level_started, 0, 0, e.level};
         break;
-      case sim::EventKind::enemy_defeated: w = {w.tick, K::enemy_fell, e.ball, e.player, e.coins}; break;
-      case sim::EventKind::player_fell: w = {w.tick, K::player_fell, e.player, e.ball, e.lives_left}; break;
-      case sim::EventKind::player_respawned: w = {w.tick, K::respawned, e.player, e.ball, 0}; break;
-      case sim::EventKind::level_complete: w = {w.tick, K::level_complete, 0, 0, e.level}; break;
+      case sim::EventKind::enemy_defeated: w = {0, w.tick, K::enemy_fell, e.ball, e.player, e.coins}; break;
+      case sim::EventKind::player_fell: w = {0, w.tick, K::player_fell, e.player, e.ball, e.lives_left}; break;
+      case sim::EventKind::player_respawned: w = {0, w.tick, K::respawned, e.player, e.ball, 0}; break;
+      case sim::EventKind::level_complete: w = {0, w.tick, K::level_complete, 0, 0, e.level}; break;
       case sim::EventKind::purchase:
         if (!e.ok) continue;  // refusals go to the buyer only, as a command result
-        w = {w.tick, K::purchase, e.player, static_cast<std::uint32_t>(sim::shop_key(e.item)), e.price};
+        w = {0, w.tick, K::purchase, e.player, static_cast<std::uint32_t>(sim::shop_key(e.item)), e.price};
         break;
-      case sim::EventKind::rocket_fired: w = {w.tick, K::rocket_fired, e.player, e.ball, 0}; break;
-      case sim::EventKind::game_over: w = {w.tick, K::match_over, 0, 0, e.level}; break;
-      case sim::EventKind::interest: w = {w.tick, K::interest, e.player, 0, e.coins}; break;
+      case sim::EventKind::rocket_fired: w = {0, w.tick, K::rocket_fired, e.player, e.ball, 0}; break;
+      case sim::EventKind::game_over: w = {0, w.tick, K::match_over, 0, 0, e.level}; break;
+      case sim::EventKind::interest: w = {0, w.tick, K::interest, e.player, 0, e.coins}; break;
       case sim::EventKind::join_refused: continue;
     }
     out.push_back(w);

@@ -46,7 +46,7 @@ def test_server_stall():
     bot plays on with its own player."""
     with Server("--log-level", "debug") as srv:
         bots = start_bots("--connect", srv.address, "--name", "steady", "--count", "5", "--behavior", "hunter",
-                          "--duration", "40")
+                          "--duration", "30")
         wait_for(lambda: len(re.findall(r"connect player=\d+ name=steady", srv.text())) >= 5, 20, "5 bots")
         wait_for(lambda: "level_start level=1" in srv.text(), 30, "level 1 to start")
         srv.proc.send_signal(signal.SIGSTOP)
