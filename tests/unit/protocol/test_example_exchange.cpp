@@ -14,9 +14,9 @@ void print(const char* direction, const std::vector<std::uint8_t>& bytes) {
   auto d = decode_datagram(bytes);
   REQUIRE(d.ok());
   const Header& h = d->header;
-  std::printf("%s %zu bytes  header{version %u, encoding %s, session %u, seq %u, ack %u, ack_bits %08x}\n",
+  std::printf("%s %zu bytes  header{version %u, encoding %s, session %u, seq %u, ack %u, ack_bits %08x, ack_delay %u}\n",
               direction, bytes.size(), h.version, h.encoding == Encoding::json ? "json" : "msgpack",
-              h.session, h.sequence, h.ack, h.ack_bits);
+              h.session, h.sequence, h.ack, h.ack_bits, h.ack_delay_ms);
   std::printf("%s\n\n", std::string(bytes.begin() + kHeaderBytes, bytes.end()).c_str());
 }
 }  // namespace
@@ -27,6 +27,7 @@ TEST_CASE("example exchange", "[.example]") {
   ClientConfig cc;
   cc.encoding = Encoding::json;
   cc.name = "ann";
+  cc.nonce = 0x5eed0fa11c0ffee5;  // normally random per connection attempt
   ClientEndpoint client(cc);
   const std::string addr = "192.0.2.7:40000";
   std::uint64_t now = 1000;
