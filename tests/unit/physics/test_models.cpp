@@ -120,6 +120,33 @@ TEST_CASE("Friction: velocity decays by 0.991 per 0.01 s at every tick rate", "[
     run(w, s, 1.0 / hz, n);
     CHECK(w.balls[0].vel.x == Approx(100 * std::pow(0.991, 100)).epsilon(1e-12));
   }
+  SECTION("the unit is the configured frame: a longer frame decays less per second") {
+    for (double frame_s : {0.01, 0.02, 0.005}) {
+      INFO("frame " << frame_s << " s");
+      World w;
+      w.arena = {1e6, 1e6, Boundary::open};
+      w.balls = {ball(1, 5e5, 5e5, 100, 0, 1, 1)};
+      auto s = settings(Model::discrete);
+      s.friction = true;
+      s.frame_s = frame_s;
+      run(w, s, 0.01, 100);  // one second at 100 Hz
+      CHECK(w.balls[0].vel.x == Approx(100 * std::pow(0.991, 1.0 / frame_s)).epsilon(1e-12));
+    }
+  }
+  SECTION("a thrust axis is spared the cut-off for that tick only") {
+    World w;
+    w.arena = {100, 100, Boundary::open};
+    w.balls = {ball(1, 50, 50, 0.5, 0.5, 1, 1)};
+    w.balls[0].thrust_axes = kThrustX;
+    auto s = settings(Model::continuous);
+    s.friction = true;
+    run(w, s, 0.01, 1);
+    CHECK(w.balls[0].vel.x == 0.5 * 0.991);
+    CHECK(w.balls[0].vel.y == 0.0);
+    CHECK(w.balls[0].thrust_axes == 0);  // cleared by the step
+    run(w, s, 0.01, 1);
+    CHECK(w.balls[0].vel.x == 0.0);
+  }
   SECTION("a component below 1 u/s stops") {
     World w;
     w.arena = {100, 100, Boundary::open};
