@@ -9,8 +9,8 @@ namespace fts::sim {
 // visits than they add box tests (measured with callgrind on gas-10000).
 constexpr double kCellScale = 2.0;
 
-void Grid::build(const std::vector<Box>& boxes) {
-  boxes_ = &boxes;
+void Grid::build() {
+  const std::vector<Box>& boxes = boxes_;
   const std::size_t n = boxes.size();
   overflow_.clear();
   overflow_flag_.assign(n, 0);

@@ -120,9 +120,8 @@ std::uint64_t state_hash(const std::vector<Ball>& balls) {
 
 double max_penetration(const std::vector<Ball>& balls) {
   Grid grid;
-  std::vector<Box> boxes;
   std::vector<detail::IndexPair> pairs;
-  detail::find_overlaps(balls, balls.size() > 64, grid, boxes, pairs);
+  detail::find_overlaps(balls, balls.size() > 64, grid, pairs);
   double worst = 0.0;
   for (auto [i, j] : pairs) {
     const double d = length(balls[j].pos - balls[i].pos);

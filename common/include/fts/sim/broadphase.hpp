@@ -21,8 +21,11 @@ inline bool overlaps(const Box& a, const Box& b) {
 
 class Grid {
  public:
-  // Indexes boxes[i] for i in [0, n).
-  void build(const std::vector<Box>& boxes);
+  // The boxes to index, owned by the grid: fill, then build().
+  std::vector<Box>& boxes() { return boxes_; }
+  const Box& box(std::uint32_t i) const { return boxes_[i]; }
+  // Indexes boxes()[i] for i in [0, n).
+  void build();
   // Calls fn(i, j) with i < j once for every pair of overlapping boxes, in no
   // particular order.
   template <class Fn>
@@ -38,7 +41,7 @@ class Grid {
   int cell_x(double x) const;
   int cell_y(double y) const;
 
-  const std::vector<Box>* boxes_ = nullptr;
+  std::vector<Box> boxes_;
   double origin_x_ = 0, origin_y_ = 0, inv_cell_ = 1, cell_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cell_start_;  // size nx*ny + 1
@@ -52,7 +55,7 @@ class Grid {
 
 template <class Fn>
 void Grid::for_each_overlapping_pair(Fn&& fn) const {
-  const auto& boxes = *boxes_;
+  const auto& boxes = boxes_;
   // filed_ holds the boxes in items_ order, so the scans below read memory in sequence.
   auto visit = [&](std::uint32_t i, const Box& bi, std::size_t cell) {
     for (std::uint32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fts/sim/ball.hpp"
+#include "fts/sim/step_buffers.hpp"
 
 namespace fts::sim {
 
@@ -65,6 +66,7 @@ struct StepReport {
 struct World {
   Arena arena;
   std::vector<Ball> balls;  // kept sorted by id
+  StepBuffers buffers;      // the step's working memory (not state; never copied)
 };
 
 // Precomputed per-tick constants (friction factor without libm pow).
