@@ -119,7 +119,7 @@ std::uint64_t state_hash(const std::vector<Ball>& balls) {
 }
 
 double max_penetration(const std::vector<Ball>& balls) {
-  Grid grid;
+  DiscGrid grid;
   std::vector<detail::IndexPair> pairs;
   detail::find_overlaps(balls, balls.size() > 64, grid, pairs);
   double worst = 0.0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fts/sim/broadphase.hpp"
+#include "fts/sim/broadphase_discs.hpp"
 
 namespace fts::sim {
 
@@ -29,7 +30,8 @@ struct StepBuffers {
   StepBuffers& operator=(StepBuffers&&) noexcept = default;
   ~StepBuffers() = default;
 
-  Grid grid;                                                // broad phase (owns its boxes)
+  DiscGrid discs;                                           // overlap search (seed, discrete)
+  Grid grid;                                                // swept boxes (continuous)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // overlapping index pairs
   // Continuous model: per-ball clock, stamp, liveness, escape flag; the event heap.
   std::vector<double> t;
