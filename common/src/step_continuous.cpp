@@ -279,10 +279,12 @@ class Solver {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i)
       if (alive_[i]) advance(i, dt_);
-    std::size_t out = 0;
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (alive_[i]) balls_[out++] = balls_[i];
-    balls_.resize(out);
+    if (!report_.fallen.empty()) {  // only a fall ends a ball's life
+      std::size_t out = 0;
+      for (std::uint32_t i = 0; i < n; ++i)
+        if (alive_[i]) balls_[out++] = balls_[i];
+      balls_.resize(out);
+    }
     if (report_.event_cap_hits > 0) {
       // Out of budget (a jammed pile): leave no ball outside the arena.
       apply_boundary(world_, report_);
