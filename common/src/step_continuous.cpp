@@ -146,17 +146,18 @@ class Solver {
       overlaps_.emplace_back(std::min(i, j), std::max(i, j));
     }
     const double b = dot(d, w);
-    // Whether a candidate approaches is a coin toss, so the root is computed for all of
-    // them and one well-predicted branch (few hit this tick) decides; the values are the
-    // same as taking the branches: approaching (b < 0) and either touching now (c <= 0:
-    // collide at t0) or meeting, at the smaller root of a t^2 + 2 b t + c = 0 in the
-    // cancellation-free form. A masked-out root may be NaN or infinite; it is unused.
-    const double a = length_sq(w);
-    const double disc = b * b - a * c;
-    const double root = t0 + c / (-b + std::sqrt(disc >= 0.0 ? disc : 0.0));
-    const double t = c <= 0.0 ? t0 : root;
-    const bool hit = (b < 0.0) & ((c <= 0.0) | (disc >= 0.0)) & (t <= dt_);
-    if (!hit) return;
+    if (!(b < 0.0)) return;  // not approaching
+    double t;
+    if (c <= 0.0) {
+      t = t0;  // touching or overlapping and approaching: collide now
+    } else {
+      const double a = length_sq(w);
+      const double disc = b * b - a * c;
+      if (!(disc >= 0.0)) return;
+      // The smaller root of a t^2 + 2 b t + c = 0, in the cancellation-free form.
+      t = t0 + c / (-b + std::sqrt(disc));
+    }
+    if (!(t <= dt_)) return;
     const std::uint32_t lo = std::min(i, j), hi = std::max(i, j);
     heap_.push({t, lo, hi, stamp_[lo], stamp_[hi]});
   }
