@@ -39,6 +39,7 @@ struct StepBuffers {
   std::vector<std::uint8_t> alive;
   std::vector<std::uint8_t> escaped_flag;
   std::vector<std::uint32_t> escaped;
+  std::vector<Box> escaped_box;  // an escaped ball's path box until its next event
   std::vector<detail::TimedEvent> heap;
 };
 
