@@ -1,4 +1,4 @@
-// The broad phases find exactly the pairs that the all-pairs test finds.
+// The broad phases find exactly the pairs that the all-pairs tests find.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../../support/physics_fixtures.hpp"
+#include "fts/sim/broadphase.hpp"
 #include "fts/sim/broadphase_discs.hpp"
 #include "fts/sim/rng.hpp"
 
@@ -66,5 +67,38 @@ TEST_CASE("DiscGrid: the same touching pairs as all pairs", "[broadphase]") {
     CHECK(disc_grid(grid, balls) == Pairs{{1, 2}});
     balls.resize(1);
     CHECK(disc_grid(grid, balls).empty());
+  }
+}
+
+TEST_CASE("Grid: the same overlapping boxes as all pairs; a query offers every overlapping box", "[broadphase]") {
+  Grid grid;
+  Rng rng(11);
+  for (int round = 0; round < 30; ++round) {
+    INFO("round " << round);
+    const int n = 1 + static_cast<int>(rng.uniform(0.0, 400.0));
+    const double side = rng.uniform(5.0, 150.0);
+    std::vector<Box>& boxes = grid.boxes();
+    boxes.clear();
+    for (int i = 0; i < n; ++i) {
+      double w = rng.uniform(0.5, 3.0), h = rng.uniform(0.5, 3.0);
+      if (round % 3 == 0 && i % 40 == 0) w = h = rng.uniform(20.0, 60.0);  // overflow
+      const double x = rng.uniform(0.0, side), y = rng.uniform(0.0, side);
+      boxes.push_back({x, y, x + w, y + h});
+    }
+    grid.build();
+    Pairs expected, found;
+    for (std::uint32_t i = 0; i < boxes.size(); ++i)
+      for (std::uint32_t j = i + 1; j < boxes.size(); ++j)
+        if (overlaps(boxes[i], boxes[j])) expected.emplace_back(i, j);
+    grid.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) { found.emplace_back(i, j); });
+    std::sort(found.begin(), found.end());
+    CHECK(found == expected);
+    // A query box somewhere: every box overlapping it is offered (maybe more).
+    const double qx = rng.uniform(0.0, side), qy = rng.uniform(0.0, side);
+    const Box q{qx, qy, qx + rng.uniform(0.0, 10.0), qy + rng.uniform(0.0, 10.0)};
+    std::vector<std::uint8_t> offered(boxes.size(), 0);
+    grid.query(q, [&](std::uint32_t j) { offered[j] = 1; });
+    for (std::uint32_t j = 0; j < boxes.size(); ++j)
+      if (overlaps(q, boxes[j])) CHECK(offered[j]);
   }
 }
