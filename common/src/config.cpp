@@ -19,8 +19,9 @@ PhysicsSettings physics_settings(const MatchConfig& cfg) {
   PhysicsSettings s;
   s.model = cfg.model;
   s.substeps = cfg.substeps;
-  s.friction = false;  // the match applies friction itself, exempting thrusted axes
-  s.friction_per_100hz = cfg.friction_per_frame;
+  s.friction = true;
+  s.friction_per_frame = cfg.friction_per_frame;
+  s.frame_s = cfg.frame_s;
   s.friction_cutoff_u_per_s = cfg.friction_cutoff_u_per_s;
   return s;
 }

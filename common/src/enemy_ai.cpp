@@ -49,8 +49,7 @@ void steer_enemies(MatchState& s) {
     const int dx = toward(b.pos.x, body.goal.x), dy = toward(b.pos.y, body.goal.y);
     thrust_axis(b.vel.x, dx, body.spec.accel_u_per_s2, body.spec.vmax_u_per_s, dt);
     thrust_axis(b.vel.y, dy, body.spec.accel_u_per_s2, body.spec.vmax_u_per_s, dt);
-    body.thrust_x = static_cast<std::int8_t>(dx);
-    body.thrust_y = static_cast<std::int8_t>(dy);
+    b.thrust_axes = static_cast<std::uint8_t>((dx != 0 ? kThrustX : 0) | (dy != 0 ? kThrustY : 0));
   }
 }
 

@@ -69,9 +69,6 @@ MatchState make_match(const MatchConfig& cfg, std::uint64_t seed) {
   s.world.arena.boundary = Boundary::open;
   s.physics = physics_settings(cfg);
   s.step_k = make_step_constants(s.physics, 1.0 / cfg.tick_rate_hz);
-  PhysicsSettings f = s.physics;
-  f.friction = true;
-  s.friction_factor = make_step_constants(f, 1.0 / cfg.tick_rate_hz).friction_factor;
   return s;
 }
 

@@ -1,4 +1,4 @@
-// The playing phase's tick: respawns, thrust, rockets, enemy AI, physics, friction,
+// The playing phase's tick: respawns, thrust, rockets, enemy AI, physics (with friction),
 // credit for contacts, falls, and the level's end (complete, restart or game over).
 #include <algorithm>
 #include <cmath>
@@ -42,26 +42,12 @@ void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, s
     const int dx = clamp_dir(t.input.move_x), dy = clamp_dir(t.input.move_y);
     thrust_axis(b->vel.x, dx, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
     thrust_axis(b->vel.y, dy, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
-    Body& body = s.bodies[p->ball];
-    body.thrust_x = static_cast<std::int8_t>(dx);
-    body.thrust_y = static_cast<std::int8_t>(dy);
+    b->thrust_axes = static_cast<std::uint8_t>((dx != 0 ? kThrustX : 0) | (dy != 0 ? kThrustY : 0));
     if (dx != 0 || dy != 0) {
       const double k = (dx != 0 && dy != 0) ? std::sqrt(0.5) : 1.0;
       p->aim = {dx * k, dy * k};
     }
     if (t.input.fire && p->eco.rockets && s.tick >= p->next_fire_tick) fire_rocket(s, *p, out);
-  }
-}
-
-// Friction per tick; an axis under thrust this tick is not stopped by the cut-off, so a
-// ball can start moving at any tick rate (a*dt may be below the cut-off at 200 Hz).
-void apply_match_friction(MatchState& s) {
-  const double cut = s.cfg.friction_cutoff_u_per_s;
-  for (Ball& b : s.world.balls) {
-    const Body& body = s.bodies[b.id];
-    b.vel *= s.friction_factor;
-    if (body.thrust_x == 0 && std::fabs(b.vel.x) < cut) b.vel.x = 0.0;
-    if (body.thrust_y == 0 && std::fabs(b.vel.y) < cut) b.vel.y = 0.0;
   }
 }
 
@@ -182,12 +168,10 @@ void play_tick(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector
   for (Player& p : s.players) {
     if (p.in_match() && !p.ball && p.respawn_tick >= 0 && s.tick >= p.respawn_tick) respawn_player(s, p, out);
   }
-  for (auto& [id, b] : s.bodies) b.thrust_x = b.thrust_y = 0;
   apply_player_inputs(s, inputs, out);
   steer_enemies(s);
   StepReport report;
-  fts::sim::step(s.world, s.physics, s.step_k, report);
-  apply_match_friction(s);
+  fts::sim::step(s.world, s.physics, s.step_k, report);  // moves, collides, applies friction
   credit_contacts(s, report);
   handle_falls(s, report, out);
   expire_rockets(s);

@@ -47,19 +47,33 @@ std::optional<Broadphase> parse_broadphase(std::string_view s) {
 StepConstants make_step_constants(const PhysicsSettings& settings, double dt_s) {
   StepConstants k;
   k.dt_s = dt_s;
-  // 0.991 per 0.01 s becomes 0.991^(100 dt) per tick, without libm's pow.
-  k.friction_factor = settings.friction ? det_pow(settings.friction_per_100hz, 100.0 * dt_s) : 1.0;
+  // 0.991 per frame becomes 0.991^(dt / frame) per tick, without libm's pow.
+  k.friction_factor = settings.friction ? det_pow(settings.friction_per_frame, dt_s / settings.frame_s) : 1.0;
   return k;
 }
 
-void apply_friction(std::vector<Ball>& balls, const PhysicsSettings& settings, double factor) {
+namespace {
+
+// The one velocity integration of a tick, once per body: friction decays the velocity
+// and stops a slow component unless that axis was thrust this tick (Box2D v3 applies
+// its damping in the same place, per body, in the velocity integration). It runs after
+// the model's moves and impulses, so friction of tick t lands between the impulses of
+// t and the thrust of t+1, which is where the game has always applied it.
+void integrate_velocities(std::vector<Ball>& balls, const PhysicsSettings& settings, const StepConstants& k) {
+  if (!settings.friction) {
+    for (Ball& b : balls) b.thrust_axes = 0;
+    return;
+  }
   const double cut = settings.friction_cutoff_u_per_s;
   for (Ball& b : balls) {
-    b.vel *= factor;
-    if (std::fabs(b.vel.x) < cut) b.vel.x = 0.0;
-    if (std::fabs(b.vel.y) < cut) b.vel.y = 0.0;
+    b.vel *= k.friction_factor;
+    if (!(b.thrust_axes & kThrustX) && std::fabs(b.vel.x) < cut) b.vel.x = 0.0;
+    if (!(b.thrust_axes & kThrustY) && std::fabs(b.vel.y) < cut) b.vel.y = 0.0;
+    b.thrust_axes = 0;
   }
 }
+
+}  // namespace
 
 void step(World& world, const PhysicsSettings& settings, const StepConstants& k, StepReport& report) {
   report.collisions = 0;
@@ -73,7 +87,7 @@ void step(World& world, const PhysicsSettings& settings, const StepConstants& k,
     case Model::discrete: detail::step_discrete(world, settings, k.dt_s, report); break;
     case Model::continuous: detail::step_continuous(world, settings, k.dt_s, report); break;
   }
-  if (settings.friction) apply_friction(world.balls, settings, k.friction_factor);
+  integrate_velocities(world.balls, settings, k);
   std::sort(report.fallen.begin(), report.fallen.end());
 }
 
@@ -105,10 +119,9 @@ std::uint64_t state_hash(const std::vector<Ball>& balls) {
 }
 
 double max_penetration(const std::vector<Ball>& balls) {
-  Grid grid;
-  std::vector<Box> boxes;
+  DiscGrid grid;
   std::vector<detail::IndexPair> pairs;
-  detail::find_overlaps(balls, balls.size() > 64, grid, boxes, pairs);
+  detail::find_overlaps(balls, balls.size() > 64, grid, pairs);
   double worst = 0.0;
   for (auto [i, j] : pairs) {
     const double d = length(balls[j].pos - balls[i].pos);

@@ -3,14 +3,14 @@
 // and nothing overlaps, at any speed.
 //
 // Each ball keeps its own clock t_i inside the tick and is advanced lazily. Events are
-// invalidated by per-ball stamps instead of being removed from the heap. The broad
+// invalidated by per-ball stamps instead of being removed from the heap. All working
+// memory is the world's (World::buffers). The broad
 // phase indexes each ball's swept box for the whole tick (with a margin); a ball whose
 // path leaves its box after a collision joins a small "escaped" list that every
 // re-query also scans, which keeps the search complete without rebuilding the grid.
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
 
 #include "fts/sim/collide.hpp"
 #include "step_internal.hpp"
@@ -22,11 +22,8 @@ constexpr std::uint32_t kWallX = 0xffffff00u;
 constexpr std::uint32_t kWallY = 0xffffff01u;
 constexpr std::uint32_t kFall = 0xffffff02u;
 
-struct Event {
-  double t;
-  std::uint32_t a, b;  // b is another ball's index or kWallX / kWallY / kFall
-  std::uint32_t stamp_a, stamp_b;
-};
+// b is another ball's index or kWallX / kWallY / kFall.
+using Event = TimedEvent;
 struct Later {
   bool operator()(const Event& x, const Event& y) const {
     if (x.t != y.t) return x.t > y.t;
@@ -35,32 +32,35 @@ struct Later {
   }
 };
 
-// Buffers reused from tick to tick (capacity only; contents are rebuilt every tick).
-struct Scratch {
-  std::vector<double> t;
-  std::vector<std::uint32_t> stamp;
-  std::vector<std::uint8_t> alive;
-  std::vector<std::uint8_t> escaped_flag;
-  std::vector<std::uint32_t> escaped;
-  std::vector<Box> boxes;
-  std::vector<IndexPair> overlaps;
-  std::vector<Event> heap_storage;
-  Grid grid;
+// The event queue: a binary heap (earliest first) in a vector the world owns.
+class EventHeap {
+ public:
+  explicit EventHeap(std::vector<Event>& storage) : v_(storage) { v_.clear(); }
+  bool empty() const { return v_.empty(); }
+  const Event& top() const { return v_.front(); }
+  void push(const Event& e) {
+    v_.push_back(e);
+    std::push_heap(v_.begin(), v_.end(), Later{});
+  }
+  void pop() {
+    std::pop_heap(v_.begin(), v_.end(), Later{});
+    v_.pop_back();
+  }
+  void clear() { v_.clear(); }
+
+ private:
+  std::vector<Event>& v_;
 };
 
+// One tick's solve over the world's balls, working in the world's step buffers.
 class Solver {
  public:
-  Solver(World& world, const PhysicsSettings& s, double dt, StepReport& report, Scratch& scratch)
+  Solver(World& world, const PhysicsSettings& s, double dt, StepReport& report)
       : world_(world), balls_(world.balls), dt_(dt), report_(report),
-        grid_mode_(use_grid(s, world.balls.size())), t_(scratch.t), stamp_(scratch.stamp),
-        alive_(scratch.alive), escaped_flag_(scratch.escaped_flag), escaped_(scratch.escaped),
-        boxes_(scratch.boxes), overlaps_(scratch.overlaps), grid_(scratch.grid),
-        heap_(Later{}, std::move(scratch.heap_storage)), scratch_(scratch) {}
-  ~Solver() {
-    // Hand the heap's storage back for the next tick.
-    while (!heap_.empty()) heap_.pop();
-    scratch_.heap_storage = std::move(const_cast<std::vector<Event>&>(container()));
-  }
+        grid_mode_(use_grid(s, world.balls.size())), t_(world.buffers.t), stamp_(world.buffers.stamp),
+        alive_(world.buffers.alive), escaped_flag_(world.buffers.escaped_flag),
+        escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
+        heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box) {}
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
 
@@ -70,6 +70,7 @@ class Solver {
     stamp_.assign(n, 0);
     alive_.assign(n, 1);
     escaped_flag_.assign(n, 0);
+    escaped_box_.resize(n);  // written when a ball escapes, read only after
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
     if (initial_events() && !overlaps_.empty()) {
@@ -108,16 +109,17 @@ class Solver {
 
   // Builds the broad phase and the first events; returns whether overlaps were found.
   bool initial_events() {
-    while (!heap_.empty()) heap_.pop();
+    heap_.clear();
     overlaps_.clear();
     escaped_.clear();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i) boundary_event(i);
     auto pair = [&](std::uint32_t i, std::uint32_t j) { pair_event(i, j, true); };
     if (grid_mode_) {
-      boxes_.resize(n);
-      for (std::uint32_t i = 0; i < n; ++i) boxes_[i] = path_box(i, 0.5);
-      grid_.build(boxes_);
+      std::vector<Box>& boxes = grid_.boxes();
+      boxes.resize(n);
+      for (std::uint32_t i = 0; i < n; ++i) boxes[i] = path_box(i, 0.5);
+      grid_.build();
       grid_.for_each_overlapping_pair(pair);
     } else {
       for (std::uint32_t i = 0; i < n; ++i)
@@ -208,17 +210,24 @@ class Solver {
     }
     const Box now = path_box(i, 0.0);
     if (!escaped_flag_[i] && !grid_.is_overflow(i)) {
-      const Box& home = boxes_[i];
+      const Box& home = grid_.box(i);
       if (now.x0 < home.x0 || now.y0 < home.y0 || now.x1 > home.x1 || now.y1 > home.y1) {
         escaped_flag_[i] = 1;
         escaped_.push_back(i);
       }
     }
+    // An escaped ball's path for the rest of the tick, kept until its next event (which
+    // refreshes it again); the small margin covers rounding, so the test below skips
+    // only pairs that cannot meet. Without it every refresh predicted against every
+    // escaped ball, which grew with N x escapes (gas-100000: 3x the cost per body-step
+    // of gas-10000).
+    if (escaped_flag_[i]) escaped_box_[i] = path_box(i, 0.1);
     grid_.query(now, [&](std::uint32_t j) {
       if (escaped_flag_[j]) return;  // scanned below
-      if (grid_.is_overflow(j) || overlaps(now, boxes_[j])) pair_event(i, j, false);
+      if (grid_.is_overflow(j) || overlaps(now, grid_.box(j))) pair_event(i, j, false);
     });
-    for (std::uint32_t j : escaped_) pair_event(i, j, false);
+    for (std::uint32_t j : escaped_)
+      if (overlaps(now, escaped_box_[j])) pair_event(i, j, false);
   }
 
   void process() {
@@ -278,23 +287,17 @@ class Solver {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i)
       if (alive_[i]) advance(i, dt_);
-    std::size_t out = 0;
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (alive_[i]) balls_[out++] = balls_[i];
-    balls_.resize(out);
+    if (!report_.fallen.empty()) {  // only a fall ends a ball's life
+      std::size_t out = 0;
+      for (std::uint32_t i = 0; i < n; ++i)
+        if (alive_[i]) balls_[out++] = balls_[i];
+      balls_.resize(out);
+    }
     if (report_.event_cap_hits > 0) {
       // Out of budget (a jammed pile): leave no ball outside the arena.
       apply_boundary(world_, report_);
     }
   }
-
-  // The heap's underlying vector (std::priority_queue keeps it as protected member c).
-  struct HeapAccess : std::priority_queue<Event, std::vector<Event>, Later> {
-    static const std::vector<Event>& of(const std::priority_queue<Event, std::vector<Event>, Later>& q) {
-      return q.*(&HeapAccess::c);
-    }
-  };
-  const std::vector<Event>& container() const { return HeapAccess::of(heap_); }
 
   World& world_;
   std::vector<Ball>& balls_;
@@ -306,18 +309,16 @@ class Solver {
   std::vector<std::uint8_t>& alive_;
   std::vector<std::uint8_t>& escaped_flag_;
   std::vector<std::uint32_t>& escaped_;
-  std::vector<Box>& boxes_;
   std::vector<IndexPair>& overlaps_;
   Grid& grid_;
-  std::priority_queue<Event, std::vector<Event>, Later> heap_;
-  Scratch& scratch_;
+  EventHeap heap_;
+  std::vector<Box>& escaped_box_;
 };
 
 }  // namespace
 
 void step_continuous(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
-  thread_local Scratch scratch;
-  Solver(world, s, dt, report, scratch).run();
+  Solver(world, s, dt, report).run();
 }
 
 }  // namespace fts::sim::detail

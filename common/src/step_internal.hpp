@@ -19,8 +19,7 @@ void apply_boundary(World& world, StepReport& report);
 
 // Every overlapping pair (d <= r1 + r2) as index pairs (i < j) in ascending order, so
 // that "pairs" and "grid" resolve contacts in the same order.
-void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, Grid& grid,
-                   std::vector<Box>& boxes, std::vector<IndexPair>& out);
+void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& grid, std::vector<IndexPair>& out);
 
 void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report);
 void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report);

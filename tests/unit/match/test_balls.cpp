@@ -42,6 +42,17 @@ TEST_CASE("Balls: friction 0.991 per frame; a slower component stops") {
   CHECK(find_ball(s.world, e)->vel.x == Approx(100 * std::pow(0.991, 100)).epsilon(1e-9));
 }
 
+TEST_CASE("Balls: friction is per configured frame (frame_s), not per 0.01 s") {
+  MatchConfig cfg;
+  cfg.frame_s = 0.02;  // a 50 fps original: half the decay per second
+  MatchState s = started(1, 1, cfg);
+  remove_enemies(s);
+  add_enemy(s, {450, 30});
+  const BallId e = add_enemy(s, {250, 150}, {100, 0});
+  run(s, 100);  // one second at 100 Hz
+  CHECK(find_ball(s.world, e)->vel.x == Approx(100 * std::pow(0.991, 50)).epsilon(1e-9));
+}
+
 TEST_CASE("Balls: thrust 200 u/s^2 up to vmax 170 u/s on each axis separately") {
   MatchState s = bare_one();
   TickInputs in;

@@ -120,6 +120,33 @@ TEST_CASE("Friction: velocity decays by 0.991 per 0.01 s at every tick rate", "[
     run(w, s, 1.0 / hz, n);
     CHECK(w.balls[0].vel.x == Approx(100 * std::pow(0.991, 100)).epsilon(1e-12));
   }
+  SECTION("the unit is the configured frame: a longer frame decays less per second") {
+    for (double frame_s : {0.01, 0.02, 0.005}) {
+      INFO("frame " << frame_s << " s");
+      World w;
+      w.arena = {1e6, 1e6, Boundary::open};
+      w.balls = {ball(1, 5e5, 5e5, 100, 0, 1, 1)};
+      auto s = settings(Model::discrete);
+      s.friction = true;
+      s.frame_s = frame_s;
+      run(w, s, 0.01, 100);  // one second at 100 Hz
+      CHECK(w.balls[0].vel.x == Approx(100 * std::pow(0.991, 1.0 / frame_s)).epsilon(1e-12));
+    }
+  }
+  SECTION("a thrust axis is spared the cut-off for that tick only") {
+    World w;
+    w.arena = {100, 100, Boundary::open};
+    w.balls = {ball(1, 50, 50, 0.5, 0.5, 1, 1)};
+    w.balls[0].thrust_axes = kThrustX;
+    auto s = settings(Model::continuous);
+    s.friction = true;
+    run(w, s, 0.01, 1);
+    CHECK(w.balls[0].vel.x == 0.5 * 0.991);
+    CHECK(w.balls[0].vel.y == 0.0);
+    CHECK(w.balls[0].thrust_axes == 0);  // cleared by the step
+    run(w, s, 0.01, 1);
+    CHECK(w.balls[0].vel.x == 0.0);
+  }
   SECTION("a component below 1 u/s stops") {
     World w;
     w.arena = {100, 100, Boundary::open};
@@ -138,4 +165,33 @@ TEST_CASE("Deterministic math: det_pow/det_exp/det_log agree with libm", "[model
   }
   for (double x : {1e-300, 0.001, 0.5, 1.0, 2.0, 1e10, 1e300}) CHECK(det_log(x) == Approx(std::log(x)).epsilon(1e-14));
   for (double x : {-700.0, -5.0, 0.0, 1e-3, 3.0, 700.0}) CHECK(det_exp(x) == Approx(std::exp(x)).epsilon(1e-14));
+}
+
+TEST_CASE("Step buffers: the world owns them; a copy starts empty and steps the same", "[models]") {
+  for (Model m : kAllModels) {
+    INFO(to_string(m));
+    World a;
+    a.arena = {60, 60, Boundary::walls};
+    for (BallId id = 1; id <= 100; ++id)
+      a.balls.push_back(ball(id, 3.0 + 5.5 * ((id - 1) % 10), 3.0 + 5.5 * ((id - 1) / 10), 7.0 * (id % 3) - 7.0,
+                             5.0 * (id % 5) - 10.0, 1, 1 + id % 4));
+    auto s = settings(m);
+    s.broadphase = Broadphase::grid;
+    run(a, s, 0.01, 5);
+    if (m == Model::continuous) REQUIRE(a.buffers.t.size() == a.balls.size());
+    World b = a;
+    // Capacity is not state: nothing is copied.
+    CHECK(b.buffers.t.capacity() == 0);
+    CHECK(b.buffers.pairs.capacity() == 0);
+    CHECK(b.buffers.grid.boxes().capacity() == 0);
+    // Stepping one world between the other's steps changes nothing (no shared scratch).
+    World c = a;
+    for (int i = 0; i < 20; ++i) {
+      run(a, s, 0.01, 1);
+      run(c, s, 0.01, 1);
+    }
+    run(b, s, 0.01, 20);
+    CHECK(state_hash(a.balls) == state_hash(b.balls));
+    CHECK(state_hash(c.balls) == state_hash(b.balls));
+  }
 }

@@ -15,6 +15,13 @@ struct Ball {
   Vec2 vel;        // u/s
   double radius = 1.0;  // u
   double mass = 1.0;    // arbitrary mass unit
+  // Axes thrust this tick (kThrustX | kThrustY), set by the game before the step: the
+  // friction cut-off spares them so a ball can start moving at any tick rate. Not state:
+  // step() clears it, as Box2D clears a body's force after each step.
+  std::uint8_t thrust_axes = 0;
 };
+
+constexpr std::uint8_t kThrustX = 1;
+constexpr std::uint8_t kThrustY = 2;
 
 }  // namespace fts::sim

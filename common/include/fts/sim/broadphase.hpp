@@ -1,7 +1,9 @@
-// Broad phase: a uniform grid over axis-aligned boxes, rebuilt per query set (CSR
-// layout by counting sort, no allocation once warm). Each box is filed once, in the
-// cell of its centre; cells are at least as wide as every filed box, so overlapping
-// boxes always sit in the same or neighbouring cells. Boxes far larger than the
+// Broad phase: a uniform grid over axis-aligned boxes, rebuilt per query set. Each box
+// is filed once, in the cell of its centre, by a counting sort that copies the boxes
+// into cell order (no allocation once warm); cells are at least as wide as every filed
+// box, so overlapping boxes always sit in the same or neighbouring cells. The pair scan
+// is a half stencil over two contiguous ranges per box (the rest of its cell and the
+// next one in its row; the three cells of the row above). Boxes far larger than the
 // typical one go to an overflow list that is paired with everything, so one rocket or
 // giant does not blow up the cell size.
 #pragma once
@@ -18,76 +20,92 @@ struct Box {
 inline bool overlaps(const Box& a, const Box& b) {
   return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
 }
+// The same test without branches (1 or 0), for scans where the answer is a coin toss.
+inline std::uint32_t overlap_bit(const Box& a, const Box& b) {
+  return static_cast<std::uint32_t>(a.x0 <= b.x1) & static_cast<std::uint32_t>(b.x0 <= a.x1) &
+         static_cast<std::uint32_t>(a.y0 <= b.y1) & static_cast<std::uint32_t>(b.y0 <= a.y1);
+}
 
 class Grid {
  public:
-  // Indexes boxes[i] for i in [0, n).
-  void build(const std::vector<Box>& boxes);
+  // The boxes to index, owned by the grid: fill, then build().
+  std::vector<Box>& boxes() { return boxes_; }
+  const Box& box(std::uint32_t i) const { return boxes_[i]; }
+  // Indexes boxes()[i] for i in [0, n).
+  void build();
   // Calls fn(i, j) with i < j once for every pair of overlapping boxes, in no
   // particular order.
   template <class Fn>
-  void for_each_overlapping_pair(Fn&& fn) const;
+  void for_each_overlapping_pair(Fn&& fn);
   // Calls fn(j) once for every filed box that may overlap `box`, and for every overflow
   // box (may include non-overlapping ones; callers filter).
   template <class Fn>
   void query(const Box& box, Fn&& fn) const;
-  bool is_overflow(std::uint32_t i) const { return overflow_flag_[i] != 0; }
+  bool is_overflow(std::uint32_t i) const { return !overflow_.empty() && overflow_flag_[i] != 0; }
   const std::vector<std::uint32_t>& overflow() const { return overflow_; }
 
  private:
-  int cell_x(double x) const;
-  int cell_y(double y) const;
+  struct Slot {
+    Box box;
+    std::uint32_t id;
+  };
+  std::uint32_t cell_x(double x) const;
+  std::uint32_t cell_y(double y) const;
 
-  const std::vector<Box>* boxes_ = nullptr;
+  std::vector<Box> boxes_;
   double origin_x_ = 0, origin_y_ = 0, inv_cell_ = 1, cell_ = 1;
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::uint32_t> cell_start_;  // size nx*ny + 1
-  std::vector<std::uint32_t> items_;
+  std::uint32_t nx_ = 1, ny_ = 1;
+  std::vector<std::uint32_t> start_;  // cell c holds slots [start_[c + 1], start_[c + 2])
+  std::vector<Slot> slots_;           // filed boxes in cell order
+  std::vector<std::uint32_t> home_;   // per box: its cell
   std::vector<std::uint32_t> overflow_;
-  std::vector<std::uint8_t> overflow_flag_;
-  std::vector<std::uint32_t> fill_;
-  std::vector<std::uint32_t> home_;
-  std::vector<Box> filed_;
+  std::vector<std::uint8_t> overflow_flag_;  // sized only when there is overflow
+  std::vector<std::uint32_t> hits_;          // one box's overlapping slots during a scan
 };
 
 template <class Fn>
-void Grid::for_each_overlapping_pair(Fn&& fn) const {
-  const auto& boxes = *boxes_;
-  // filed_ holds the boxes in items_ order, so the scans below read memory in sequence.
-  auto visit = [&](std::uint32_t i, const Box& bi, std::size_t cell) {
-    for (std::uint32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
-      if (!overlaps(bi, filed_[q])) continue;
-      const std::uint32_t j = items_[q];
-      fn(i < j ? i : j, i < j ? j : i);
-    }
-  };
-  for (int cy = 0; cy < ny_; ++cy) {
-    for (int cx = 0; cx < nx_; ++cx) {
-      const std::size_t c = static_cast<std::size_t>(cy) * nx_ + cx;
-      for (std::uint32_t p = cell_start_[c]; p < cell_start_[c + 1]; ++p) {
-        const std::uint32_t i = items_[p];
-        const Box bi = filed_[p];
-        for (std::uint32_t q = p + 1; q < cell_start_[c + 1]; ++q) {
-          if (!overlaps(bi, filed_[q])) continue;
-          const std::uint32_t j = items_[q];
-          fn(i < j ? i : j, i < j ? j : i);
+void Grid::for_each_overlapping_pair(Fn&& fn) {
+  // About one candidate in three overlaps: a branch on each test mispredicts often, so
+  // the scan writes every candidate and advances by the test's bit, then calls fn for
+  // the hits.
+  hits_.resize(slots_.size());
+  std::uint32_t* hits = hits_.data();
+  const Slot* slots = slots_.data();
+  const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
+  for (std::uint32_t cy = 0; cy < ny_; ++cy) {
+    const std::uint32_t row = cy * nx_;
+    const bool above = cy + 1 < ny_;
+    for (std::uint32_t cx = 0; cx < nx_; ++cx) {
+      const std::uint32_t c = row + cx;
+      const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
+      if (p0 == p1) continue;
+      const std::uint32_t right_end = begin[cx + 1 < nx_ ? c + 2 : c + 1];
+      const std::uint32_t up0 = above ? begin[c + nx_ - (cx > 0 ? 1 : 0)] : 0;
+      const std::uint32_t up1 = above ? begin[c + nx_ + (cx + 1 < nx_ ? 2 : 1)] : 0;
+      for (std::uint32_t p = p0; p < p1; ++p) {
+        const Box a = slots[p].box;
+        const std::uint32_t i = slots[p].id;
+        std::uint32_t k = 0;
+        for (std::uint32_t q = p + 1; q < right_end; ++q) {
+          hits[k] = q;
+          k += overlap_bit(a, slots[q].box);
         }
-        // Half of the 8-neighbourhood, so each pair of cells is visited once.
-        if (cx + 1 < nx_) visit(i, bi, c + 1);
-        if (cy + 1 < ny_) {
-          const std::size_t up = c + static_cast<std::size_t>(nx_);
-          if (cx > 0) visit(i, bi, up - 1);
-          visit(i, bi, up);
-          if (cx + 1 < nx_) visit(i, bi, up + 1);
+        for (std::uint32_t q = up0; q < up1; ++q) {
+          hits[k] = q;
+          k += overlap_bit(a, slots[q].box);
+        }
+        for (std::uint32_t m = 0; m < k; ++m) {
+          const std::uint32_t j = slots[hits[m]].id;
+          fn(i < j ? i : j, i < j ? j : i);
         }
       }
     }
   }
-  const std::uint32_t n = static_cast<std::uint32_t>(boxes.size());
+  const std::uint32_t n = static_cast<std::uint32_t>(boxes_.size());
   for (std::uint32_t i : overflow_) {
     for (std::uint32_t j = 0; j < n; ++j) {
       if (j == i || (overflow_flag_[j] && j < i)) continue;
-      if (overlaps(boxes[i], boxes[j])) fn(i < j ? i : j, i < j ? j : i);
+      if (overlaps(boxes_[i], boxes_[j])) fn(i < j ? i : j, i < j ? j : i);
     }
   }
 }
@@ -96,27 +114,27 @@ template <class Fn>
 void Grid::query(const Box& box, Fn&& fn) const {
   // Filed boxes reach at most half a cell beyond their centre's cell.
   const double h = 0.5 * cell_;
-  const int x0 = cell_x(box.x0 - h), x1 = cell_x(box.x1 + h);
-  const int y0 = cell_y(box.y0 - h), y1 = cell_y(box.y1 + h);
-  for (int cy = y0; cy <= y1; ++cy) {
-    for (int cx = x0; cx <= x1; ++cx) {
-      const std::size_t c = static_cast<std::size_t>(cy) * nx_ + cx;
-      for (std::uint32_t p = cell_start_[c]; p < cell_start_[c + 1]; ++p) fn(items_[p]);
-    }
+  const std::uint32_t x0 = cell_x(box.x0 - h), x1 = cell_x(box.x1 + h);
+  const std::uint32_t y0 = cell_y(box.y0 - h), y1 = cell_y(box.y1 + h);
+  const std::uint32_t* begin = start_.data() + 1;
+  for (std::uint32_t cy = y0; cy <= y1; ++cy) {
+    // The cells x0..x1 of a row are one contiguous range of slots.
+    const std::uint32_t row = cy * nx_;
+    for (std::uint32_t p = begin[row + x0], end = begin[row + x1 + 1]; p < end; ++p) fn(slots_[p].id);
   }
   for (std::uint32_t j : overflow_) fn(j);
 }
 
-inline int Grid::cell_x(double x) const {
+inline std::uint32_t Grid::cell_x(double x) const {
   const double c = (x - origin_x_) * inv_cell_;
   if (!(c > 0.0)) return 0;  // also NaN
-  return c >= nx_ - 1 ? nx_ - 1 : static_cast<int>(c);  // truncation is floor for c > 0
+  return c >= static_cast<double>(nx_ - 1) ? nx_ - 1 : static_cast<std::uint32_t>(c);  // floor for c > 0
 }
 
-inline int Grid::cell_y(double y) const {
+inline std::uint32_t Grid::cell_y(double y) const {
   const double c = (y - origin_y_) * inv_cell_;
   if (!(c > 0.0)) return 0;
-  return c >= ny_ - 1 ? ny_ - 1 : static_cast<int>(c);
+  return c >= static_cast<double>(ny_ - 1) ? ny_ - 1 : static_cast<std::uint32_t>(c);
 }
 
 }  // namespace fts::sim

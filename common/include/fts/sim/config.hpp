@@ -146,8 +146,9 @@ struct MatchConfig {
 std::int64_t ticks_for(const MatchConfig& cfg, double seconds);
 // Radius of an ordinary ball of this mass: 11 + floor(mass / 8).
 double radius_for_mass(const MatchConfig& cfg, double mass);
-// Physics settings of the game: open platform, the configured model; friction is applied
-// by the match itself (see match_physics.cpp).
+// Physics settings of the game: the configured model and the game's friction (per frame
+// of frame_s; an axis the match thrusts this tick is spared the cut-off, see
+// Ball::thrust_axes).
 PhysicsSettings physics_settings(const MatchConfig& cfg);
 // Empty when valid, else a message naming the first bad field.
 std::string validate(const MatchConfig& cfg);

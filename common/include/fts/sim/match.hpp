@@ -94,7 +94,6 @@ struct Body {
   PlayerId credit = 0;         // enemy: last toucher (directly or through a chain)
   std::int64_t credit_tick = -1;  // tick of that player's originating hit
   std::int64_t expires_tick = 0;  // rocket
-  std::int8_t thrust_x = 0, thrust_y = 0;  // thrust applied this tick (friction exemption)
 };
 
 struct Player {
@@ -124,7 +123,6 @@ struct MatchState {
   World world;
   PhysicsSettings physics;
   StepConstants step_k;
-  double friction_factor = 1.0;
   std::map<BallId, Body> bodies;
   std::vector<Player> players;  // sorted by id
   BallId next_ball_id = 1;

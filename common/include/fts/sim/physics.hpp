@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fts/sim/ball.hpp"
+#include "fts/sim/step_buffers.hpp"
 
 namespace fts::sim {
 
@@ -42,8 +43,9 @@ struct PhysicsSettings {
   Broadphase broadphase = Broadphase::automatic;
   int pairs_max_bodies = 64;           // automatic: all pairs up to this many bodies
   bool friction = false;               // the game's velocity decay
-  double friction_per_100hz = 0.991;   // velocity factor per 0.01 s
-  double friction_cutoff_u_per_s = 1.0;  // a slower velocity component stops
+  double friction_per_frame = 0.991;   // velocity factor per frame of frame_s
+  double frame_s = 0.01;               // the original's frame (GAME_RULES.md "Units")
+  double friction_cutoff_u_per_s = 1.0;  // a slower, unthrusted component stops
 };
 
 struct Contact {
@@ -64,20 +66,20 @@ struct StepReport {
 struct World {
   Arena arena;
   std::vector<Ball> balls;  // kept sorted by id
+  StepBuffers buffers;      // the step's working memory (not state; never copied)
 };
 
 // Precomputed per-tick constants (friction factor without libm pow).
 struct StepConstants {
   double dt_s = 0.01;
-  double friction_factor = 1.0;
+  double friction_factor = 1.0;  // friction_per_frame^(dt_s / frame_s), or 1 without friction
 };
 StepConstants make_step_constants(const PhysicsSettings& settings, double dt_s);
 
-// Advances the world by one tick of dt_s seconds.
+// Advances the world by one tick of dt_s seconds: the model moves the balls and applies
+// the impulses, then every body's velocity is integrated once (friction, thrust flags
+// cleared).
 void step(World& world, const PhysicsSettings& settings, const StepConstants& k, StepReport& report);
-
-// Applies the game's friction once (velocity decay and cut-off); used by step().
-void apply_friction(std::vector<Ball>& balls, const PhysicsSettings& settings, double factor);
 
 // Measurements (pure reads).
 double kinetic_energy(const std::vector<Ball>& balls);

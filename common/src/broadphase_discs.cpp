@@ -1,0 +1,159 @@
+#include "fts/sim/broadphase_discs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fts::sim {
+namespace {
+
+constexpr std::uint32_t kGiant = 0xffffffffu;
+// Cell width in largest diameters. 1 is the least that keeps the stencil complete;
+// wider cells mean fewer (mostly empty) cells to count and more discs per range.
+constexpr double kCellDiameters = 2.0;
+// A disc wider than this many mean diameters is a giant.
+constexpr double kGiantFactor = 4.0;
+
+}  // namespace
+
+void DiscGrid::file(const std::vector<Ball>& balls) {
+  const std::size_t n = balls.size();
+  cell_.resize(n);
+  giants_.clear();
+  // One pass for the usual case (no giant): mean and largest radius, centre bounds.
+  double sum_r = 0.0, r_max = 0.0;
+  double lo_x = balls[0].pos.x, hi_x = lo_x, lo_y = balls[0].pos.y, hi_y = lo_y;
+  for (const Ball& b : balls) {
+    sum_r += b.radius;
+    r_max = std::max(r_max, b.radius);
+    lo_x = std::min(lo_x, b.pos.x); hi_x = std::max(hi_x, b.pos.x);
+    lo_y = std::min(lo_y, b.pos.y); hi_y = std::max(hi_y, b.pos.y);
+  }
+  double mean_r = sum_r / static_cast<double>(n);
+  if (!(mean_r > 0.0) || !std::isfinite(mean_r)) mean_r = 1.0;
+  const double giant_r = kGiantFactor * mean_r;
+  const bool has_giants = !(r_max <= giant_r);
+  if (has_giants) {
+    // Set the giants aside; the cells and bounds come from the others.
+    r_max = 0.0;
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Ball& b = balls[i];
+      if (!(b.radius <= giant_r)) {
+        cell_[i] = kGiant;
+        giants_.push_back(static_cast<std::uint32_t>(i));
+        continue;
+      }
+      cell_[i] = 0;
+      r_max = std::max(r_max, b.radius);
+      if (!any) {
+        lo_x = hi_x = b.pos.x;
+        lo_y = hi_y = b.pos.y;
+        any = true;
+      } else {
+        lo_x = std::min(lo_x, b.pos.x); hi_x = std::max(hi_x, b.pos.x);
+        lo_y = std::min(lo_y, b.pos.y); hi_y = std::max(hi_y, b.pos.y);
+      }
+    }
+  }
+  if (!std::isfinite(lo_x) || !std::isfinite(hi_x)) lo_x = hi_x = 0.0;
+  if (!std::isfinite(lo_y) || !std::isfinite(hi_y)) lo_y = hi_y = 0.0;
+  double cell = kCellDiameters * 2.0 * r_max;
+  if (!(cell > 0.0)) cell = 1.0;
+  // Few cells per disc: grow the cells when the discs are sparse.
+  const double max_cells = 4.0 * static_cast<double>(n) + 64.0;
+  for (;;) {
+    const double cx = std::floor((hi_x - lo_x) / cell) + 1.0;
+    const double cy = std::floor((hi_y - lo_y) / cell) + 1.0;
+    if (cx * cy <= max_cells) {
+      nx_ = static_cast<std::uint32_t>(cx);
+      ny_ = static_cast<std::uint32_t>(cy);
+      break;
+    }
+    cell *= 1.5;
+  }
+  origin_x_ = lo_x;
+  origin_y_ = lo_y;
+  inv_cell_ = 1.0 / cell;
+
+  // Counting sort: start_[c + 1] counts cell c, then (prefix sum) marks its end; filing
+  // from the last disc down moves it to the cell's beginning, discs in index order.
+  // So cell c is [start_[c + 1], start_[c + 2]).
+  const std::size_t ncells = static_cast<std::size_t>(nx_) * ny_;
+  start_.assign(ncells + 2, 0);
+  const double ox = origin_x_, oy = origin_y_, inv = inv_cell_;
+  const std::uint32_t last_x = nx_ - 1, last_y = ny_ - 1;
+  auto index = [inv](double v, double origin, std::uint32_t last) -> std::uint32_t {
+    const double c = (v - origin) * inv;
+    if (!(c > 0.0)) return 0;  // also NaN
+    return c >= static_cast<double>(last) ? last : static_cast<std::uint32_t>(c);
+  };
+  std::uint32_t* count = start_.data() + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (has_giants && cell_[i] == kGiant) continue;
+    const Ball& b = balls[i];
+    const std::uint32_t c = index(b.pos.y, oy, last_y) * nx_ + index(b.pos.x, ox, last_x);
+    cell_[i] = c;
+    ++count[c];
+  }
+  for (std::size_t c = 1; c <= ncells; ++c) start_[c] += start_[c - 1];
+  const std::uint32_t filed = start_[ncells];
+  start_[ncells + 1] = filed;
+  slots_.resize(filed);
+  Slot* slots = slots_.data();
+  for (std::size_t i = n; i-- > 0;) {
+    const std::uint32_t c = cell_[i];
+    if (has_giants && c == kGiant) continue;
+    const Ball& b = balls[i];
+    slots[--count[c]] = {b.pos.x, b.pos.y, b.radius, static_cast<std::uint32_t>(i)};
+  }
+}
+
+void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  if (balls.empty()) return;
+  file(balls);
+  const Slot* slots = slots_.data();
+  const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
+  for (std::uint32_t cy = 0; cy < ny_; ++cy) {
+    const std::uint32_t row = cy * nx_;
+    const bool above = cy + 1 < ny_;
+    for (std::uint32_t cx = 0; cx < nx_; ++cx) {
+      const std::uint32_t c = row + cx;
+      const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
+      if (p0 == p1) continue;
+      // Own cell's rest and the right neighbour: one range. The row above, from the
+      // left neighbour to the right one: another.
+      const std::uint32_t right_end = begin[cx + 1 < nx_ ? c + 2 : c + 1];
+      const std::uint32_t up0 = above ? begin[c + nx_ - (cx > 0 ? 1 : 0)] : 0;
+      const std::uint32_t up1 = above ? begin[c + nx_ + (cx + 1 < nx_ ? 2 : 1)] : 0;
+      for (std::uint32_t p = p0; p < p1; ++p) {
+        const Slot a = slots[p];
+        for (std::uint32_t q = p + 1; q < right_end; ++q) {
+          const double dx = slots[q].x - a.x, dy = slots[q].y - a.y, reach = a.r + slots[q].r;
+          if (dx * dx + dy * dy <= reach * reach)
+            out.emplace_back(std::min(a.id, slots[q].id), std::max(a.id, slots[q].id));
+        }
+        for (std::uint32_t q = up0; q < up1; ++q) {
+          const double dx = slots[q].x - a.x, dy = slots[q].y - a.y, reach = a.r + slots[q].r;
+          if (dx * dx + dy * dy <= reach * reach)
+            out.emplace_back(std::min(a.id, slots[q].id), std::max(a.id, slots[q].id));
+        }
+      }
+    }
+  }
+  // Giants meet everything: filed discs, then later giants.
+  for (std::size_t g = 0; g < giants_.size(); ++g) {
+    const std::uint32_t gi = giants_[g];
+    const Ball& a = balls[gi];
+    for (const Slot& s : slots_) {
+      const double dx = s.x - a.pos.x, dy = s.y - a.pos.y, reach = a.radius + s.r;
+      if (dx * dx + dy * dy <= reach * reach) out.emplace_back(std::min(gi, s.id), std::max(gi, s.id));
+    }
+    for (std::size_t h = g + 1; h < giants_.size(); ++h) {
+      const Ball& b = balls[giants_[h]];
+      const double dx = b.pos.x - a.pos.x, dy = b.pos.y - a.pos.y, reach = a.radius + b.radius;
+      if (dx * dx + dy * dy <= reach * reach) out.emplace_back(gi, giants_[h]);
+    }
+  }
+}
+
+}  // namespace fts::sim

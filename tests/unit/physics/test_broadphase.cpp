@@ -1,0 +1,104 @@
+// The broad phases find exactly the pairs that the all-pairs tests find.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "../../support/physics_fixtures.hpp"
+#include "fts/sim/broadphase.hpp"
+#include "fts/sim/broadphase_discs.hpp"
+#include "fts/sim/rng.hpp"
+
+using namespace fts::sim;
+using namespace fts::test;
+
+namespace {
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+Pairs brute_force(const std::vector<Ball>& balls) {
+  Pairs out;
+  for (std::uint32_t i = 0; i < balls.size(); ++i)
+    for (std::uint32_t j = i + 1; j < balls.size(); ++j) {
+      const double reach = balls[i].radius + balls[j].radius;
+      if (length_sq(balls[j].pos - balls[i].pos) <= reach * reach) out.emplace_back(i, j);
+    }
+  return out;
+}
+
+Pairs disc_grid(DiscGrid& grid, const std::vector<Ball>& balls) {
+  Pairs out;
+  grid.touching_pairs(balls, out);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("DiscGrid: the same touching pairs as all pairs", "[broadphase]") {
+  DiscGrid grid;  // reused across cases, as a world reuses it across steps
+  Rng rng(7);
+  for (int round = 0; round < 40; ++round) {
+    INFO("round " << round);
+    const int n = 1 + static_cast<int>(rng.uniform(0.0, 600.0));
+    const double side = rng.uniform(5.0, 200.0);
+    std::vector<Ball> balls;
+    for (int i = 0; i < n; ++i) {
+      // Mostly similar radii, some tiny, a few giants (round % 4 == 0) and exact duplicates.
+      double r = rng.uniform(0.5, 2.0);
+      if (i % 17 == 0) r = 1e-3;
+      if (round % 4 == 0 && i % 50 == 0) r = rng.uniform(10.0, 40.0);
+      Vec2 p{rng.uniform(0.0, side), rng.uniform(0.0, side)};
+      if (i > 0 && i % 23 == 0) p = balls.back().pos;
+      balls.push_back(ball(static_cast<BallId>(i + 1), p.x, p.y, 0, 0, r, 1));
+    }
+    CHECK(disc_grid(grid, balls) == brute_force(balls));
+  }
+  SECTION("exactly touching discs on a cell boundary are found") {
+    std::vector<Ball> balls;
+    for (int i = 0; i < 50; ++i) balls.push_back(ball(static_cast<BallId>(i + 1), 2.0 * i, 0.0, 0, 0, 1, 1));
+    const Pairs found = disc_grid(grid, balls);
+    CHECK(found.size() == 49);
+    CHECK(found == brute_force(balls));
+  }
+  SECTION("far-flung discs (sparse cells) and a single disc") {
+    std::vector<Ball> balls = {ball(1, -1e6, 0, 0, 0, 1, 1), ball(2, 1e6, 5, 0, 0, 1, 1), ball(3, 1e6, 6, 0, 0, 1, 1)};
+    CHECK(disc_grid(grid, balls) == Pairs{{1, 2}});
+    balls.resize(1);
+    CHECK(disc_grid(grid, balls).empty());
+  }
+}
+
+TEST_CASE("Grid: the same overlapping boxes as all pairs; a query offers every overlapping box", "[broadphase]") {
+  Grid grid;
+  Rng rng(11);
+  for (int round = 0; round < 30; ++round) {
+    INFO("round " << round);
+    const int n = 1 + static_cast<int>(rng.uniform(0.0, 400.0));
+    const double side = rng.uniform(5.0, 150.0);
+    std::vector<Box>& boxes = grid.boxes();
+    boxes.clear();
+    for (int i = 0; i < n; ++i) {
+      double w = rng.uniform(0.5, 3.0), h = rng.uniform(0.5, 3.0);
+      if (round % 3 == 0 && i % 40 == 0) w = h = rng.uniform(20.0, 60.0);  // overflow
+      const double x = rng.uniform(0.0, side), y = rng.uniform(0.0, side);
+      boxes.push_back({x, y, x + w, y + h});
+    }
+    grid.build();
+    Pairs expected, found;
+    for (std::uint32_t i = 0; i < boxes.size(); ++i)
+      for (std::uint32_t j = i + 1; j < boxes.size(); ++j)
+        if (overlaps(boxes[i], boxes[j])) expected.emplace_back(i, j);
+    grid.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) { found.emplace_back(i, j); });
+    std::sort(found.begin(), found.end());
+    CHECK(found == expected);
+    // A query box somewhere: every box overlapping it is offered (maybe more).
+    const double qx = rng.uniform(0.0, side), qy = rng.uniform(0.0, side);
+    const Box q{qx, qy, qx + rng.uniform(0.0, 10.0), qy + rng.uniform(0.0, 10.0)};
+    std::vector<std::uint8_t> offered(boxes.size(), 0);
+    grid.query(q, [&](std::uint32_t j) { offered[j] = 1; });
+    for (std::uint32_t j = 0; j < boxes.size(); ++j)
+      if (overlaps(q, boxes[j])) CHECK(offered[j]);
+  }
+}
