@@ -45,6 +45,7 @@ std::string_view to_string(Refusal r) {
     case Refusal::already_owned: return "already_owned";
     case Refusal::wrong_phase: return "wrong_phase";
     case Refusal::unknown_item: return "unknown_item";
+    case Refusal::no_player: return "no_player";
   }
   return "?";
 }

@@ -122,14 +122,20 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
   }
 }
 
-void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
+CommandResult handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
+  CommandResult r;
+  r.player = p.id;
+  r.tag = c.tag;
+  r.kind = c.kind;
   switch (c.kind) {
     case CommandKind::ready:
       if (accepts_ready(s, p)) p.ready = true;
-      return;
+      else r.code = Refusal::wrong_phase;
+      return r;
     case CommandKind::play_again:
       if (accepts_play_again(s)) detail::start_new_match(s, out);
-      return;
+      else r.code = Refusal::wrong_phase;
+      return r;
     case CommandKind::buy: break;
   }
   Event e;
@@ -145,14 +151,19 @@ void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Even
     e.price = price_of(p.eco, *item);
     e.reason = Refusal::wrong_phase;
   } else {
-    const Purchase r = buy(p.eco, *item, s.level, s.cfg);
-    e.item = r.item;
-    e.ok = r.ok;
-    e.reason = r.reason;
-    e.price = r.price;
-    e.coins_after = r.coins_after;
+    const Purchase bought = buy(p.eco, *item, s.level, s.cfg);
+    e.item = bought.item;
+    e.ok = bought.ok;
+    e.reason = bought.reason;
+    e.price = bought.price;
+    e.coins_after = bought.coins_after;
   }
   out.push_back(e);
+  r.code = e.reason;
+  r.item = e.item;
+  r.price = e.price;
+  r.coins_after = e.coins_after;
+  return r;
 }
 
 bool all_ready(const MatchState& s, bool only_in_match) {
@@ -174,8 +185,9 @@ bool accepts_ready(const MatchState& s, const Player& p) {
 
 bool accepts_play_again(const MatchState& s) { return s.phase == Phase::game_over; }
 
-std::vector<Event> step(MatchState& s, const TickInputs& in) {
-  std::vector<Event> out;
+TickOutput step(MatchState& s, const TickInputs& in) {
+  TickOutput result;
+  std::vector<Event>& out = result.events;
   handle_leaves(s, in.leaves, out);
   handle_joins(s, in.joins, out);
   for (PlayerId id : in.away)
@@ -188,7 +200,11 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   for (const PlayerTick& t : inputs) {
     for (const Command& c : t.commands) {
       Player* p = find_player(s, t.player);  // re-found: a command may restart the match
-      if (p) handle_command(s, *p, c, out);
+      if (p) {
+        result.results.push_back(handle_command(s, *p, c, out));
+      } else {
+        result.results.push_back({t.player, c.tag, c.kind, Refusal::no_player, Item::mass, 0, 0});
+      }
     }
   }
 
@@ -210,7 +226,7 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   }
   if (s.phase == Phase::playing) detail::play_tick(s, inputs, out);
   ++s.tick;
-  return out;
+  return result;
 }
 
 }  // namespace fts::sim

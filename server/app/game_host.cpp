@@ -18,8 +18,21 @@ std::string refusal_code(sim::Refusal r) {
     case sim::Refusal::already_owned: return "owned";
     case sim::Refusal::wrong_phase: return "phase";
     case sim::Refusal::unknown_item: return "item";
+    case sim::Refusal::no_player: return "dead";
   }
   return "error";
+}
+
+// The sentence of a command's result.
+std::string result_message(const sim::CommandResult& r) {
+  if (r.kind != sim::CommandKind::buy) {
+    if (r.ok()) return "done";
+    return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
+  }
+  if (r.code == sim::Refusal::no_player) return "not in the match";
+  const std::string item(sim::to_string(r.item));
+  if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
+  return item + " not bought: " + std::string(sim::to_string(r.code));
 }
 
 }  // namespace
@@ -67,7 +80,7 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
   return out;
 }
 
-sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint64_t now_ms) {
+sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
   endpoint_.update(now_ms);
   sim::TickInputs in;
   for (const auto& e : endpoint_.take_events()) {
@@ -110,55 +123,30 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
     h.fire = false;
   }
   for (const auto& pc : endpoint_.take_commands()) {
-    const sim::Player* p = sim::find_player(match_, pc.player_id);
-    PendingAnswer a{pc.player_id, pc.command.rid, pc.command.op, false, "ok"};
     sim::PlayerTick& t = ticks[pc.player_id];
     t.player = pc.player_id;
     switch (pc.command.op) {
       case protocol::CommandOp::buy:
-        t.commands.push_back({sim::CommandKind::buy, std::string(1, pc.command.item)});
+        t.commands.push_back({sim::CommandKind::buy, std::string(1, pc.command.item), pc.command.rid});
         break;
-      case protocol::CommandOp::ready:
-        a.ok = p && sim::accepts_ready(match_, *p);
-        a.code = a.ok ? "ok" : "phase";
-        t.commands.push_back({sim::CommandKind::ready, {}});
-        break;
+      case protocol::CommandOp::ready: t.commands.push_back({sim::CommandKind::ready, {}, pc.command.rid}); break;
       case protocol::CommandOp::play_again:
-        a.ok = p && sim::accepts_play_again(match_);
-        a.code = a.ok ? "ok" : "phase";
-        t.commands.push_back({sim::CommandKind::play_again, {}});
+        t.commands.push_back({sim::CommandKind::play_again, {}, pc.command.rid});
         break;
     }
-    answers.push_back(std::move(a));
   }
   for (auto& [id, t] : ticks) {
-    // Players that have not joined the match (yet) have nothing to apply.
+    // Inputs of players that have not joined the match (yet) have nothing to apply; their
+    // commands still go to the step, which answers them.
     const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
-    if (sim::find_player(match_, id) || joining) in.players.push_back(std::move(t));
+    if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
   }
   return in;
 }
 
-void GameHost::answer(const std::vector<PendingAnswer>& answers, const std::vector<sim::Event>& events,
-                      std::uint64_t now_ms) {
-  std::map<std::uint32_t, std::size_t> cursor;  // next purchase event per player
-  for (const auto& a : answers) {
-    if (a.op != protocol::CommandOp::buy) {
-      endpoint_.send_result(a.player, a.rid, a.ok, a.code, a.ok ? "done" : "not now (wrong phase)", now_ms);
-      continue;
-    }
-    std::size_t& i = cursor[a.player];
-    while (i < events.size() && !(events[i].kind == sim::EventKind::purchase && events[i].player == a.player)) ++i;
-    if (i == events.size()) {
-      endpoint_.send_result(a.player, a.rid, false, "dead", "not in the match", now_ms);
-      continue;
-    }
-    const sim::Event& e = events[i++];
-    std::string message = std::string(sim::to_string(e.item)) + (e.ok ? " bought for " : " not bought: ") +
-                          (e.ok ? std::to_string(e.price) + " coins, " + std::to_string(e.coins_after) + " left"
-                                : std::string(sim::to_string(e.reason)));
-    endpoint_.send_result(a.player, a.rid, e.ok, refusal_code(e.reason), std::move(message), now_ms);
-  }
+void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms) {
+  for (const sim::CommandResult& r : results)
+    endpoint_.send_result(r.player, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
 }
 
 void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
@@ -194,12 +182,12 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
 }
 
 void GameHost::tick(std::uint64_t now_ms) {
-  std::vector<PendingAnswer> answers;
-  const sim::TickInputs in = gather(answers, now_ms);
+  const sim::TickInputs in = gather(now_ms);
   if (recorder_) recorder_->inputs(match_.tick, in);
-  const std::vector<sim::Event> events = sim::step(match_, in);
+  const sim::TickOutput stepped = sim::step(match_, in);
+  const std::vector<sim::Event>& events = stepped.events;
   if (recorder_) recorder_->stepped(match_);
-  answer(answers, events, now_ms);
+  answer(stepped.results, now_ms);
   log_events(events, now_ms);
 
   std::vector<protocol::Event> wire;

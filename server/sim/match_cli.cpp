@@ -132,7 +132,7 @@ int run_match_cli(const std::vector<std::string>& args) {
   auto run_tick = [&](const sim::TickInputs& in) {
     if (record) record << host::to_input_line(s.tick, in) << "\n";
     const std::int64_t t = s.tick;
-    auto events = sim::step(s, in);
+    auto events = sim::step(s, in).events;
     tally.add(s, events);
     if (print_events)
       for (const auto& e : events) std::cerr << event_json(t, e).dump() << "\n";

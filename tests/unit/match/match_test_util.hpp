@@ -65,7 +65,7 @@ inline Ball& ball_of(MatchState& s, PlayerId p) { return *find_ball(s.world, fin
 inline std::vector<Event> run(MatchState& s, int ticks, const TickInputs& in = {}) {
   std::vector<Event> all;
   for (int i = 0; i < ticks; ++i) {
-    auto ev = step(s, in);
+    auto ev = step(s, in).events;
     all.insert(all.end(), ev.begin(), ev.end());
   }
   return all;

@@ -116,7 +116,7 @@ TEST_CASE("Levels: spawns in the inner box, never overlapping, level 1's enemy a
     s.phase = Phase::shop;
     s.level = 6;
     s.shop_deadline_tick = s.tick;
-    ev = step(s, {});
+    ev = step(s, {}).events;
     REQUIRE(s.level == 7);
     std::int64_t enemies = 0;
     for (const Ball& b : s.world.balls) {

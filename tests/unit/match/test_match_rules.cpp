@@ -107,7 +107,7 @@ TEST_CASE("Multiplayer: simultaneous falls are each credited") {
   s.bodies[e1].credit_tick = s.tick;
   s.bodies[e2].credit = 2;
   s.bodies[e2].credit_tick = s.tick;
-  const auto ev = step(s, {});
+  const auto ev = step(s, {}).events;
   REQUIRE(defeat_of(ev, e1));
   REQUIRE(defeat_of(ev, e2));
   CHECK(defeat_of(ev, e1)->player == 1);
@@ -123,7 +123,7 @@ TEST_CASE("Lives: the player and the last enemy fall in the same tick: level com
   s.bodies[e].credit = 1;
   s.bodies[e].credit_tick = s.tick;
   place(s, 1, {1, 150}, {-200, 0});
-  const auto ev = step(s, {});
+  const auto ev = step(s, {}).events;
   CHECK(of_kind(ev, EventKind::enemy_defeated).size() == 1);
   REQUIRE(of_kind(ev, EventKind::player_fell).size() == 1);
   CHECK(of_kind(ev, EventKind::player_fell)[0].lives_left == 2);
@@ -141,7 +141,7 @@ TEST_CASE("Multiplayer: a player pushed off by another player gives no coins; re
   std::int64_t fell_tick = -1, respawn_tick = -1;
   for (int i = 0; i < 400; ++i) {
     const std::int64_t t = s.tick;
-    for (const Event& e : step(s, {})) {
+    for (const Event& e : step(s, {}).events) {
       if (e.kind == EventKind::player_fell) fell_tick = t;
       if (e.kind == EventKind::player_respawned) respawn_tick = t;
       ev.push_back(e);
@@ -162,7 +162,7 @@ TEST_CASE("Lives: with no player left on the platform the level restarts with fr
   MatchState s = started(1);
   const BallId old_enemy = s.world.balls.back().id;
   place(s, 1, {1, 150}, {-200, 0});
-  const auto ev = step(s, {});
+  const auto ev = step(s, {}).events;
   REQUIRE(of_kind(ev, EventKind::player_fell).size() == 1);
   const auto starts = of_kind(ev, EventKind::level_started);
   REQUIRE(starts.size() == 1);
@@ -179,7 +179,7 @@ TEST_CASE("Lives: out of lives the player watches; all out is game over; play ag
   MatchState s = bare(2);
   find_player(s, 1)->eco.lives = 1;
   place(s, 1, {1, 150}, {-200, 0});
-  auto ev = step(s, {});
+  auto ev = step(s, {}).events;
   CHECK(of_kind(ev, EventKind::player_fell)[0].lives_left == 0);
   CHECK(find_player(s, 1)->ball == 0);
   run(s, 400);
@@ -187,10 +187,10 @@ TEST_CASE("Lives: out of lives the player watches; all out is game over; play ag
   CHECK(s.phase == Phase::playing);
   find_player(s, 2)->eco.lives = 1;
   place(s, 2, {499, 150}, {200, 0});
-  ev = step(s, {});
+  ev = step(s, {}).events;
   CHECK(of_kind(ev, EventKind::game_over).size() == 1);
   CHECK(s.phase == Phase::game_over);
-  ev = step(s, input_for(2, {}, {{CommandKind::play_again, {}}}));
+  ev = step(s, input_for(2, {}, {{CommandKind::play_again, {}}})).events;
   REQUIRE(of_kind(ev, EventKind::level_started).size() == 1);
   CHECK(s.phase == Phase::playing);
   CHECK(s.level == 1);
@@ -204,7 +204,7 @@ TEST_CASE("Phases: the lobby starts the match when every present player is ready
   step(s, joins(2));
   step(s, input_for(1, {}, {{CommandKind::ready, {}}}));
   CHECK(s.phase == Phase::lobby);
-  const auto ev = step(s, input_for(2, {}, {{CommandKind::ready, {}}}));
+  const auto ev = step(s, input_for(2, {}, {{CommandKind::ready, {}}})).events;
   CHECK(s.phase == Phase::playing);
   REQUIRE(of_kind(ev, EventKind::level_started).size() == 1);
   std::int64_t enemies = 0;
@@ -215,7 +215,7 @@ TEST_CASE("Phases: the lobby starts the match when every present player is ready
 TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or after 30 s") {
   MatchState s = started(1);
   // Buying while playing is refused.
-  auto ev = step(s, input_for(1, {}, {buy("m")}));
+  auto ev = step(s, input_for(1, {}, {buy("m")})).events;
   REQUIRE(of_kind(ev, EventKind::purchase).size() == 1);
   CHECK(of_kind(ev, EventKind::purchase)[0].reason == Refusal::wrong_phase);
   remove_enemies(s);
@@ -223,14 +223,14 @@ TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or afte
   s.bodies[e].credit = 1;
   s.bodies[e].credit_tick = s.tick;
   const std::int64_t done_tick = s.tick;
-  ev = step(s, {});
+  ev = step(s, {}).events;
   REQUIRE(of_kind(ev, EventKind::level_complete).size() == 1);
   CHECK(s.phase == Phase::shop);
   CHECK(s.levels_cleared == 1);
   Player& p = *find_player(s, 1);
   CHECK(p.eco.coins == 36);
   CHECK(p.eco.multiplier == Approx(1.02));
-  ev = step(s, input_for(1, {}, {buy("m"), buy("laser"), buy("speed"), buy("mass")}));
+  ev = step(s, input_for(1, {}, {buy("m"), buy("laser"), buy("speed"), buy("mass")})).events;
   const auto buys = of_kind(ev, EventKind::purchase);
   REQUIRE(buys.size() == 4);
   CHECK(buys[0].ok);
@@ -244,7 +244,7 @@ TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or afte
   std::int64_t start_tick = -1;
   while (s.phase == Phase::shop) {
     const std::int64_t t = s.tick;
-    if (!of_kind(step(s, {}), EventKind::level_started).empty()) start_tick = t;
+    if (!of_kind(step(s, {}).events, EventKind::level_started).empty()) start_tick = t;
   }
   CHECK(start_tick - done_tick == 3000);
   CHECK(s.level == 2);
@@ -252,6 +252,49 @@ TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or afte
   std::int64_t enemies = 0;
   for (const auto& [id, b] : s.bodies) enemies += b.kind == BodyKind::enemy;
   CHECK(enemies == 2);
+}
+
+TEST_CASE("Commands: step answers every command it applied, with the refusal it decided") {
+  MatchState s = started(1);
+  remove_enemies(s);
+  add_enemy(s, {499, 150}, {200, 0});
+  s.bodies[s.world.balls.back().id].credit = 1;
+  step(s, {});
+  REQUIRE(s.phase == Phase::shop);
+  REQUIRE(find_player(s, 1)->eco.coins == 36);
+  TickInputs in = input_for(1, {}, {{CommandKind::buy, "m", 11}, {CommandKind::buy, "laser", 12},
+                                   {CommandKind::buy, "b", 13}, {CommandKind::play_again, {}, 14}});
+  in.players.push_back({9, {}, {{CommandKind::buy, "m", 15}, {CommandKind::ready, {}, 16}}});
+  const TickOutput out = step(s, in);
+  REQUIRE(out.results.size() == 6);
+  const CommandResult& bought = out.results[0];
+  CHECK(bought.player == 1);
+  CHECK(bought.tag == 11);
+  CHECK(bought.ok());
+  CHECK(bought.item == Item::mass);
+  CHECK(bought.price == 35);
+  CHECK(bought.coins_after == 1);
+  CHECK(out.results[1].tag == 12);
+  CHECK(out.results[1].code == Refusal::unknown_item);
+  // The refusal's code, price and coins come from the purchase the step tried.
+  CHECK(out.results[2].tag == 13);
+  CHECK(out.results[2].code == Refusal::not_enough_coins);
+  CHECK(out.results[2].item == Item::bank);
+  CHECK(out.results[2].price == 500);
+  CHECK(out.results[2].coins_after == 1);
+  CHECK(out.results[3].kind == CommandKind::play_again);
+  CHECK(out.results[3].code == Refusal::wrong_phase);
+  // Commands of a player the match does not hold are answered too.
+  for (std::size_t i : {4u, 5u}) {
+    CHECK(out.results[i].player == 9);
+    CHECK(out.results[i].tag == 11 + i);
+    CHECK(out.results[i].code == Refusal::no_player);
+  }
+  // The answer follows what happened: ready in the shop is accepted and starts the level.
+  const TickOutput ready = step(s, input_for(1, {}, {{CommandKind::ready, {}, 17}}));
+  REQUIRE(ready.results.size() == 1);
+  CHECK(ready.results[0].ok());
+  CHECK(s.phase == Phase::playing);
 }
 
 TEST_CASE("Phases: ready in the shop starts the next level at once") {
@@ -271,7 +314,7 @@ TEST_CASE("Multiplayer: joining mid-level, leaving, and the player limit") {
   MatchState s = started(1, 1, cfg);
   TickInputs in;
   in.joins = {{2, "late"}, {3, "third"}, {1, "dup"}};
-  auto ev = step(s, in);
+  auto ev = step(s, in).events;
   const auto refused = of_kind(ev, EventKind::join_refused);
   REQUIRE(refused.size() == 2);
   CHECK(refused[0].text == "id_in_use");
@@ -280,7 +323,7 @@ TEST_CASE("Multiplayer: joining mid-level, leaving, and the player limit") {
   CHECK(find_player(s, 2)->ball != 0);
   TickInputs out;
   out.leaves = {1};
-  ev = step(s, out);
+  ev = step(s, out).events;
   CHECK(of_kind(ev, EventKind::left).size() == 1);
   CHECK_FALSE(find_player(s, 1));
   for (const auto& [id, b] : s.bodies) CHECK(b.owner != 1u);
@@ -292,7 +335,7 @@ TEST_CASE("Rockets: fire, cooldown, the rocket ball, credit to its owner, remova
   find_player(s, 1)->eco.rockets = true;
   place(s, 1, {300, 150});
   const BallId e = add_enemy(s, {440, 150});
-  auto ev = step(s, input_for(1, {1, 0, true}));
+  auto ev = step(s, input_for(1, {1, 0, true})).events;
   const auto fired = of_kind(ev, EventKind::rocket_fired);
   REQUIRE(fired.size() == 1);
   const Ball* r = find_ball(s.world, fired[0].ball);
@@ -306,7 +349,7 @@ TEST_CASE("Rockets: fire, cooldown, the rocket ball, credit to its owner, remova
   std::vector<Event> all;
   for (int i = 0; i < 150; ++i) {
     const std::int64_t t = s.tick;
-    for (const Event& x : step(s, input_for(1, {0, 0, true}))) {
+    for (const Event& x : step(s, input_for(1, {0, 0, true})).events) {
       if (x.kind == EventKind::rocket_fired) fire_ticks.push_back(t);
       all.push_back(x);
     }

@@ -63,7 +63,7 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
     }
     std::map<PlayerId, Coins> before;
     for (const Player& p : s.players) before[p.id] = p.eco.coins;
-    const auto events = step(s, in);
+    const auto events = step(s, in).events;
     ++st.ticks;
     bool new_economies = false;
     for (const Event& e : events) {

@@ -23,7 +23,7 @@ std::optional<Item> parse_item(std::string_view s);
 std::string_view to_string(Item item);
 char shop_key(Item item);
 
-enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item };
+enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item, no_player };
 std::string_view to_string(Refusal r);
 
 struct Prices {

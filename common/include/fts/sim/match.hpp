@@ -33,6 +33,20 @@ enum class CommandKind : std::uint8_t { buy, ready, play_again };
 struct Command {
   CommandKind kind = CommandKind::ready;
   std::string item;  // buy only: "mass" or "m", ...; anything else is refused as unknown_item
+  std::uint32_t tag = 0;  // the caller's, echoed in the command's result (the server's rid);
+                          // no part of the match: not recorded, not hashed
+};
+
+// The outcome of one command, decided by the code that ran it.
+struct CommandResult {
+  PlayerId player = 0;
+  std::uint32_t tag = 0;  // the command's tag
+  CommandKind kind = CommandKind::ready;
+  Refusal code = Refusal::none;  // none: done
+  Item item = Item::mass;        // buy: the item (mass when the name was unknown)
+  Coins price = 0;               // buy: charged, or the price that was refused
+  Coins coins_after = 0;         // buy: the buyer's coins after the command
+  bool ok() const { return code == Refusal::none; }
 };
 
 struct PlayerTick {
@@ -127,10 +141,15 @@ struct MatchState {
 
 // A fresh match in the lobby. cfg must be valid (see validate()).
 MatchState make_match(const MatchConfig& cfg, std::uint64_t seed);
+// What one tick produced: its events, and one result per command it was given, in the
+// order the step applied them (player id, then the player's command order).
+struct TickOutput {
+  std::vector<Event> events;
+  std::vector<CommandResult> results;
+};
 // Advances the match by one tick.
-std::vector<Event> step(MatchState& state, const TickInputs& inputs);
-// Whether a ready / play-again command from this player takes effect now (the server
-// answers the command from these, before the step applies it).
+TickOutput step(MatchState& state, const TickInputs& inputs);
+// Whether a ready / play-again command from this player takes effect now.
 bool accepts_ready(const MatchState& s, const Player& p);
 bool accepts_play_again(const MatchState& s);
 // FNV-1a over every bit of the state, the Rng included.
