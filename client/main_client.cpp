@@ -291,6 +291,7 @@ class Game {
         view_.my_player_id = w.player_id;
         view_.arena_width_u = w.arena_width_u;
         view_.arena_height_u = w.arena_height_u;
+        view_.shop_terms = w.shop;
         clock_.set_tick_rate(w.tick_rate_hz);
         window_ms_ = w.reconnect_window_ms;
         note(w.reconnected ? "Reconnected: welcome back." : "Connected.");

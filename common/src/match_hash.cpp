@@ -5,13 +5,16 @@
 namespace fts::sim {
 namespace {
 
+// Whole-coin prices are written as integers with the other counts, fractional prices as
+// doubles after the speeds (the order the hash has always had).
 void add_economy(Hasher& h, const Economy& e) {
-  for (Coins c : {e.coins, e.lives, e.mass, e.prices.mass, e.prices.speed, e.prices.accel, e.prices.rockets,
-                  e.prices.bank, e.start_coins, e.earned_defeats, e.earned_interest, e.spent, e.purchases,
-                  e.defeats})
-    h.add_i64(c);
-  for (double d : {e.vmax_u_per_s, e.accel_u_per_s2, e.multiplier, e.prices.life, e.prices.multiplier})
-    h.add_double(d);
+  for (Coins c : {e.coins, e.lives, e.mass}) h.add_i64(c);
+  for (const ItemDef& d : item_table())
+    if (d.whole_price) h.add_i64(static_cast<Coins>(e.prices[d.item]));
+  for (Coins c : {e.start_coins, e.earned_defeats, e.earned_interest, e.spent, e.purchases, e.defeats}) h.add_i64(c);
+  for (double d : {e.vmax_u_per_s, e.accel_u_per_s2, e.multiplier}) h.add_double(d);
+  for (const ItemDef& d : item_table())
+    if (!d.whole_price) h.add_double(e.prices[d.item]);
   h.add_u64((e.bank ? 1u : 0u) | (e.rockets ? 2u : 0u));
 }
 

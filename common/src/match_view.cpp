@@ -18,13 +18,7 @@ MatchView make_view(const MatchState& s) {
     const Economy& e = p.eco;
     pv.coins = e.coins;
     pv.lives = e.lives;
-    pv.price_mass = price_of(e, Item::mass);
-    pv.price_speed = price_of(e, Item::speed);
-    pv.price_accel = price_of(e, Item::accel);
-    pv.price_rockets = price_of(e, Item::rockets);
-    pv.price_life = price_of(e, Item::life);
-    pv.price_multiplier = price_of(e, Item::multiplier);
-    pv.price_bank = price_of(e, Item::bank);
+    for (const ItemDef& d : item_table()) pv.prices[index_of(d.item)] = price_of(e, d.item);
     pv.mass = e.mass;
     pv.vmax_u_per_s = e.vmax_u_per_s;
     pv.accel_u_per_s2 = e.accel_u_per_s2;

@@ -51,6 +51,7 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.settings.max_players = o.max_players;
   c.settings.timeout_ms = o.timeout_ms;
   c.settings.reconnect_window_ms = o.reconnect_window_ms;
+  c.settings.shop = sim::shop_terms(cfg);
   return c;
 }
 

@@ -75,8 +75,7 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
     w.multiplier = p.multiplier;
     w.bank = p.bank;
     w.weapon = p.rockets ? protocol::Weapon::rockets : protocol::Weapon::none;
-    w.prices = {p.price_mass, p.price_speed, p.price_accel, p.price_rockets, p.price_life, p.price_multiplier,
-                p.price_bank};
+    w.prices = p.prices;
     w.ready = p.ready;
     w.alive = p.alive;
     s.players.push_back(std::move(w));

@@ -105,7 +105,7 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
       REQUIRE(e.coins == e.start_coins + e.earned_defeats + e.earned_interest - e.spent);
       REQUIRE(defeat_coins[p.id] == e.earned_defeats);
       REQUIRE(std::isfinite(e.multiplier));
-      REQUIRE(std::isfinite(e.prices.life));
+      REQUIRE(std::isfinite(e.prices[Item::life]));
       REQUIRE(std::isfinite(e.vmax_u_per_s));
     }
     REQUIRE(all_finite(s.world.balls));

@@ -2,6 +2,7 @@
 // internals (Rng, credit marks, goals stay on the server).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,8 +16,7 @@ struct PlayerView {
   std::string name;
   Coins coins = 0;
   std::int64_t lives = 0;
-  Coins price_mass = 0, price_speed = 0, price_accel = 0, price_rockets = 0, price_life = 0,
-        price_multiplier = 0, price_bank = 0;
+  std::array<Coins, kItemCount> prices{};  // charged now, item table order
   std::int64_t mass = 0;
   double vmax_u_per_s = 0.0;
   double accel_u_per_s2 = 0.0;
