@@ -85,25 +85,20 @@ void handle_leaves(MatchState& s, std::vector<PlayerId> leaves, std::vector<Even
     if (!p) continue;
     if (p->ball) detail::remove_ball(s, p->ball);
     s.players.erase(s.players.begin() + (p - s.players.data()));
-    Event e;
-    e.kind = EventKind::left;
-    e.player = id;
-    out.push_back(e);
+    out.push_back(Left{id});
   }
 }
 
 void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Event>& out) {
   std::stable_sort(joins.begin(), joins.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
   for (const JoinRequest& j : joins) {
-    Event e;
-    e.player = j.player;
-    if (j.player == 0) e.text = "bad_id";
-    else if (find_player(s, j.player)) e.text = "id_in_use";
-    else if (static_cast<std::int64_t>(s.players.size()) >= s.cfg.max_players) e.text = "match_full";
-    else if (j.name.empty() || j.name.size() > 32) e.text = "bad_name";
-    if (!e.text.empty()) {
-      e.kind = EventKind::join_refused;
-      out.push_back(e);
+    std::string refusal;
+    if (j.player == 0) refusal = "bad_id";
+    else if (find_player(s, j.player)) refusal = "id_in_use";
+    else if (static_cast<std::int64_t>(s.players.size()) >= s.cfg.max_players) refusal = "match_full";
+    else if (j.name.empty() || j.name.size() > 32) refusal = "bad_name";
+    if (!refusal.empty()) {
+      out.push_back(JoinRefused{j.player, std::move(refusal)});
       continue;
     }
     Player p;
@@ -116,9 +111,7 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
     const PlayerId id = p.id;
     s.players.insert(at, std::move(p));
     if (s.phase == Phase::playing) find_player(s, id)->respawn_tick = s.tick;
-    e.kind = EventKind::joined;
-    e.text = j.name;
-    out.push_back(e);
+    out.push_back(Joined{id, j.name});
   }
 }
 
@@ -138,10 +131,9 @@ CommandResult handle_command(MatchState& s, Player& p, const Command& c, std::ve
       return r;
     case CommandKind::buy: break;
   }
-  Event e;
-  e.kind = EventKind::purchase;
+  Purchased e;
   e.player = p.id;
-  e.text = c.item;
+  e.asked = c.item;
   e.coins_after = p.eco.coins;
   const auto item = parse_item(c.item);
   if (!item) {

@@ -90,11 +90,7 @@ void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Ev
     if (b.spec.role != EnemyRole::still) b.goal = draw_goal(level, s.rng, s.cfg);
     add_ball(s, pos, {}, b.spec.radius_u, b.spec.mass, b);
   }
-  Event e;
-  e.kind = EventKind::level_started;
-  e.level = level;
-  e.restart = restart;
-  out.push_back(e);
+  out.push_back(LevelStarted{level, restart});
 }
 
 void start_new_match(MatchState& s, std::vector<Event>& out) {
@@ -124,11 +120,7 @@ void respawn_player(MatchState& s, Player& p, std::vector<Event>& out) {
     pos = find_spawn(s.world.balls, r, left, s.rng, s.cfg);
   }
   place_player(s, p, *pos);
-  Event e;
-  e.kind = EventKind::player_respawned;
-  e.player = p.id;
-  e.ball = p.ball;
-  out.push_back(e);
+  out.push_back(PlayerRespawned{p.id, p.ball});
 }
 
 }  // namespace fts::sim::detail

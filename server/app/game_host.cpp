@@ -151,34 +151,32 @@ void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint6
 }
 
 void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
-  for (const auto& e : events) {
-    switch (e.kind) {
-      case sim::EventKind::join_refused:
-        log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.text}});
-        endpoint_.kick(e.player, "refused", "the match refused the join: " + e.text, now_ms);
-        break;
-      case sim::EventKind::level_started:
-        log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
-        break;
-      case sim::EventKind::level_complete:
-        log_record(spdlog::level::info, "level_complete", {{"level", e.level}});
-        break;
-      case sim::EventKind::purchase:
-        log_record(spdlog::level::info, "purchase",
-                   {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
-                    {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
-        break;
-      case sim::EventKind::game_over:
-        log_record(spdlog::level::info, "game_over", {{"level", e.level}});
-        break;
-      case sim::EventKind::enemy_defeated:
-        log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.ball}, {"player", e.player}, {"coins", e.coins}});
-        break;
-      case sim::EventKind::player_fell:
-        log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
-        break;
-      default: break;
-    }
+  for (const auto& event : events) {
+    std::visit(
+        sim::Overloaded{
+            [&](const sim::JoinRefused& e) {
+              log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}});
+              endpoint_.kick(e.player, "refused", "the match refused the join: " + e.reason, now_ms);
+            },
+            [&](const sim::LevelStarted& e) {
+              log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
+            },
+            [&](const sim::LevelComplete& e) { log_record(spdlog::level::info, "level_complete", {{"level", e.level}}); },
+            [&](const sim::Purchased& e) {
+              log_record(spdlog::level::info, "purchase",
+                         {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
+                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
+            },
+            [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}}); },
+            [&](const sim::EnemyDefeated& e) {
+              log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}});
+            },
+            [&](const sim::PlayerFell& e) {
+              log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
+            },
+            [](const auto&) {},  // the rest is not logged
+        },
+        event);
   }
 }
 

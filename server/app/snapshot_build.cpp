@@ -1,5 +1,7 @@
 #include "app/snapshot_build.hpp"
 
+#include <optional>
+
 namespace fts::server {
 namespace {
 
@@ -28,29 +30,31 @@ std::uint32_t u32(std::int64_t v) { return v < 0 ? 0u : v > 0xffffffffll ? 0xfff
 
 void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events, std::vector<protocol::Event>& out) {
   using K = protocol::EventKind;
+  using Wire = std::optional<protocol::Event>;
+  const std::uint32_t t = u32(tick);
   for (const sim::Event& e : events) {
-    protocol::Event w;
-    w.tick = u32(tick);
-    switch (e.kind) {
-      case sim::EventKind::joined: w = {w.tick, K::player_joined, e.player, 0, 0}; break;
-      case sim::EventKind::left: w = {w.tick, K::player_left, e.player, 0, 0}; break;
-      case sim::EventKind::level_started:
-        w = {w.tick, e.restart ? K::level_restarted : K::level_started, 0, 0, e.level};
-        break;
-      case sim::EventKind::enemy_defeated: w = {w.tick, K::enemy_fell, e.ball, e.player, e.coins}; break;
-      case sim::EventKind::player_fell: w = {w.tick, K::player_fell, e.player, e.ball, e.lives_left}; break;
-      case sim::EventKind::player_respawned: w = {w.tick, K::respawned, e.player, e.ball, 0}; break;
-      case sim::EventKind::level_complete: w = {w.tick, K::level_complete, 0, 0, e.level}; break;
-      case sim::EventKind::purchase:
-        if (!e.ok) continue;  // refusals go to the buyer only, as a command result
-        w = {w.tick, K::purchase, e.player, static_cast<std::uint32_t>(sim::shop_key(e.item)), e.price};
-        break;
-      case sim::EventKind::rocket_fired: w = {w.tick, K::rocket_fired, e.player, e.ball, 0}; break;
-      case sim::EventKind::game_over: w = {w.tick, K::match_over, 0, 0, e.level}; break;
-      case sim::EventKind::interest: w = {w.tick, K::interest, e.player, 0, e.coins}; break;
-      case sim::EventKind::join_refused: continue;
-    }
-    out.push_back(w);
+    const Wire w = std::visit(
+        sim::Overloaded{
+            [&](const sim::Joined& x) -> Wire { return protocol::Event{t, K::player_joined, x.player, 0, 0}; },
+            [&](const sim::JoinRefused&) -> Wire { return std::nullopt; },
+            [&](const sim::Left& x) -> Wire { return protocol::Event{t, K::player_left, x.player, 0, 0}; },
+            [&](const sim::LevelStarted& x) -> Wire {
+              return protocol::Event{t, x.restart ? K::level_restarted : K::level_started, 0, 0, x.level};
+            },
+            [&](const sim::EnemyDefeated& x) -> Wire { return protocol::Event{t, K::enemy_fell, x.enemy, x.player, x.coins}; },
+            [&](const sim::PlayerFell& x) -> Wire { return protocol::Event{t, K::player_fell, x.player, x.ball, x.lives_left}; },
+            [&](const sim::PlayerRespawned& x) -> Wire { return protocol::Event{t, K::respawned, x.player, x.ball, 0}; },
+            [&](const sim::LevelComplete& x) -> Wire { return protocol::Event{t, K::level_complete, 0, 0, x.level}; },
+            [&](const sim::Purchased& x) -> Wire {
+              if (!x.ok) return std::nullopt;  // refusals go to the buyer only, as a command result
+              return protocol::Event{t, K::purchase, x.player, static_cast<std::uint32_t>(sim::shop_key(x.item)), x.price};
+            },
+            [&](const sim::RocketFired& x) -> Wire { return protocol::Event{t, K::rocket_fired, x.player, x.rocket, 0}; },
+            [&](const sim::GameOver& x) -> Wire { return protocol::Event{t, K::match_over, 0, 0, x.level}; },
+            [&](const sim::InterestPaid& x) -> Wire { return protocol::Event{t, K::interest, x.player, 0, x.coins}; },
+        },
+        e);
+    if (w) out.push_back(*w);
   }
 }
 

@@ -71,10 +71,12 @@ inline std::vector<Event> run(MatchState& s, int ticks, const TickInputs& in = {
   return all;
 }
 
-inline std::vector<Event> of_kind(const std::vector<Event>& ev, EventKind k) {
-  std::vector<Event> out;
+// The events of one kind, as their records.
+template <class Kind>
+std::vector<Kind> of(const std::vector<Event>& ev) {
+  std::vector<Kind> out;
   for (const auto& e : ev)
-    if (e.kind == k) out.push_back(e);
+    if (const Kind* k = std::get_if<Kind>(&e)) out.push_back(*k);
   return out;
 }
 

@@ -90,6 +90,6 @@ TEST_CASE("The platform: a ball whose centre leaves the rectangle has fallen off
   const auto ev = step(s, {}).events;
   CHECK(find_ball(s.world, inside));
   CHECK_FALSE(find_ball(s.world, outside));
-  REQUIRE(of_kind(ev, EventKind::enemy_defeated).size() == 1);
-  CHECK(of_kind(ev, EventKind::enemy_defeated)[0].ball == outside);
+  REQUIRE(of<EnemyDefeated>(ev).size() == 1);
+  CHECK(of<EnemyDefeated>(ev)[0].enemy == outside);
 }

@@ -67,21 +67,24 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
     ++st.ticks;
     bool new_economies = false;
     for (const Event& e : events) {
-      if ((e.kind == EventKind::level_started && e.level == 1 && !e.restart) || e.kind == EventKind::joined)
+      const auto* started = std::get_if<LevelStarted>(&e);
+      if ((started && started->level == 1 && !started->restart) || std::holds_alternative<Joined>(e))
         new_economies = true;
     }
     if (new_economies) {  // economies were reset this tick: take their totals as the new base
       defeat_coins.clear();
       for (const Player& p : s.players) defeat_coins[p.id] = p.eco.earned_defeats;
     }
-    for (const Event& e : events) {
-      if (e.kind == EventKind::enemy_defeated) {
+    for (const Event& event : events) {
+      if (const auto* d = std::get_if<EnemyDefeated>(&event)) {
         ++st.defeats;
-        if (e.player && !new_economies) defeat_coins[e.player] += e.coins;  // else re-read below
-        REQUIRE(e.coins >= 0);
+        if (d->player && !new_economies) defeat_coins[d->player] += d->coins;  // else re-read below
+        REQUIRE(d->coins >= 0);
       }
-      if (e.kind == EventKind::level_complete) ++st.levels;
-      if (e.kind != EventKind::purchase) continue;
+      if (std::holds_alternative<LevelComplete>(event)) ++st.levels;
+      const auto* bought = std::get_if<Purchased>(&event);
+      if (!bought) continue;
+      const Purchased& e = *bought;
       REQUIRE(e.coins_after >= 0);
       if (e.ok) {
         ++st.purchases_ok;
