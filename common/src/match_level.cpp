@@ -41,7 +41,7 @@ BallId place_player(MatchState& s, Player& p, Vec2 pos) {
 
 BallId add_ball(MatchState& s, Vec2 pos, Vec2 vel, double radius, double mass, const Body& body) {
   Ball b;
-  b.id = s.next_ball_id++;
+  b.id = BallId{s.next_ball_id++};
   b.pos = pos;
   b.vel = vel;
   b.radius = radius;

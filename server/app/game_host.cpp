@@ -147,7 +147,7 @@ sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
 
 void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms) {
   for (const sim::CommandResult& r : results)
-    endpoint_.send_result(r.player, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
+    endpoint_.send_result(r.player.value, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
 }
 
 void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
@@ -156,7 +156,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
         sim::Overloaded{
             [&](const sim::JoinRefused& e) {
               log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}});
-              endpoint_.kick(e.player, "refused", "the match refused the join: " + e.reason, now_ms);
+              endpoint_.kick(e.player.value, "refused", "the match refused the join: " + e.reason, now_ms);
             },
             [&](const sim::LevelStarted& e) {
               log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});

@@ -35,23 +35,23 @@ void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events
   for (const sim::Event& e : events) {
     const Wire w = std::visit(
         sim::Overloaded{
-            [&](const sim::Joined& x) -> Wire { return protocol::Event{t, K::player_joined, x.player, 0, 0}; },
+            [&](const sim::Joined& x) -> Wire { return protocol::Event{t, K::player_joined, x.player.value, 0, 0}; },
             [&](const sim::JoinRefused&) -> Wire { return std::nullopt; },
-            [&](const sim::Left& x) -> Wire { return protocol::Event{t, K::player_left, x.player, 0, 0}; },
+            [&](const sim::Left& x) -> Wire { return protocol::Event{t, K::player_left, x.player.value, 0, 0}; },
             [&](const sim::LevelStarted& x) -> Wire {
               return protocol::Event{t, x.restart ? K::level_restarted : K::level_started, 0, 0, x.level};
             },
-            [&](const sim::EnemyDefeated& x) -> Wire { return protocol::Event{t, K::enemy_fell, x.enemy, x.player, x.coins}; },
-            [&](const sim::PlayerFell& x) -> Wire { return protocol::Event{t, K::player_fell, x.player, x.ball, x.lives_left}; },
-            [&](const sim::PlayerRespawned& x) -> Wire { return protocol::Event{t, K::respawned, x.player, x.ball, 0}; },
+            [&](const sim::EnemyDefeated& x) -> Wire { return protocol::Event{t, K::enemy_fell, x.enemy.value, x.player.value, x.coins}; },
+            [&](const sim::PlayerFell& x) -> Wire { return protocol::Event{t, K::player_fell, x.player.value, x.ball.value, x.lives_left}; },
+            [&](const sim::PlayerRespawned& x) -> Wire { return protocol::Event{t, K::respawned, x.player.value, x.ball.value, 0}; },
             [&](const sim::LevelComplete& x) -> Wire { return protocol::Event{t, K::level_complete, 0, 0, x.level}; },
             [&](const sim::Purchased& x) -> Wire {
               if (!x.ok) return std::nullopt;  // refusals go to the buyer only, as a command result
-              return protocol::Event{t, K::purchase, x.player, static_cast<std::uint32_t>(sim::shop_key(x.item)), x.price};
+              return protocol::Event{t, K::purchase, x.player.value, static_cast<std::uint32_t>(sim::shop_key(x.item)), x.price};
             },
-            [&](const sim::RocketFired& x) -> Wire { return protocol::Event{t, K::rocket_fired, x.player, x.rocket, 0}; },
+            [&](const sim::RocketFired& x) -> Wire { return protocol::Event{t, K::rocket_fired, x.player.value, x.rocket.value, 0}; },
             [&](const sim::GameOver& x) -> Wire { return protocol::Event{t, K::match_over, 0, 0, x.level}; },
-            [&](const sim::InterestPaid& x) -> Wire { return protocol::Event{t, K::interest, x.player, 0, x.coins}; },
+            [&](const sim::InterestPaid& x) -> Wire { return protocol::Event{t, K::interest, x.player.value, 0, x.coins}; },
         },
         e);
     if (w) out.push_back(*w);
@@ -65,11 +65,11 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
   s.level = u32(view.level);
   s.balls.reserve(view.balls.size());
   for (const auto& b : view.balls) {
-    s.balls.push_back({b.id, b.x, b.y, b.vx, b.vy, b.radius, b.mass, wire_kind(b.kind), b.owner});
+    s.balls.push_back({b.id.value, b.x, b.y, b.vx, b.vy, b.radius, b.mass, wire_kind(b.kind), b.owner.value});
   }
   for (const auto& p : view.players) {
     protocol::PlayerState w;
-    w.id = p.id;
+    w.id = p.id.value;
     w.name = p.name;
     w.coins = p.coins;
     w.lives = static_cast<std::int32_t>(p.lives > 0x7fffffff ? 0x7fffffff : p.lives);

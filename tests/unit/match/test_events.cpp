@@ -1,10 +1,20 @@
-// Typed events (issue 10, point 4): one record per kind, so a reader cannot read a field
-// its kind does not set; the variant's order is EventKind's.
+// Typed ids and events (issue 10, point 4): a BallId is not a PlayerId nor a number; one
+// record per event kind, so a reader cannot read a field its kind does not set; the
+// variant's order is EventKind's.
 #include <catch2/catch.hpp>
+
+#include <type_traits>
 
 #include "fts/sim/match.hpp"
 
 using namespace fts::sim;
+
+// Ids: distinct types, no arithmetic, no silent conversion back to a number.
+template <class T> constexpr bool addable = requires(T a) { a + 1; };
+static_assert(!std::is_convertible_v<BallId, PlayerId> && !std::is_convertible_v<PlayerId, BallId>);
+static_assert(!std::is_convertible_v<BallId, std::uint32_t> && !std::is_convertible_v<PlayerId, std::uint32_t>);
+static_assert(!addable<BallId> && !addable<PlayerId>);
+static_assert(BallId{3} < BallId{4} && !BallId{} && PlayerId{7}.value == 7);
 
 // A record has only its kind's fields: reading another would not compile.
 template <class T> constexpr bool has_player = requires(T e) { e.player; };

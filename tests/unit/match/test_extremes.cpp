@@ -55,7 +55,7 @@ TEST_CASE("Extremes: level 10000") {
   s.shop_deadline_tick = s.tick;
   run(s, 1);
   REQUIRE(s.level == 10000);
-  for (PlayerId p = 1; p <= 8; ++p) find_player(s, p)->eco.multiplier = s.cfg.multiplier_cap;
+  for (std::uint32_t p = 1; p <= 8; ++p) find_player(s, p)->eco.multiplier = s.cfg.multiplier_cap;
   run(s, 500);
   CHECK(all_finite(s.world.balls));
   for (const Player& p : s.players) {

@@ -153,7 +153,7 @@ TEST_CASE("Levels: players start along the left third, vertical centre for one")
   CHECK(ball_of(three, 1).pos.y == 75.0);
   CHECK(ball_of(three, 2).pos.y == 150.0);
   CHECK(ball_of(three, 3).pos.y == 225.0);
-  for (PlayerId p = 1; p <= 3; ++p) CHECK(ball_of(three, p).pos.x < 500.0 / 3.0);
+  for (std::uint32_t p = 1; p <= 3; ++p) CHECK(ball_of(three, p).pos.x < 500.0 / 3.0);
 }
 
 TEST_CASE("Levels: wander goals lie in the shrinking box, bosses in 90 x 45") {

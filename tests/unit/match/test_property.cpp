@@ -40,15 +40,15 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
   for (int t = 0; t < ticks; ++t) {
     TickInputs in;
     if (t == 0) in = joins(players);
-    for (PlayerId id = 1; id <= 4; ++id) {
+    for (std::uint32_t id = 1; id <= 4; ++id) {
       const bool present = find_player(s, id) != nullptr;
-      if (t > 0 && !present && id <= static_cast<PlayerId>(players) && r.uniform01() < 0.002)
+      if (t > 0 && !present && id <= static_cast<std::uint32_t>(players) && r.uniform01() < 0.002)
         in.joins.push_back({id, "re" + std::to_string(id)});
       if (present && r.uniform01() < 0.0005) in.leaves.push_back(id);
     }
     for (const Player& p : s.players) {
       PlayerTick pt;
-      if (is_bot[p.id]) {
+      if (is_bot[p.id.value]) {
         pt = bot_tick(s, p.id);
       } else {
         pt.player = p.id;

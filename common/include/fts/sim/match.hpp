@@ -18,7 +18,6 @@
 
 namespace fts::sim {
 
-using PlayerId = std::uint32_t;  // chosen by the caller (the server's session slot); 0 is null
 
 enum class Phase : std::uint8_t { lobby, playing, shop, game_over };
 std::string_view to_string(Phase p);
@@ -191,7 +190,7 @@ struct MatchState {
   double friction_factor = 1.0;
   std::map<BallId, Body> bodies;
   std::vector<Player> players;  // sorted by id
-  BallId next_ball_id = 1;
+  std::uint32_t next_ball_id = 1;  // the next ball's id
 };
 
 // A fresh match in the lobby. cfg must be valid (see validate()).
