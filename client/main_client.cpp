@@ -293,6 +293,7 @@ class Game {
       view_.my_player_id = w.player_id;
       view_.arena_width_u = w.arena_width_u;
       view_.arena_height_u = w.arena_height_u;
+      view_.shop_terms = w.shop;
       clock_.set_tick_rate(w.tick_rate_hz);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
       std::string why;

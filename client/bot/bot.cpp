@@ -223,7 +223,7 @@ void Bot::update(std::uint64_t now_ms) {
         s.accel_u_per_s2 = p->accel_u_per_s2;
         s.vmax_u_per_s = p->vmax_u_per_s;
         s.mass = static_cast<std::int64_t>(p->mass);
-        for (std::size_t i = 0; i < 7; ++i) s.prices[i] = p->prices[i];
+        s.prices = p->prices;  // both in item table order
         want = sim::bot_shop_choice(s);
       }
       if (want) {

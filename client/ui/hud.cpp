@@ -74,19 +74,12 @@ sim::Economy economy_of(const PlayerState& p) {
   e.multiplier = p.multiplier;
   e.bank = p.bank;
   e.rockets = p.weapon == protocol::Weapon::rockets;
-  const auto& pr = p.prices;  // kShopItems order: m s a r l x b
-  e.prices.mass = pr[0];
-  e.prices.speed = pr[1];
-  e.prices.accel = pr[2];
-  e.prices.rockets = pr[3];
-  e.prices.life = static_cast<double>(pr[4]);
-  e.prices.multiplier = static_cast<double>(pr[5]);
-  e.prices.bank = pr[6];
+  for (const sim::ItemDef& d : sim::item_table()) e.prices[d.item] = static_cast<double>(p.prices[sim::index_of(d.item)]);
   return e;
 }
 
-std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level) {
-  return sim::shop_lines(economy_of(p), level);
+std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level, const sim::ShopTerms& terms) {
+  return sim::shop_lines(economy_of(p), level, terms);
 }
 
 std::string ready_line(const Snapshot& s) {
@@ -105,8 +98,11 @@ std::string help_line(Phase phase) {
   switch (phase) {
     case Phase::play:
       return "Move: arrows/WASD   Fire rockets: space   Quit: q";
-    case Phase::shop:
-      return "Buy: m s a r l x b   Ready: Enter   Quit: q";
+    case Phase::shop: {
+      std::string line = "Buy:";
+      for (const sim::ItemDef& d : sim::item_table()) (line += ' ') += d.key;
+      return line + "   Ready: Enter   Quit: q";
+    }
     case Phase::over:
       return "Game over   Play again: Enter   Quit: q";
     case Phase::lobby:
@@ -117,17 +113,9 @@ std::string help_line(Phase phase) {
 
 namespace {
 
-const char* item_name(char key) {
-  switch (key) {
-    case 'm': return "mass";
-    case 's': return "max speed";
-    case 'a': return "acceleration";
-    case 'r': return "rockets";
-    case 'l': return "a life";
-    case 'x': return "multiplier";
-    case 'b': return "bank";
-    default: return "an item";
-  }
+std::string item_name(std::uint32_t key) {
+  const auto item = key < 0x80 ? sim::item_by_key(static_cast<char>(key)) : std::nullopt;
+  return item ? std::string(sim::item_def(*item).name) : "an item";
 }
 
 }  // namespace
@@ -143,7 +131,7 @@ std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uin
     case EventKind::level_started: return "Level " + std::to_string(e.value) + " started.";
     case EventKind::level_complete: return "Level " + std::to_string(e.value) + " Complete";
     case EventKind::purchase:
-      return who(e.a) + " bought " + item_name(static_cast<char>(e.b)) + " for " +
+      return who(e.a) + " bought " + item_name(e.b) + " for " +
              sim::with_thousands(e.value) + " coins.";
     case EventKind::player_joined: return who(e.a) + " joined.";
     case EventKind::player_left: return who(e.a) + " left.";

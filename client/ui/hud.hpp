@@ -24,8 +24,10 @@ std::string hud_line(const Snapshot& s, const ViewState& view);
 std::string players_line(const Snapshot& s, const ViewState& view);
 // A player's public state as the shop text's economy.
 sim::Economy economy_of(const PlayerState& p);
-// The seed's shop screen for this player after `level` (common's shop_lines).
-std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level);
+// The seed's shop screen for this player after `level` (common's shop_lines), stating
+// the server's terms (from its welcome).
+std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level,
+                                           const sim::ShopTerms& terms = {});
 // "Ready: ann (ready), bob (shopping)".
 std::string ready_line(const Snapshot& s);
 // Controls for the phase.

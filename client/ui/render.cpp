@@ -111,7 +111,7 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view) {
     s.put(2, first, "Level " + std::to_string(snap.level) + " Complete", kTitleStyle);
     s.put(2, first + 2, "You are watching: the players are shopping.");
   } else {
-    std::vector<std::string> lines = shop_screen_lines(*me, snap.level);
+    std::vector<std::string> lines = shop_screen_lines(*me, snap.level, view.shop_terms);
     const int room = last - first + 1;
     std::vector<std::string> spaced;
     for (std::size_t i = 0; i < lines.size(); ++i) {

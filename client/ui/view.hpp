@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "fts/sim/items.hpp"
+
 namespace fts::client {
 
 struct ViewState {
@@ -16,6 +18,7 @@ struct ViewState {
   std::vector<std::string> messages;  // recent happenings, newest last (already sanitised)
   std::string shop_result;   // the outcome of the last purchase (already sanitised)
   bool color = true;
+  sim::ShopTerms shop_terms;  // the server's, from its welcome
 };
 
 }  // namespace fts::client

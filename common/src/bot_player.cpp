@@ -42,7 +42,7 @@ void shop(const MatchState& s, const Player& p, PlayerTick& t) {
   sight.accel_u_per_s2 = e.accel_u_per_s2;
   sight.vmax_u_per_s = e.vmax_u_per_s;
   sight.mass = e.mass;
-  for (int i = 0; i < 7; ++i) sight.prices[static_cast<std::size_t>(i)] = price_of(e, static_cast<Item>(i));
+  for (const ItemDef& d : item_table()) sight.prices[index_of(d.item)] = price_of(e, d.item);
   sight.start_accel_u_per_s2 = s.cfg.player_accel_u_per_s2;
   sight.start_vmax_u_per_s = s.cfg.player_vmax_u_per_s;
   sight.start_mass = s.cfg.player_mass;
@@ -120,7 +120,7 @@ PlayerInput bot_play_input(const BotSight& sight) {
 }
 
 std::optional<Item> bot_shop_choice(const ShopSight& s) {
-  auto affordable = [&](Item it) { return s.coins >= s.prices[static_cast<std::size_t>(it)]; };
+  auto affordable = [&](Item it) { return s.coins >= s.prices[index_of(it)]; };
   if (s.lives < 2 && affordable(Item::life)) return Item::life;
   if (!s.bank && affordable(Item::bank)) return Item::bank;
   if (s.accel_u_per_s2 < 2.0 * s.start_accel_u_per_s2 && affordable(Item::accel)) return Item::accel;

@@ -5,39 +5,6 @@
 
 namespace fts::sim {
 
-std::optional<Item> parse_item(std::string_view s) {
-  for (Item it : kAllItems) {
-    if (s == to_string(it) || (s.size() == 1 && s[0] == shop_key(it))) return it;
-  }
-  return std::nullopt;
-}
-
-std::string_view to_string(Item item) {
-  switch (item) {
-    case Item::mass: return "mass";
-    case Item::speed: return "speed";
-    case Item::accel: return "accel";
-    case Item::rockets: return "rockets";
-    case Item::life: return "life";
-    case Item::multiplier: return "multiplier";
-    case Item::bank: return "bank";
-  }
-  return "?";
-}
-
-char shop_key(Item item) {
-  switch (item) {
-    case Item::mass: return 'm';
-    case Item::speed: return 's';
-    case Item::accel: return 'a';
-    case Item::rockets: return 'r';
-    case Item::life: return 'l';
-    case Item::multiplier: return 'x';
-    case Item::bank: return 'b';
-  }
-  return '?';
-}
-
 std::string_view to_string(Refusal r) {
   switch (r) {
     case Refusal::none: return "";
@@ -45,6 +12,7 @@ std::string_view to_string(Refusal r) {
     case Refusal::already_owned: return "already_owned";
     case Refusal::wrong_phase: return "wrong_phase";
     case Refusal::unknown_item: return "unknown_item";
+    case Refusal::no_player: return "no_player";
   }
   return "?";
 }
@@ -75,48 +43,27 @@ Economy start_economy(const MatchConfig& cfg) {
   e.vmax_u_per_s = cfg.player_vmax_u_per_s;
   e.accel_u_per_s2 = cfg.player_accel_u_per_s2;
   e.multiplier = cfg.player_multiplier;
-  e.prices.mass = cfg.price_mass;
-  e.prices.speed = cfg.price_speed;
-  e.prices.accel = cfg.price_accel;
-  e.prices.rockets = cfg.price_rockets;
-  e.prices.bank = cfg.price_bank;
-  e.prices.life = static_cast<double>(cfg.price_life);
-  e.prices.multiplier = static_cast<double>(cfg.price_multiplier);
+  for (const ItemDef& d : item_table()) e.prices[d.item] = static_cast<double>(cfg.*d.start_price);
   return e;
 }
 
 Coins price_of(const Economy& e, Item item) {
   const Coins big = 1'000'000'000'000'000'000;  // above any cap; clamped below
-  switch (item) {
-    case Item::mass: return e.prices.mass;
-    case Item::speed: return e.prices.speed;
-    case Item::accel: return e.prices.accel;
-    case Item::rockets: return e.prices.rockets;
-    case Item::bank: return e.prices.bank;
-    case Item::life: return floor_clamp(e.prices.life, big);
-    case Item::multiplier: return floor_clamp(e.prices.multiplier, big);
-  }
-  return 0;
+  return floor_clamp(e.prices[item], big);
 }
-
-namespace {
-
-// A price never drops below one coin (the mass rule decreases it on early levels).
-Coins clamp_price(Coins p, const MatchConfig& cfg) { return std::clamp<Coins>(p, 1, cfg.coin_cap); }
 
 double clamp_double(double v, double lo, double hi) {
   if (!(v >= lo)) return lo;  // also NaN
   return v > hi ? hi : v;
 }
 
-}  // namespace
-
 Purchase buy(Economy& e, Item item, std::int64_t level, const MatchConfig& cfg) {
   Purchase p;
   p.item = item;
   p.price = price_of(e, item);
   p.coins_after = e.coins;
-  if ((item == Item::rockets && e.rockets) || (item == Item::bank && e.bank)) {
+  const ItemDef& d = item_def(item);
+  if (d.owned && d.owned(e)) {
     p.reason = Refusal::already_owned;
     return p;
   }
@@ -124,37 +71,9 @@ Purchase buy(Economy& e, Item item, std::int64_t level, const MatchConfig& cfg) 
     p.reason = Refusal::not_enough_coins;
     return p;
   }
+  d.effect(e, cfg);
+  if (d.next_price) e.prices[item] = d.next_price(e.prices[item], level, cfg);
   const Coins cap = cfg.coin_cap;
-  const double dcap = static_cast<double>(cap);
-  switch (item) {
-    case Item::mass: {
-      e.mass = std::min(e.mass + 1, cfg.player_mass_cap);
-      // floor(price + 0.55 L - 1) == price + floor(0.55 L - 1) for an integer price.
-      const double step = clamp_double(std::floor(cfg.price_mass_level_coeff * static_cast<double>(level) -
-                                                  cfg.price_mass_offset), -dcap, dcap);
-      const Coins s = static_cast<Coins>(step);
-      e.prices.mass = clamp_price(s >= 0 ? sat_add(e.prices.mass, s, cap) : e.prices.mass + s, cfg);
-      break;
-    }
-    case Item::speed:
-      e.vmax_u_per_s = clamp_double(e.vmax_u_per_s * cfg.speed_upgrade_factor, 0.0, cfg.player_vmax_cap_u_per_s);
-      e.prices.speed = clamp_price(floor_mul(e.prices.speed, cfg.price_speed_growth, cap), cfg);
-      break;
-    case Item::accel:
-      e.accel_u_per_s2 = clamp_double(e.accel_u_per_s2 * cfg.accel_upgrade_factor, 0.0, cfg.player_accel_cap_u_per_s2);
-      e.prices.accel = clamp_price(floor_mul(e.prices.accel, cfg.price_accel_growth, cap), cfg);
-      break;
-    case Item::rockets: e.rockets = true; break;
-    case Item::bank: e.bank = true; break;
-    case Item::life:
-      e.lives = std::min(e.lives + 1, cfg.lives_cap);
-      e.prices.life = clamp_double(std::floor(e.prices.life * cfg.price_life_growth), 1.0, dcap);
-      break;
-    case Item::multiplier:
-      e.multiplier = clamp_double(e.multiplier * cfg.multiplier_upgrade_factor, 0.0, cfg.multiplier_cap);
-      e.prices.multiplier = clamp_double(e.prices.multiplier * cfg.price_multiplier_growth, 1.0, dcap);
-      break;
-  }
   e.coins -= p.price;
   e.spent = sat_add(e.spent, p.price, cap);
   ++e.purchases;
@@ -188,7 +107,7 @@ void complete_level(Economy& e, const MatchConfig& cfg) {
     e.earned_interest = sat_add(e.earned_interest, e.coins - before, cfg.coin_cap);
   }
   e.multiplier = clamp_double(e.multiplier * cfg.level_multiplier_growth, 0.0, cfg.multiplier_cap);
-  e.prices.life = clamp_double(e.prices.life * cfg.level_life_price_growth, 1.0, dcap);
+  e.prices[Item::life] = clamp_double(e.prices[Item::life] * cfg.level_life_price_growth, 1.0, dcap);
 }
 
 }  // namespace fts::sim

@@ -82,10 +82,7 @@ void handle_leaves(MatchState& s, std::vector<PlayerId> leaves, std::vector<Even
     if (!p) continue;
     if (p->ball) detail::remove_ball(s, p->ball);
     s.players.erase(s.players.begin() + (p - s.players.data()));
-    Event e;
-    e.kind = EventKind::left;
-    e.player = id;
-    out.push_back(e);
+    out.push_back(Left{id});
   }
 }
 
@@ -134,15 +131,13 @@ void handle_presence(MatchState& s, const TickInputs& in) {
 void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Event>& out) {
   std::stable_sort(joins.begin(), joins.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
   for (const JoinRequest& j : joins) {
-    Event e;
-    e.player = j.player;
-    if (j.player == 0) e.text = "bad_id";
-    else if (find_player(s, j.player)) e.text = "id_in_use";
-    else if (seated_players(s) >= s.cfg.max_players) e.text = "match_full";
-    else if (j.name.empty() || j.name.size() > 32) e.text = "bad_name";
-    if (!e.text.empty()) {
-      e.kind = EventKind::join_refused;
-      out.push_back(e);
+    std::string refusal;
+    if (j.player == 0) refusal = "bad_id";
+    else if (find_player(s, j.player)) refusal = "id_in_use";
+    else if (seated_players(s) >= s.cfg.max_players) refusal = "match_full";
+    else if (j.name.empty() || j.name.size() > 32) refusal = "bad_name";
+    if (!refusal.empty()) {
+      out.push_back(JoinRefused{j.player, std::move(refusal)});
       continue;
     }
     Player p;
@@ -155,26 +150,29 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
     const PlayerId id = p.id;
     s.players.insert(at, std::move(p));
     if (s.phase == Phase::playing) find_player(s, id)->respawn_tick = s.tick;
-    e.kind = EventKind::joined;
-    e.text = j.name;
-    out.push_back(e);
+    out.push_back(Joined{id, j.name});
   }
 }
 
-void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
+CommandResult handle_command(MatchState& s, Player& p, const Command& c, std::vector<Event>& out) {
+  CommandResult r;
+  r.player = p.id;
+  r.tag = c.tag;
+  r.kind = c.kind;
   switch (c.kind) {
     case CommandKind::ready:
       if (accepts_ready(s, p)) p.ready = true;
-      return;
+      else r.code = Refusal::wrong_phase;
+      return r;
     case CommandKind::play_again:
       if (accepts_play_again(s)) detail::start_new_match(s, out);
-      return;
+      else r.code = Refusal::wrong_phase;
+      return r;
     case CommandKind::buy: break;
   }
-  Event e;
-  e.kind = EventKind::purchase;
+  Purchased e;
   e.player = p.id;
-  e.text = c.item;
+  e.asked = c.item;
   e.coins_after = p.eco.coins;
   const auto item = parse_item(c.item);
   if (!item) {
@@ -184,14 +182,19 @@ void handle_command(MatchState& s, Player& p, const Command& c, std::vector<Even
     e.price = price_of(p.eco, *item);
     e.reason = Refusal::wrong_phase;
   } else {
-    const Purchase r = buy(p.eco, *item, s.level, s.cfg);
-    e.item = r.item;
-    e.ok = r.ok;
-    e.reason = r.reason;
-    e.price = r.price;
-    e.coins_after = r.coins_after;
+    const Purchase bought = buy(p.eco, *item, s.level, s.cfg);
+    e.item = bought.item;
+    e.ok = bought.ok;
+    e.reason = bought.reason;
+    e.price = bought.price;
+    e.coins_after = bought.coins_after;
   }
   out.push_back(e);
+  r.code = e.reason;
+  r.item = e.item;
+  r.price = e.price;
+  r.coins_after = e.coins_after;
+  return r;
 }
 
 bool all_ready(const MatchState& s, bool only_in_match) {
@@ -217,8 +220,9 @@ bool accepts_ready(const MatchState& s, const Player& p) {
 
 bool accepts_play_again(const MatchState& s) { return s.phase == Phase::game_over; }
 
-std::vector<Event> step(MatchState& s, const TickInputs& in) {
-  std::vector<Event> out;
+TickOutput step(MatchState& s, const TickInputs& in) {
+  TickOutput result;
+  std::vector<Event>& out = result.events;
   handle_leaves(s, in.leaves, out);
   handle_joins(s, in.joins, out);
   handle_presence(s, in);
@@ -228,7 +232,11 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   for (const PlayerTick& t : inputs) {
     for (const Command& c : t.commands) {
       Player* p = find_player(s, t.player);  // re-found: a command may restart the match
-      if (p) handle_command(s, *p, c, out);
+      if (p) {
+        result.results.push_back(handle_command(s, *p, c, out));
+      } else {
+        result.results.push_back({t.player, c.tag, c.kind, Refusal::no_player, Item::mass, 0, 0});
+      }
     }
   }
 
@@ -258,7 +266,7 @@ std::vector<Event> step(MatchState& s, const TickInputs& in) {
   }
   if (s.phase == Phase::playing) detail::play_tick(s, inputs, out);
   ++s.tick;
-  return out;
+  return result;
 }
 
 }  // namespace fts::sim

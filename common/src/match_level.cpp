@@ -41,7 +41,7 @@ BallId place_player(MatchState& s, Player& p, Vec2 pos) {
 
 BallId add_ball(MatchState& s, Vec2 pos, Vec2 vel, double radius, double mass, const Body& body) {
   Ball b;
-  b.id = s.next_ball_id++;
+  b.id = BallId{s.next_ball_id++};
   b.pos = pos;
   b.vel = vel;
   b.radius = radius;
@@ -90,11 +90,7 @@ void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Ev
     if (b.spec.role != EnemyRole::still) b.goal = draw_goal(level, s.rng, s.cfg);
     add_ball(s, pos, {}, b.spec.radius_u, b.spec.mass, b);
   }
-  Event e;
-  e.kind = EventKind::level_started;
-  e.level = level;
-  e.restart = restart;
-  out.push_back(e);
+  out.push_back(LevelStarted{level, restart});
 }
 
 void start_new_match(MatchState& s, std::vector<Event>& out) {
@@ -125,11 +121,7 @@ void respawn_player(MatchState& s, Player& p, std::vector<Event>& out) {
     pos = find_spawn(s.world.balls, r, left, s.rng, s.cfg);
   }
   place_player(s, p, *pos);
-  Event e;
-  e.kind = EventKind::player_respawned;
-  e.player = p.id;
-  e.ball = p.ball;
-  out.push_back(e);
+  out.push_back(PlayerRespawned{p.id, p.ball});
 }
 
 }  // namespace fts::sim::detail

@@ -25,11 +25,7 @@ void fire_rocket(MatchState& s, Player& p, std::vector<Event>& out) {
   rb.expires_tick = s.tick + ticks_for(cfg, cfg.rocket_lifetime_s);
   const BallId id = add_ball(s, pos, vel, cfg.rocket_radius_u, cfg.rocket_mass, rb);
   p.next_fire_tick = s.tick + ticks_for(cfg, cfg.rocket_cooldown_s);
-  Event e;
-  e.kind = EventKind::rocket_fired;
-  e.player = p.id;
-  e.ball = id;
-  out.push_back(e);
+  out.push_back(RocketFired{p.id, id});
 }
 
 void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector<Event>& out) {
@@ -87,11 +83,10 @@ void handle_falls(MatchState& s, const StepReport& report, std::vector<Event>& o
     if (it == s.bodies.end()) continue;
     const Body body = it->second;
     s.bodies.erase(it);
-    Event e;
-    e.ball = id;
-    e.level = s.level;
     if (body.kind == BodyKind::enemy) {
-      e.kind = EventKind::enemy_defeated;
+      EnemyDefeated e;
+      e.enemy = id;
+      e.level = s.level;
       if (Player* p = body.credit ? find_player(s, body.credit) : nullptr) {
         const Coins reward = defeat_reward(body.spec.mass, p->eco.multiplier, s.level,
                                            is_boss_level(s.level, s.cfg), s.cfg);
@@ -105,10 +100,7 @@ void handle_falls(MatchState& s, const StepReport& report, std::vector<Event>& o
       p->ball = 0;
       p->eco.lives = std::max<std::int64_t>(0, p->eco.lives - 1);
       if (p->in_match()) p->respawn_tick = s.tick + ticks_for(s.cfg, s.cfg.respawn_delay_s);
-      e.kind = EventKind::player_fell;
-      e.player = p->id;
-      e.lives_left = p->eco.lives;
-      out.push_back(e);
+      out.push_back(PlayerFell{p->id, id, s.level, p->eco.lives});
     }
   }
 }
@@ -130,10 +122,7 @@ void check_level_end(MatchState& s, std::vector<Event>& out) {
   for (const auto& [id, b] : s.bodies) enemies = enemies || b.kind == BodyKind::enemy;
   if (!anyone) {
     s.phase = Phase::game_over;
-    Event e;
-    e.kind = EventKind::game_over;
-    e.level = s.level;
-    out.push_back(e);
+    out.push_back(GameOver{s.level});
   } else if (!active) {
     // Everyone still in the match quit: the level waits for one of them to come back.
   } else if (!enemies) {
@@ -142,21 +131,12 @@ void check_level_end(MatchState& s, std::vector<Event>& out) {
       if (!p.in_match()) continue;
       const Coins before = p.eco.coins;
       complete_level(p.eco, s.cfg);
-      if (p.eco.coins != before) {
-        Event e;
-        e.kind = EventKind::interest;
-        e.player = p.id;
-        e.coins = p.eco.coins - before;
-        out.push_back(e);
-      }
+      if (p.eco.coins != before) out.push_back(InterestPaid{p.id, p.eco.coins - before});
     }
     ++s.levels_cleared;
     s.phase = Phase::shop;
     s.shop_deadline_tick = s.tick + ticks_for(s.cfg, s.cfg.shop_timeout_s);
-    Event e;
-    e.kind = EventKind::level_complete;
-    e.level = s.level;
-    out.push_back(e);
+    out.push_back(LevelComplete{s.level});
   } else if (!on_platform) {
     start_level(s, s.level, true, out);
   }

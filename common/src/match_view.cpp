@@ -11,6 +11,8 @@ MatchView make_view(const MatchState& s) {
   v.level = s.level;
   v.levels_cleared = s.levels_cleared;
   if (s.phase == Phase::shop) v.shop_ticks_left = std::max<std::int64_t>(0, s.shop_deadline_tick - s.tick);
+  if (s.phase == Phase::shop) v.deadline_tick = s.shop_deadline_tick;
+  if (s.phase == Phase::lobby) v.deadline_tick = s.lobby_deadline_tick;
   for (const Player& p : s.players) {
     PlayerView pv;
     pv.id = p.id;
@@ -18,13 +20,7 @@ MatchView make_view(const MatchState& s) {
     const Economy& e = p.eco;
     pv.coins = e.coins;
     pv.lives = e.lives;
-    pv.price_mass = price_of(e, Item::mass);
-    pv.price_speed = price_of(e, Item::speed);
-    pv.price_accel = price_of(e, Item::accel);
-    pv.price_rockets = price_of(e, Item::rockets);
-    pv.price_life = price_of(e, Item::life);
-    pv.price_multiplier = price_of(e, Item::multiplier);
-    pv.price_bank = price_of(e, Item::bank);
+    for (const ItemDef& d : item_table()) pv.prices[index_of(d.item)] = price_of(e, d.item);
     pv.mass = e.mass;
     pv.vmax_u_per_s = e.vmax_u_per_s;
     pv.accel_u_per_s2 = e.accel_u_per_s2;

@@ -107,7 +107,7 @@ std::uint64_t state_hash(const std::vector<Ball>& balls) {
   Hasher h;
   h.add_u64(balls.size());
   for (const Ball& b : balls) {
-    h.add_u64(b.id);
+    h.add_u64(b.id.value);
     h.add_double(b.pos.x);
     h.add_double(b.pos.y);
     h.add_double(b.vel.x);

@@ -61,7 +61,7 @@ std::optional<std::string> build_world(const Scene& scene, World& out) {
   for (const BallSpec& b : scene.balls) rmax = std::max(rmax, b.r);
   for (const Generator& g : scene.generators) rmax = std::max(rmax, g.radius);
   PlacementIndex index(2.0 * rmax);
-  BallId next_id = 1;
+  std::uint32_t next_id = 1;
   for (const BallSpec& s : scene.balls) {
     const auto i = static_cast<std::uint32_t>(out.balls.size());
     out.balls.push_back({next_id++, {s.x, s.y}, {s.vx, s.vy}, s.r, s.m});

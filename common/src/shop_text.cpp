@@ -24,33 +24,19 @@ std::string fixed2(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::vector<std::string> shop_lines(const Economy& e, std::int64_t level) {
-  auto price = [&](Item it) { return "(" + with_thousands(price_of(e, it)) + " coins)"; };
+std::vector<std::string> shop_lines(const Economy& e, std::int64_t level, const ShopTerms& terms) {
   const std::string L = std::to_string(level);
   std::vector<std::string> out = {
       "Level: " + L,
       "Coins: " + with_thousands(e.coins),
       "Lives: " + with_thousands(e.lives),
       "Level " + L + " Complete",
-      "Current Mass: " + with_thousands(e.mass),
-      "To increase Mass, press 'm' " + price(Item::mass),
-      // Speeds in the original's units: u/frame, and u/frame^2 x 100 (frame 0.01 s).
-      "Current Max Speed: " + fixed2(e.vmax_u_per_s / 100.0),
-      "To increase Max Speed, press 's' " + price(Item::speed),
-      "Current Acceleration: " + fixed2(e.accel_u_per_s2 / 100.0),
-      "To increase Acceleration, press 'a' " + price(Item::accel),
-      std::string("Current Weapon: ") + (e.rockets ? "ROCKETS." : "NONE."),
   };
-  if (!e.rockets) out.push_back("To purchase rockets, press 'r' " + price(Item::rockets));
-  out.push_back("Current Lives: " + with_thousands(e.lives));
-  out.push_back("To add a life, press 'l' " + price(Item::life));
-  out.push_back("Current Multiplier: " + fixed2(e.multiplier));
-  out.push_back("To increase multiplier, press 'x' " + price(Item::multiplier));
-  out.push_back("Increases coins from enemies by 10%");
-  out.push_back(std::string("Bank Purchased: ") + (e.bank ? "True" : "False"));
-  if (!e.bank) {
-    out.push_back("To purchase bank, press 'b' " + price(Item::bank));
-    out.push_back("Earns 10% interest per round");
+  for (const ItemDef& d : item_table()) {
+    out.push_back(d.status(e, terms));
+    if (d.owned && d.owned(e)) continue;
+    out.push_back(std::string(d.offer) + ", press '" + d.key + "' (" + with_thousands(price_of(e, d.item)) + " coins)");
+    if (d.note) out.push_back(d.note(terms));
   }
   out.push_back("Press Enter to begin next level.");
   return out;

@@ -59,7 +59,10 @@ void to_json(json& j, const Welcome& m) {
            {"reconnect_window_ms", m.reconnect_window_ms},
            {"input_redundancy", m.input_redundancy},
            {"server_tick", m.server_tick},
-           {"reconnected", m.reconnected}};
+           {"reconnected", m.reconnected},
+           {"frame_s", m.shop.frame_s},
+           {"multiplier_upgrade_factor", m.shop.multiplier_upgrade_factor},
+           {"bank_interest_factor", m.shop.bank_interest_factor}};
 }
 void from_json(const json& j, Welcome& m) {
   m.player_id = as_u32(field(j, "player_id"));
@@ -75,6 +78,9 @@ void from_json(const json& j, Welcome& m) {
   m.input_redundancy = as_u32(field(j, "input_redundancy"), kMaxInputFrames);
   m.server_tick = as_u32(field(j, "server_tick"));
   m.reconnected = as_bool(field(j, "reconnected"));
+  m.shop.frame_s = as_double(field(j, "frame_s"), 1e-6, 1e6);
+  m.shop.multiplier_upgrade_factor = as_double(field(j, "multiplier_upgrade_factor"), 0, 1e6);
+  m.shop.bank_interest_factor = as_double(field(j, "bank_interest_factor"), 0, 1e6);
 }
 
 void to_json(json& j, const Error& m) { j = json{{"code", m.code}, {"msg", m.message}}; }

@@ -10,9 +10,8 @@ using nlohmann::json;
 using namespace detail;
 
 int shop_index(char item) {
-  for (std::size_t i = 0; i < kShopItems.size(); ++i)
-    if (kShopItems[i] == item) return static_cast<int>(i);
-  return -1;
+  const auto it = sim::item_by_key(item);
+  return it ? static_cast<int>(sim::index_of(*it)) : -1;
 }
 
 namespace {
@@ -88,9 +87,9 @@ PlayerEntry player_from_json(const json& j) {
   if (const json* v = optional_field(j, "b")) p.bank = as_bool(*v);
   if (const json* v = optional_field(j, "w")) p.weapon = static_cast<Weapon>(as_int(*v, 0, 1));
   if (const json* v = optional_field(j, "p")) {
-    if (!v->is_array() || v->size() != 7) fail(Reject::garbage);
-    std::array<std::int64_t, 7> prices{};
-    for (std::size_t i = 0; i < 7; ++i) prices[i] = as_int((*v)[i], 0, kMaxCoins);
+    std::array<std::int64_t, sim::kItemCount> prices{};
+    if (!v->is_array() || v->size() != prices.size()) fail(Reject::garbage);
+    for (std::size_t i = 0; i < prices.size(); ++i) prices[i] = as_int((*v)[i], 0, kMaxCoins);
     p.prices = prices;
   }
   if (const json* v = optional_field(j, "r")) p.ready = as_bool(*v);

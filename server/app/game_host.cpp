@@ -18,8 +18,21 @@ std::string refusal_code(sim::Refusal r) {
     case sim::Refusal::already_owned: return "owned";
     case sim::Refusal::wrong_phase: return "phase";
     case sim::Refusal::unknown_item: return "item";
+    case sim::Refusal::no_player: return "dead";
   }
   return "error";
+}
+
+// The sentence of a command's result.
+std::string result_message(const sim::CommandResult& r) {
+  if (r.kind != sim::CommandKind::buy) {
+    if (r.ok()) return "done";
+    return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
+  }
+  if (r.code == sim::Refusal::no_player) return "not in the match";
+  const std::string item(sim::to_string(r.item));
+  if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
+  return item + " not bought: " + std::string(sim::to_string(r.code));
 }
 
 }  // namespace
@@ -39,6 +52,7 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.settings.max_players = o.max_players;
   c.settings.timeout_ms = o.timeout_ms;
   c.settings.reconnect_window_ms = o.reconnect_window_ms;
+  c.settings.shop = sim::shop_terms(cfg);
   return c;
 }
 
@@ -68,7 +82,7 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
   return out;
 }
 
-sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint64_t now_ms) {
+sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
   endpoint_.update(now_ms);
   sim::TickInputs in;
   for (const auto& e : endpoint_.take_events()) {
@@ -117,93 +131,67 @@ sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint6
     h.fire = false;
   }
   for (const auto& pc : endpoint_.take_commands()) {
-    const sim::Player* p = sim::find_player(match_, pc.player_id);
-    PendingAnswer a{pc.player_id, pc.command.rid, pc.command.op, false, "ok"};
     sim::PlayerTick& t = ticks[pc.player_id];
     t.player = pc.player_id;
     switch (pc.command.op) {
       case protocol::CommandOp::buy:
-        t.commands.push_back({sim::CommandKind::buy, std::string(1, pc.command.item)});
+        t.commands.push_back({sim::CommandKind::buy, pc.command.item ? std::string(1, pc.command.item) : std::string(),
+                              pc.command.rid});
         break;
-      case protocol::CommandOp::ready:
-        a.ok = p && sim::accepts_ready(match_, *p);
-        a.code = a.ok ? "ok" : "phase";
-        t.commands.push_back({sim::CommandKind::ready, {}});
-        break;
+      case protocol::CommandOp::ready: t.commands.push_back({sim::CommandKind::ready, {}, pc.command.rid}); break;
       case protocol::CommandOp::play_again:
-        a.ok = p && sim::accepts_play_again(match_);
-        a.code = a.ok ? "ok" : "phase";
-        t.commands.push_back({sim::CommandKind::play_again, {}});
+        t.commands.push_back({sim::CommandKind::play_again, {}, pc.command.rid});
         break;
-      case protocol::CommandOp::unknown:
-        a.code = "op";
+      case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
+        endpoint_.send_result(pc.player_id, pc.command.rid, false, "op",
+                              "unknown command; this server knows buy, ready and again", now_ms);
         break;
     }
-    answers.push_back(std::move(a));
   }
   for (auto& [id, t] : ticks) {
-    // Players that have not joined the match (yet) have nothing to apply.
+    // Inputs of players that have not joined the match (yet) have nothing to apply; their
+    // commands still go to the step, which answers them.
     const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
-    if (sim::find_player(match_, id) || joining) in.players.push_back(std::move(t));
+    if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
   }
   return in;
 }
 
-void GameHost::answer(const std::vector<PendingAnswer>& answers, const std::vector<sim::Event>& events,
-                      std::uint64_t now_ms) {
-  std::map<std::uint32_t, std::size_t> cursor;  // next purchase event per player
-  for (const auto& a : answers) {
-    if (a.op == protocol::CommandOp::unknown) {
-      endpoint_.send_result(a.player, a.rid, false, a.code, "unknown command; this server knows buy, ready and again", now_ms);
-      continue;
-    }
-    if (a.op != protocol::CommandOp::buy) {
-      endpoint_.send_result(a.player, a.rid, a.ok, a.code, a.ok ? "done" : "not now (wrong phase)", now_ms);
-      continue;
-    }
-    std::size_t& i = cursor[a.player];
-    while (i < events.size() && !(events[i].kind == sim::EventKind::purchase && events[i].player == a.player)) ++i;
-    if (i == events.size()) {
-      endpoint_.send_result(a.player, a.rid, false, "dead", "not in the match", now_ms);
-      continue;
-    }
-    const sim::Event& e = events[i++];
-    std::string message = std::string(sim::to_string(e.item)) + (e.ok ? " bought for " : " not bought: ") +
-                          (e.ok ? std::to_string(e.price) + " coins, " + std::to_string(e.coins_after) + " left"
-                                : std::string(sim::to_string(e.reason)));
-    endpoint_.send_result(a.player, a.rid, e.ok, refusal_code(e.reason), std::move(message), now_ms);
-  }
+void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms) {
+  for (const sim::CommandResult& r : results)
+    endpoint_.send_result(r.player.value, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
 }
 
 void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
-  for (const auto& e : events) {
-    switch (e.kind) {
-      case sim::EventKind::join_refused:
-        log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.text}});
-        endpoint_.kick(e.player, "refused", "the match refused the join: " + e.text, now_ms);
-        break;
-      case sim::EventKind::level_started:
-        log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
-        break;
-      case sim::EventKind::level_complete:
-        log_record(spdlog::level::info, "level_complete", {{"level", e.level}});
-        break;
-      case sim::EventKind::purchase:
-        log_record(spdlog::level::info, "purchase",
-                   {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
-                    {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
-        break;
-      case sim::EventKind::game_over:
-        log_record(spdlog::level::info, "game_over", {{"level", e.level}});
-        break;
-      case sim::EventKind::enemy_defeated:
-        log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.ball}, {"player", e.player}, {"coins", e.coins}});
-        break;
-      case sim::EventKind::player_fell:
-        log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
-        break;
-      default: break;
-    }
+  for (const auto& event : events) {
+    std::visit(
+        sim::Overloaded{
+            [&](const sim::JoinRefused& e) {
+              log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}});
+              endpoint_.kick(e.player.value, "refused", "the match refused the join: " + e.reason, now_ms);
+            },
+            [&](const sim::LevelStarted& e) {
+              log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
+            },
+            [&](const sim::LevelComplete& e) { log_record(spdlog::level::info, "level_complete", {{"level", e.level}}); },
+            [&](const sim::Purchased& e) {
+              log_record(spdlog::level::info, "purchase",
+                         {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
+                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
+            },
+            [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}}); },
+            [&](const sim::EnemyDefeated& e) {
+              log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}});
+            },
+            [&](const sim::PlayerFell& e) {
+              log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
+            },
+            [&](const sim::InterestPaid& e) {
+              log_record(spdlog::level::debug, "interest", {{"player", e.player}, {"coins", e.coins}});
+            },
+            [](const auto&) {},  // the rest is not logged
+        },
+        event);
   }
 }
 
@@ -212,12 +200,12 @@ void GameHost::tick(std::uint64_t now_ms) {
     log_record(spdlog::level::warn, "stall", {{"ms", stalled - stalled_logged_ms_}, {"total_ms", stalled}});
     stalled_logged_ms_ = stalled;
   }
-  std::vector<PendingAnswer> answers;
-  const sim::TickInputs in = gather(answers, now_ms);
+  const sim::TickInputs in = gather(now_ms);
   if (recorder_) recorder_->inputs(match_.tick, in);
-  const std::vector<sim::Event> events = sim::step(match_, in);
+  const sim::TickOutput stepped = sim::step(match_, in);
+  const std::vector<sim::Event>& events = stepped.events;
   if (recorder_) recorder_->stepped(match_);
-  answer(answers, events, now_ms);
+  answer(stepped.results, now_ms);
   log_events(events, now_ms);
 
   std::vector<protocol::Event> wire;

@@ -44,17 +44,9 @@ class GameHost {
     bool fire = false;           // any fire since the last tick
     std::uint64_t received_ms = 0;  // when the latest frame arrived
   };
-  struct PendingAnswer {
-    std::uint32_t player = 0;
-    std::uint32_t rid = 0;
-    protocol::CommandOp op = protocol::CommandOp::ready;
-    bool ok = false;          // ready / play_again: decided before the step
-    std::string code;
-  };
-
-  sim::TickInputs gather(std::vector<PendingAnswer>& answers, std::uint64_t now_ms);
-  void answer(const std::vector<PendingAnswer>& answers, const std::vector<sim::Event>& events,
-              std::uint64_t now_ms);
+  sim::TickInputs gather(std::uint64_t now_ms);
+  // Forwards the step's result of each command to the client that sent it.
+  void answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms);
   void log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms);
   void send_snapshots(std::uint64_t now_ms);
 

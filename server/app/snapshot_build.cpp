@@ -1,5 +1,7 @@
 #include "app/snapshot_build.hpp"
 
+#include <optional>
+
 namespace fts::server {
 namespace {
 
@@ -28,29 +30,31 @@ std::uint32_t u32(std::int64_t v) { return v < 0 ? 0u : v > 0xffffffffll ? 0xfff
 
 void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events, std::vector<protocol::Event>& out) {
   using K = protocol::EventKind;
+  using Wire = std::optional<protocol::Event>;
+  const std::uint32_t t = u32(tick);
   for (const sim::Event& e : events) {
-    protocol::Event w;
-    w.tick = u32(tick);
-    switch (e.kind) {
-      case sim::EventKind::joined: w = {0, w.tick, K::player_joined, e.player, 0, 0}; break;
-      case sim::EventKind::left: w = {0, w.tick, K::player_left, e.player, 0, 0}; break;
-      case sim::EventKind::level_started:
-        w = {0, w.tick, e.restart ? K::level_restarted : K::level_started, 0, 0, e.level};
-        break;
-      case sim::EventKind::enemy_defeated: w = {0, w.tick, K::enemy_fell, e.ball, e.player, e.coins}; break;
-      case sim::EventKind::player_fell: w = {0, w.tick, K::player_fell, e.player, e.ball, e.lives_left}; break;
-      case sim::EventKind::player_respawned: w = {0, w.tick, K::respawned, e.player, e.ball, 0}; break;
-      case sim::EventKind::level_complete: w = {0, w.tick, K::level_complete, 0, 0, e.level}; break;
-      case sim::EventKind::purchase:
-        if (!e.ok) continue;  // refusals go to the buyer only, as a command result
-        w = {0, w.tick, K::purchase, e.player, static_cast<std::uint32_t>(sim::shop_key(e.item)), e.price};
-        break;
-      case sim::EventKind::rocket_fired: w = {0, w.tick, K::rocket_fired, e.player, e.ball, 0}; break;
-      case sim::EventKind::game_over: w = {0, w.tick, K::match_over, 0, 0, e.level}; break;
-      case sim::EventKind::interest: w = {0, w.tick, K::interest, e.player, 0, e.coins}; break;
-      case sim::EventKind::join_refused: continue;
-    }
-    out.push_back(w);
+    const Wire w = std::visit(
+        sim::Overloaded{
+            [&](const sim::Joined& x) -> Wire { return protocol::Event{0, t, K::player_joined, x.player.value, 0, 0}; },
+            [&](const sim::JoinRefused&) -> Wire { return std::nullopt; },
+            [&](const sim::Left& x) -> Wire { return protocol::Event{0, t, K::player_left, x.player.value, 0, 0}; },
+            [&](const sim::LevelStarted& x) -> Wire {
+              return protocol::Event{0, t, x.restart ? K::level_restarted : K::level_started, 0, 0, x.level};
+            },
+            [&](const sim::EnemyDefeated& x) -> Wire { return protocol::Event{0, t, K::enemy_fell, x.enemy.value, x.player.value, x.coins}; },
+            [&](const sim::PlayerFell& x) -> Wire { return protocol::Event{0, t, K::player_fell, x.player.value, x.ball.value, x.lives_left}; },
+            [&](const sim::PlayerRespawned& x) -> Wire { return protocol::Event{0, t, K::respawned, x.player.value, x.ball.value, 0}; },
+            [&](const sim::LevelComplete& x) -> Wire { return protocol::Event{0, t, K::level_complete, 0, 0, x.level}; },
+            [&](const sim::Purchased& x) -> Wire {
+              if (!x.ok) return std::nullopt;  // refusals go to the buyer only, as a command result
+              return protocol::Event{0, t, K::purchase, x.player.value, static_cast<std::uint32_t>(sim::shop_key(x.item)), x.price};
+            },
+            [&](const sim::RocketFired& x) -> Wire { return protocol::Event{0, t, K::rocket_fired, x.player.value, x.rocket.value, 0}; },
+            [&](const sim::GameOver& x) -> Wire { return protocol::Event{0, t, K::match_over, 0, 0, x.level}; },
+            [&](const sim::InterestPaid& x) -> Wire { return protocol::Event{0, t, K::interest, x.player.value, 0, x.coins}; },
+        },
+        e);
+    if (w) out.push_back(*w);
   }
 }
 
@@ -59,13 +63,14 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
   s.tick = u32(view.tick);
   s.phase = wire_phase(view.phase);
   s.level = u32(view.level);
+  s.deadline_tick = view.deadline_tick > 0 ? u32(view.deadline_tick) : 0;
   s.balls.reserve(view.balls.size());
   for (const auto& b : view.balls) {
-    s.balls.push_back({b.id, b.x, b.y, b.vx, b.vy, b.radius, b.mass, wire_kind(b.kind), b.owner});
+    s.balls.push_back({b.id.value, b.x, b.y, b.vx, b.vy, b.radius, b.mass, wire_kind(b.kind), b.owner.value});
   }
   for (const auto& p : view.players) {
     protocol::PlayerState w;
-    w.id = p.id;
+    w.id = p.id.value;
     w.name = p.name;
     w.coins = p.coins;
     w.lives = static_cast<std::int32_t>(p.lives > 0x7fffffff ? 0x7fffffff : p.lives);
@@ -75,8 +80,7 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
     w.multiplier = p.multiplier;
     w.bank = p.bank;
     w.weapon = p.rockets ? protocol::Weapon::rockets : protocol::Weapon::none;
-    w.prices = {p.price_mass, p.price_speed, p.price_accel, p.price_rockets, p.price_life, p.price_multiplier,
-                p.price_bank};
+    w.prices = p.prices;
     w.ready = p.ready;
     w.alive = p.alive;
     s.players.push_back(std::move(w));

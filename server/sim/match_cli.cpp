@@ -28,23 +28,30 @@ int usage(const std::string& msg) {
 }
 
 
-nlohmann::json event_json(std::int64_t tick, const sim::Event& e) {
-  nlohmann::json j = {{"tick", tick}, {"event", sim::to_string(e.kind)}};
-  if (e.player) j["player"] = e.player;
-  switch (e.kind) {
-    case sim::EventKind::enemy_defeated: j["enemy"] = e.ball; j["coins"] = e.coins; break;
-    case sim::EventKind::player_fell: j["lives_left"] = e.lives_left; break;
-    case sim::EventKind::level_started: j["level"] = e.level; j["restart"] = e.restart; break;
-    case sim::EventKind::level_complete: j["level"] = e.level; break;
-    case sim::EventKind::purchase:
-      j["item"] = e.text; j["ok"] = e.ok; j["price"] = e.price; j["coins_after"] = e.coins_after;
-      if (!e.ok) j["reason"] = sim::to_string(e.reason);
-      break;
-    case sim::EventKind::rocket_fired: j["rocket"] = e.ball; break;
-    case sim::EventKind::joined: j["name"] = e.text; break;
-    case sim::EventKind::join_refused: j["reason"] = e.text; break;
-    default: break;
-  }
+nlohmann::json event_json(std::int64_t tick, const sim::Event& event) {
+  nlohmann::json j = {{"tick", tick}, {"event", sim::to_string(sim::kind_of(event))}};
+  auto player = [&](sim::PlayerId id) {
+    if (id) j["player"] = id;
+  };
+  std::visit(sim::Overloaded{
+                 [&](const sim::Joined& e) { player(e.player); j["name"] = e.name; },
+                 [&](const sim::JoinRefused& e) { player(e.player); j["reason"] = e.reason; },
+                 [&](const sim::Left& e) { player(e.player); },
+                 [&](const sim::LevelStarted& e) { j["level"] = e.level; j["restart"] = e.restart; },
+                 [&](const sim::EnemyDefeated& e) { player(e.player); j["enemy"] = e.enemy; j["coins"] = e.coins; },
+                 [&](const sim::PlayerFell& e) { player(e.player); j["lives_left"] = e.lives_left; },
+                 [&](const sim::PlayerRespawned& e) { player(e.player); },
+                 [&](const sim::LevelComplete& e) { j["level"] = e.level; },
+                 [&](const sim::Purchased& e) {
+                   player(e.player);
+                   j["item"] = e.asked; j["ok"] = e.ok; j["price"] = e.price; j["coins_after"] = e.coins_after;
+                   if (!e.ok) j["reason"] = sim::to_string(e.reason);
+                 },
+                 [&](const sim::RocketFired& e) { player(e.player); j["rocket"] = e.rocket; },
+                 [&](const sim::GameOver&) {},
+                 [&](const sim::InterestPaid& e) { player(e.player); },
+             },
+             event);
   return j;
 }
 
@@ -52,15 +59,16 @@ struct Tally {
   std::vector<std::int64_t> level_clear_ticks;
   std::int64_t restarts = 0, falls = 0, defeats = 0, untouched = 0, refusals = 0;
   void add(const sim::MatchState& s, const std::vector<sim::Event>& events) {
-    for (const auto& e : events) {
-      switch (e.kind) {
-        case sim::EventKind::level_complete: level_clear_ticks.push_back(s.tick); break;
-        case sim::EventKind::level_started: restarts += e.restart ? 1 : 0; break;
-        case sim::EventKind::player_fell: ++falls; break;
-        case sim::EventKind::enemy_defeated: ++defeats; untouched += e.player ? 0 : 1; break;
-        case sim::EventKind::purchase: refusals += e.ok ? 0 : 1; break;
-        default: break;
-      }
+    for (const auto& event : events) {
+      std::visit(sim::Overloaded{
+                     [&](const sim::LevelComplete&) { level_clear_ticks.push_back(s.tick); },
+                     [&](const sim::LevelStarted& e) { restarts += e.restart ? 1 : 0; },
+                     [&](const sim::PlayerFell&) { ++falls; },
+                     [&](const sim::EnemyDefeated& e) { ++defeats; untouched += e.player ? 0 : 1; },
+                     [&](const sim::Purchased& e) { refusals += e.ok ? 0 : 1; },
+                     [](const auto&) {},
+                 },
+                 event);
     }
   }
 };
@@ -156,7 +164,7 @@ int run_match_cli(const std::vector<std::string>& args) {
   auto run_tick = [&](const sim::TickInputs& in) {
     if (record) record << host::to_input_line(s.tick, in) << "\n";
     const std::int64_t t = s.tick;
-    auto events = sim::step(s, in);
+    auto events = sim::step(s, in).events;
     tally.add(s, events);
     if (print_events)
       for (const auto& e : events) std::cerr << event_json(t, e).dump() << "\n";

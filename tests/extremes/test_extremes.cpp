@@ -100,7 +100,7 @@ TEST_CASE("Extremes: 10^6 ticks of a small scene: no NaN, no energy growth", "[e
 
 TEST_CASE("Extremes: the pile finishes every tick within its event budget", "[extremes]") {
   World w = walled(200, 200, {});
-  for (BallId i = 0; i < 200; ++i) {
+  for (std::uint32_t i = 0; i < 200; ++i) {
     // All 200 within a 10 x 10 square: hopelessly overlapping.
     w.balls.push_back(ball(i + 1, 95 + (i * 37 % 100) / 10.0, 95 + (i * 61 % 100) / 10.0, (i % 7) - 3.0,
                            (i % 5) - 2.0, 2, 1));

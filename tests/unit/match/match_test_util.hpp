@@ -65,16 +65,18 @@ inline Ball& ball_of(MatchState& s, PlayerId p) { return *find_ball(s.world, fin
 inline std::vector<Event> run(MatchState& s, int ticks, const TickInputs& in = {}) {
   std::vector<Event> all;
   for (int i = 0; i < ticks; ++i) {
-    auto ev = step(s, in);
+    auto ev = step(s, in).events;
     all.insert(all.end(), ev.begin(), ev.end());
   }
   return all;
 }
 
-inline std::vector<Event> of_kind(const std::vector<Event>& ev, EventKind k) {
-  std::vector<Event> out;
+// The events of one kind, as their records.
+template <class Kind>
+std::vector<Kind> of(const std::vector<Event>& ev) {
+  std::vector<Kind> out;
   for (const auto& e : ev)
-    if (e.kind == k) out.push_back(e);
+    if (const Kind* k = std::get_if<Kind>(&e)) out.push_back(*k);
   return out;
 }
 

@@ -98,9 +98,9 @@ TEST_CASE("The platform: a ball whose centre leaves the rectangle has fallen off
   MatchState s = bare_one();
   const BallId inside = add_enemy(s, {499.5, 150}, {10, 0});   // centre stays inside this tick
   const BallId outside = add_enemy(s, {499.5, 200}, {100, 0}); // centre crosses x = 500
-  const auto ev = step(s, {});
+  const auto ev = step(s, {}).events;
   CHECK(find_ball(s.world, inside));
   CHECK_FALSE(find_ball(s.world, outside));
-  REQUIRE(of_kind(ev, EventKind::enemy_defeated).size() == 1);
-  CHECK(of_kind(ev, EventKind::enemy_defeated)[0].ball == outside);
+  REQUIRE(of<EnemyDefeated>(ev).size() == 1);
+  CHECK(of<EnemyDefeated>(ev)[0].enemy == outside);
 }

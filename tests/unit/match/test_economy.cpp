@@ -89,7 +89,7 @@ TEST_CASE("Coins, shop and lives: a refusal carries a reason and changes nothing
   CHECK(p.coins_after == 40);
   CHECK(e.coins == before.coins);
   CHECK(e.vmax_u_per_s == before.vmax_u_per_s);
-  CHECK(e.prices.speed == before.prices.speed);
+  CHECK(e.prices[Item::speed] == before.prices[Item::speed]);
   CHECK(e.purchases == 0);
   e.coins = 2000;
   REQUIRE(buy(e, Item::bank, 1, cfg).ok);
@@ -121,7 +121,7 @@ TEST_CASE("Coins, shop and lives: level end: bank interest, multiplier x1.02, li
   complete_level(e, cfg);
   CHECK(e.coins == 286);  // no bank
   CHECK(e.multiplier == Approx(1.02));
-  CHECK(e.prices.life == Approx(507.5));
+  CHECK(e.prices[Item::life] == Approx(507.5));
   e.bank = true;
   complete_level(e, cfg);
   CHECK(e.coins == 314);  // floor(286 x 1.1)

@@ -55,7 +55,7 @@ TEST_CASE("Extremes: level 10000") {
   s.shop_deadline_tick = s.tick;
   run(s, 1);
   REQUIRE(s.level == 10000);
-  for (PlayerId p = 1; p <= 8; ++p) find_player(s, p)->eco.multiplier = s.cfg.multiplier_cap;
+  for (std::uint32_t p = 1; p <= 8; ++p) find_player(s, p)->eco.multiplier = s.cfg.multiplier_cap;
   run(s, 500);
   CHECK(all_finite(s.world.balls));
   for (const Player& p : s.players) {
@@ -66,7 +66,8 @@ TEST_CASE("Extremes: level 10000") {
 
 TEST_CASE("Extremes: 10000 purchases of each item") {
   const MatchConfig cfg;
-  for (Item item : kAllItems) {
+  for (const ItemDef& row : item_table()) {
+    const Item item = row.item;
     INFO("item " << to_string(item));
     Economy e = start_economy(cfg);
     Coins last_price = price_of(e, item);
@@ -117,8 +118,8 @@ TEST_CASE("Extremes: a bank compounding for 10000 levels saturates at the cap") 
     REQUIRE(e.coins <= cfg.coin_cap);
     REQUIRE(e.multiplier >= prev_mult);
     REQUIRE(e.multiplier <= cfg.multiplier_cap);
-    REQUIRE(std::isfinite(e.prices.life));
-    REQUIRE(e.prices.life <= static_cast<double>(cfg.coin_cap));
+    REQUIRE(std::isfinite(e.prices[Item::life]));
+    REQUIRE(e.prices[Item::life] <= static_cast<double>(cfg.coin_cap));
     prev = e.coins;
     prev_mult = e.multiplier;
   }

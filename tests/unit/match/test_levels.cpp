@@ -116,7 +116,7 @@ TEST_CASE("Levels: spawns in the inner box, never overlapping, level 1's enemy a
     s.phase = Phase::shop;
     s.level = 6;
     s.shop_deadline_tick = s.tick;
-    ev = step(s, {});
+    ev = step(s, {}).events;
     REQUIRE(s.level == 7);
     std::int64_t enemies = 0;
     for (const Ball& b : s.world.balls) {
@@ -153,7 +153,7 @@ TEST_CASE("Levels: players start along the left third, vertical centre for one")
   CHECK(ball_of(three, 1).pos.y == 75.0);
   CHECK(ball_of(three, 2).pos.y == 150.0);
   CHECK(ball_of(three, 3).pos.y == 225.0);
-  for (PlayerId p = 1; p <= 3; ++p) CHECK(ball_of(three, p).pos.x < 500.0 / 3.0);
+  for (std::uint32_t p = 1; p <= 3; ++p) CHECK(ball_of(three, p).pos.x < 500.0 / 3.0);
 }
 
 TEST_CASE("Levels: wander goals lie in the shrinking box, bosses in 90 x 45") {

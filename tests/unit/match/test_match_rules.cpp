@@ -24,9 +24,9 @@ void place(MatchState& s, PlayerId p, Vec2 pos, Vec2 vel = {}) {
   b.vel = vel;
 }
 
-const Event* defeat_of(const std::vector<Event>& ev, BallId enemy) {
+const EnemyDefeated* defeat_of(const std::vector<Event>& ev, BallId enemy) {
   for (const auto& e : ev)
-    if (e.kind == EventKind::enemy_defeated && e.ball == enemy) return &e;
+    if (const auto* d = std::get_if<EnemyDefeated>(&e); d && d->enemy == enemy) return d;
   return nullptr;
 }
 
@@ -44,7 +44,7 @@ TEST_CASE("Coins, shop and lives: credit passes through a chain of enemy collisi
   const BallId a = add_enemy(s, {390, 150});
   const BallId b = add_enemy(s, {440, 150});
   const auto ev = run(s, 200);
-  const Event* d = defeat_of(ev, b);
+  const EnemyDefeated* d = defeat_of(ev, b);
   REQUIRE(d);
   CHECK(d->player == 1);
   CHECK(d->coins == 30 + 1 + 5);
@@ -61,7 +61,7 @@ TEST_CASE("Coins, shop and lives: a chain credits only within 5 s of the player'
     s.bodies[a].credit = 1;
     s.bodies[a].credit_tick = s.tick - age_ticks;
     const auto ev = run(s, 200);
-    const Event* d = defeat_of(ev, b);
+    const EnemyDefeated* d = defeat_of(ev, b);
     REQUIRE(d);
     INFO("hit " << age_ticks << " ticks before the chain");
     CHECK(d->player == (age_ticks <= 500 ? 1u : 0u));
@@ -73,7 +73,7 @@ TEST_CASE("Coins, shop and lives: an enemy that falls untouched earns nobody any
   MatchState s = bare(1);
   const BallId e = add_enemy(s, {498, 150}, {300, 0});
   const auto ev = run(s, 5);
-  const Event* d = defeat_of(ev, e);
+  const EnemyDefeated* d = defeat_of(ev, e);
   REQUIRE(d);
   CHECK(d->player == 0);
   CHECK(d->coins == 0);
@@ -91,7 +91,7 @@ TEST_CASE("Multiplayer: two players hit one enemy; the last toucher gets the coi
   const Ball eb = *find_ball(s.world, e);
   place(s, 2, eb.pos - Vec2{0, 40}, {eb.vel.x, 400});
   const auto ev = run(s, 300);
-  const Event* d = defeat_of(ev, e);
+  const EnemyDefeated* d = defeat_of(ev, e);
   REQUIRE(d);
   CHECK(d->player == 2);
   CHECK(d->coins == 36);
@@ -107,7 +107,7 @@ TEST_CASE("Multiplayer: simultaneous falls are each credited") {
   s.bodies[e1].credit_tick = s.tick;
   s.bodies[e2].credit = 2;
   s.bodies[e2].credit_tick = s.tick;
-  const auto ev = step(s, {});
+  const auto ev = step(s, {}).events;
   REQUIRE(defeat_of(ev, e1));
   REQUIRE(defeat_of(ev, e2));
   CHECK(defeat_of(ev, e1)->player == 1);
@@ -123,12 +123,12 @@ TEST_CASE("Lives: the player and the last enemy fall in the same tick: level com
   s.bodies[e].credit = 1;
   s.bodies[e].credit_tick = s.tick;
   place(s, 1, {1, 150}, {-200, 0});
-  const auto ev = step(s, {});
-  CHECK(of_kind(ev, EventKind::enemy_defeated).size() == 1);
-  REQUIRE(of_kind(ev, EventKind::player_fell).size() == 1);
-  CHECK(of_kind(ev, EventKind::player_fell)[0].lives_left == 2);
-  CHECK(of_kind(ev, EventKind::level_complete).size() == 1);
-  CHECK(of_kind(ev, EventKind::level_started).empty());
+  const auto ev = step(s, {}).events;
+  CHECK(of<EnemyDefeated>(ev).size() == 1);
+  REQUIRE(of<PlayerFell>(ev).size() == 1);
+  CHECK(of<PlayerFell>(ev)[0].lives_left == 2);
+  CHECK(of<LevelComplete>(ev).size() == 1);
+  CHECK(of<LevelStarted>(ev).empty());
   CHECK(s.phase == Phase::shop);
   CHECK(find_player(s, 1)->eco.coins == 36);
 }
@@ -141,17 +141,17 @@ TEST_CASE("Multiplayer: a player pushed off by another player gives no coins; re
   std::int64_t fell_tick = -1, respawn_tick = -1;
   for (int i = 0; i < 400; ++i) {
     const std::int64_t t = s.tick;
-    for (const Event& e : step(s, {})) {
-      if (e.kind == EventKind::player_fell) fell_tick = t;
-      if (e.kind == EventKind::player_respawned) respawn_tick = t;
+    for (const Event& e : step(s, {}).events) {
+      if (std::holds_alternative<PlayerFell>(e)) fell_tick = t;
+      if (std::holds_alternative<PlayerRespawned>(e)) respawn_tick = t;
       ev.push_back(e);
     }
   }
-  REQUIRE(of_kind(ev, EventKind::player_fell).size() == 1);
-  CHECK(of_kind(ev, EventKind::player_fell)[0].player == 1);
-  CHECK(of_kind(ev, EventKind::player_fell)[0].lives_left == 2);
-  CHECK(of_kind(ev, EventKind::enemy_defeated).empty());
-  CHECK(of_kind(ev, EventKind::level_started).empty());  // player 2 stayed on the platform
+  REQUIRE(of<PlayerFell>(ev).size() == 1);
+  CHECK(of<PlayerFell>(ev)[0].player == 1);
+  CHECK(of<PlayerFell>(ev)[0].lives_left == 2);
+  CHECK(of<EnemyDefeated>(ev).empty());
+  CHECK(of<LevelStarted>(ev).empty());  // player 2 stayed on the platform
   CHECK(find_player(s, 1)->eco.coins == 0);
   CHECK(find_player(s, 2)->eco.coins == 0);
   CHECK(respawn_tick - fell_tick == 200);
@@ -162,9 +162,9 @@ TEST_CASE("Lives: with no player left on the platform the level restarts with fr
   MatchState s = started(1);
   const BallId old_enemy = s.world.balls.back().id;
   place(s, 1, {1, 150}, {-200, 0});
-  const auto ev = step(s, {});
-  REQUIRE(of_kind(ev, EventKind::player_fell).size() == 1);
-  const auto starts = of_kind(ev, EventKind::level_started);
+  const auto ev = step(s, {}).events;
+  REQUIRE(of<PlayerFell>(ev).size() == 1);
+  const auto starts = of<LevelStarted>(ev);
   REQUIRE(starts.size() == 1);
   CHECK(starts[0].restart);
   CHECK(starts[0].level == 1);
@@ -179,19 +179,19 @@ TEST_CASE("Lives: out of lives the player watches; all out is game over; play ag
   MatchState s = bare(2);
   find_player(s, 1)->eco.lives = 1;
   place(s, 1, {1, 150}, {-200, 0});
-  auto ev = step(s, {});
-  CHECK(of_kind(ev, EventKind::player_fell)[0].lives_left == 0);
+  auto ev = step(s, {}).events;
+  CHECK(of<PlayerFell>(ev)[0].lives_left == 0);
   CHECK(find_player(s, 1)->ball == 0);
   run(s, 400);
   CHECK(find_player(s, 1)->ball == 0);  // no respawn
   CHECK(s.phase == Phase::playing);
   find_player(s, 2)->eco.lives = 1;
   place(s, 2, {499, 150}, {200, 0});
-  ev = step(s, {});
-  CHECK(of_kind(ev, EventKind::game_over).size() == 1);
+  ev = step(s, {}).events;
+  CHECK(of<GameOver>(ev).size() == 1);
   CHECK(s.phase == Phase::game_over);
-  ev = step(s, input_for(2, {}, {{CommandKind::play_again, {}}}));
-  REQUIRE(of_kind(ev, EventKind::level_started).size() == 1);
+  ev = step(s, input_for(2, {}, {{CommandKind::play_again, {}}})).events;
+  REQUIRE(of<LevelStarted>(ev).size() == 1);
   CHECK(s.phase == Phase::playing);
   CHECK(s.level == 1);
   CHECK(find_player(s, 1)->eco.lives == 3);
@@ -204,9 +204,9 @@ TEST_CASE("Phases: the lobby starts the match when every present player is ready
   step(s, joins(2));
   step(s, input_for(1, {}, {{CommandKind::ready, {}}}));
   CHECK(s.phase == Phase::lobby);
-  const auto ev = step(s, input_for(2, {}, {{CommandKind::ready, {}}}));
+  const auto ev = step(s, input_for(2, {}, {{CommandKind::ready, {}}})).events;
   CHECK(s.phase == Phase::playing);
-  REQUIRE(of_kind(ev, EventKind::level_started).size() == 1);
+  REQUIRE(of<LevelStarted>(ev).size() == 1);
   std::int64_t enemies = 0;
   for (const auto& [id, b] : s.bodies) enemies += b.kind == BodyKind::enemy;
   CHECK(enemies == 2);  // n(1) x 2 players
@@ -215,23 +215,23 @@ TEST_CASE("Phases: the lobby starts the match when every present player is ready
 TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or after 30 s") {
   MatchState s = started(1);
   // Buying while playing is refused.
-  auto ev = step(s, input_for(1, {}, {buy("m")}));
-  REQUIRE(of_kind(ev, EventKind::purchase).size() == 1);
-  CHECK(of_kind(ev, EventKind::purchase)[0].reason == Refusal::wrong_phase);
+  auto ev = step(s, input_for(1, {}, {buy("m")})).events;
+  REQUIRE(of<Purchased>(ev).size() == 1);
+  CHECK(of<Purchased>(ev)[0].reason == Refusal::wrong_phase);
   remove_enemies(s);
   const BallId e = add_enemy(s, {499, 150}, {200, 0});
   s.bodies[e].credit = 1;
   s.bodies[e].credit_tick = s.tick;
   const std::int64_t done_tick = s.tick;
-  ev = step(s, {});
-  REQUIRE(of_kind(ev, EventKind::level_complete).size() == 1);
+  ev = step(s, {}).events;
+  REQUIRE(of<LevelComplete>(ev).size() == 1);
   CHECK(s.phase == Phase::shop);
   CHECK(s.levels_cleared == 1);
   Player& p = *find_player(s, 1);
   CHECK(p.eco.coins == 36);
   CHECK(p.eco.multiplier == Approx(1.02));
-  ev = step(s, input_for(1, {}, {buy("m"), buy("laser"), buy("speed"), buy("mass")}));
-  const auto buys = of_kind(ev, EventKind::purchase);
+  ev = step(s, input_for(1, {}, {buy("m"), buy("laser"), buy("speed"), buy("mass")})).events;
+  const auto buys = of<Purchased>(ev);
   REQUIRE(buys.size() == 4);
   CHECK(buys[0].ok);
   CHECK(buys[0].price == 35);
@@ -244,7 +244,7 @@ TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or afte
   std::int64_t start_tick = -1;
   while (s.phase == Phase::shop) {
     const std::int64_t t = s.tick;
-    if (!of_kind(step(s, {}), EventKind::level_started).empty()) start_tick = t;
+    if (!of<LevelStarted>(step(s, {}).events).empty()) start_tick = t;
   }
   CHECK(start_tick - done_tick == 3000);
   CHECK(s.level == 2);
@@ -252,6 +252,49 @@ TEST_CASE("Phases: shop purchases, refusals, and the next level on ready or afte
   std::int64_t enemies = 0;
   for (const auto& [id, b] : s.bodies) enemies += b.kind == BodyKind::enemy;
   CHECK(enemies == 2);
+}
+
+TEST_CASE("Commands: step answers every command it applied, with the refusal it decided") {
+  MatchState s = started(1);
+  remove_enemies(s);
+  add_enemy(s, {499, 150}, {200, 0});
+  s.bodies[s.world.balls.back().id].credit = 1;
+  step(s, {});
+  REQUIRE(s.phase == Phase::shop);
+  REQUIRE(find_player(s, 1)->eco.coins == 36);
+  TickInputs in = input_for(1, {}, {{CommandKind::buy, "m", 11}, {CommandKind::buy, "laser", 12},
+                                   {CommandKind::buy, "b", 13}, {CommandKind::play_again, {}, 14}});
+  in.players.push_back({9, {}, {{CommandKind::buy, "m", 15}, {CommandKind::ready, {}, 16}}});
+  const TickOutput out = step(s, in);
+  REQUIRE(out.results.size() == 6);
+  const CommandResult& bought = out.results[0];
+  CHECK(bought.player == 1);
+  CHECK(bought.tag == 11);
+  CHECK(bought.ok());
+  CHECK(bought.item == Item::mass);
+  CHECK(bought.price == 35);
+  CHECK(bought.coins_after == 1);
+  CHECK(out.results[1].tag == 12);
+  CHECK(out.results[1].code == Refusal::unknown_item);
+  // The refusal's code, price and coins come from the purchase the step tried.
+  CHECK(out.results[2].tag == 13);
+  CHECK(out.results[2].code == Refusal::not_enough_coins);
+  CHECK(out.results[2].item == Item::bank);
+  CHECK(out.results[2].price == 500);
+  CHECK(out.results[2].coins_after == 1);
+  CHECK(out.results[3].kind == CommandKind::play_again);
+  CHECK(out.results[3].code == Refusal::wrong_phase);
+  // Commands of a player the match does not hold are answered too.
+  for (std::size_t i : {4u, 5u}) {
+    CHECK(out.results[i].player == 9);
+    CHECK(out.results[i].tag == 11 + i);
+    CHECK(out.results[i].code == Refusal::no_player);
+  }
+  // The answer follows what happened: ready in the shop is accepted and starts the level.
+  const TickOutput ready = step(s, input_for(1, {}, {{CommandKind::ready, {}, 17}}));
+  REQUIRE(ready.results.size() == 1);
+  CHECK(ready.results[0].ok());
+  CHECK(s.phase == Phase::playing);
 }
 
 TEST_CASE("Phases: ready in the shop starts the next level at once") {
@@ -271,17 +314,17 @@ TEST_CASE("Multiplayer: joining mid-level, leaving, and the player limit") {
   MatchState s = started(1, 1, cfg);
   TickInputs in;
   in.joins = {{2, "late"}, {3, "third"}, {1, "dup"}};
-  auto ev = step(s, in);
-  const auto refused = of_kind(ev, EventKind::join_refused);
+  auto ev = step(s, in).events;
+  const auto refused = of<JoinRefused>(ev);
   REQUIRE(refused.size() == 2);
-  CHECK(refused[0].text == "id_in_use");
-  CHECK(refused[1].text == "match_full");
+  CHECK(refused[0].reason == "id_in_use");
+  CHECK(refused[1].reason == "match_full");
   REQUIRE(find_player(s, 2));
   CHECK(find_player(s, 2)->ball != 0);
   TickInputs out;
   out.leaves = {1};
-  ev = step(s, out);
-  CHECK(of_kind(ev, EventKind::left).size() == 1);
+  ev = step(s, out).events;
+  CHECK(of<Left>(ev).size() == 1);
   CHECK_FALSE(find_player(s, 1));
   for (const auto& [id, b] : s.bodies) CHECK(b.owner != 1u);
   CHECK(s.phase == Phase::playing);
@@ -292,10 +335,10 @@ TEST_CASE("Rockets: fire, cooldown, the rocket ball, credit to its owner, remova
   find_player(s, 1)->eco.rockets = true;
   place(s, 1, {300, 150});
   const BallId e = add_enemy(s, {440, 150});
-  auto ev = step(s, input_for(1, {1, 0, true}));
-  const auto fired = of_kind(ev, EventKind::rocket_fired);
+  auto ev = step(s, input_for(1, {1, 0, true})).events;
+  const auto fired = of<RocketFired>(ev);
   REQUIRE(fired.size() == 1);
-  const Ball* r = find_ball(s.world, fired[0].ball);
+  const Ball* r = find_ball(s.world, fired[0].rocket);
   REQUIRE(r);
   CHECK(r->mass == 5.0);
   CHECK(r->radius == 3.0);
@@ -306,14 +349,14 @@ TEST_CASE("Rockets: fire, cooldown, the rocket ball, credit to its owner, remova
   std::vector<Event> all;
   for (int i = 0; i < 150; ++i) {
     const std::int64_t t = s.tick;
-    for (const Event& x : step(s, input_for(1, {0, 0, true}))) {
-      if (x.kind == EventKind::rocket_fired) fire_ticks.push_back(t);
+    for (const Event& x : step(s, input_for(1, {0, 0, true})).events) {
+      if (std::holds_alternative<RocketFired>(x)) fire_ticks.push_back(t);
       all.push_back(x);
     }
   }
   REQUIRE(fire_ticks.size() == 1);
   CHECK(fire_ticks[0] == 2 + 100);
-  const Event* d = defeat_of(all, e);
+  const EnemyDefeated* d = defeat_of(all, e);
   REQUIRE(d);
   CHECK(d->player == 1);
   CHECK(d->coins == 36);
@@ -325,5 +368,5 @@ TEST_CASE("Rockets: fire, cooldown, the rocket ball, credit to its owner, remova
 TEST_CASE("Rockets: without the weapon, fire does nothing") {
   MatchState s = bare(1);
   const auto ev = run(s, 10, input_for(1, {1, 0, true}));
-  CHECK(of_kind(ev, EventKind::rocket_fired).empty());
+  CHECK(of<RocketFired>(ev).empty());
 }

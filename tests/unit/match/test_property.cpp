@@ -40,15 +40,15 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
   for (int t = 0; t < ticks; ++t) {
     TickInputs in;
     if (t == 0) in = joins(players);
-    for (PlayerId id = 1; id <= 4; ++id) {
+    for (std::uint32_t id = 1; id <= 4; ++id) {
       const bool present = find_player(s, id) != nullptr;
-      if (t > 0 && !present && id <= static_cast<PlayerId>(players) && r.uniform01() < 0.002)
+      if (t > 0 && !present && id <= static_cast<std::uint32_t>(players) && r.uniform01() < 0.002)
         in.joins.push_back({id, "re" + std::to_string(id)});
       if (present && r.uniform01() < 0.0005) in.leaves.push_back(id);
     }
     for (const Player& p : s.players) {
       PlayerTick pt;
-      if (is_bot[p.id]) {
+      if (is_bot[p.id.value]) {
         pt = bot_tick(s, p.id);
       } else {
         pt.player = p.id;
@@ -63,25 +63,28 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
     }
     std::map<PlayerId, Coins> before;
     for (const Player& p : s.players) before[p.id] = p.eco.coins;
-    const auto events = step(s, in);
+    const auto events = step(s, in).events;
     ++st.ticks;
     bool new_economies = false;
     for (const Event& e : events) {
-      if ((e.kind == EventKind::level_started && e.level == 1 && !e.restart) || e.kind == EventKind::joined)
+      const auto* started = std::get_if<LevelStarted>(&e);
+      if ((started && started->level == 1 && !started->restart) || std::holds_alternative<Joined>(e))
         new_economies = true;
     }
     if (new_economies) {  // economies were reset this tick: take their totals as the new base
       defeat_coins.clear();
       for (const Player& p : s.players) defeat_coins[p.id] = p.eco.earned_defeats;
     }
-    for (const Event& e : events) {
-      if (e.kind == EventKind::enemy_defeated) {
+    for (const Event& event : events) {
+      if (const auto* d = std::get_if<EnemyDefeated>(&event)) {
         ++st.defeats;
-        if (e.player && !new_economies) defeat_coins[e.player] += e.coins;  // else re-read below
-        REQUIRE(e.coins >= 0);
+        if (d->player && !new_economies) defeat_coins[d->player] += d->coins;  // else re-read below
+        REQUIRE(d->coins >= 0);
       }
-      if (e.kind == EventKind::level_complete) ++st.levels;
-      if (e.kind != EventKind::purchase) continue;
+      if (std::holds_alternative<LevelComplete>(event)) ++st.levels;
+      const auto* bought = std::get_if<Purchased>(&event);
+      if (!bought) continue;
+      const Purchased& e = *bought;
       REQUIRE(e.coins_after >= 0);
       if (e.ok) {
         ++st.purchases_ok;
@@ -105,7 +108,7 @@ void random_match(std::uint64_t seed, int ticks, Stats& st) {
       REQUIRE(e.coins == e.start_coins + e.earned_defeats + e.earned_interest - e.spent);
       REQUIRE(defeat_coins[p.id] == e.earned_defeats);
       REQUIRE(std::isfinite(e.multiplier));
-      REQUIRE(std::isfinite(e.prices.life));
+      REQUIRE(std::isfinite(e.prices[Item::life]));
       REQUIRE(std::isfinite(e.vmax_u_per_s));
     }
     REQUIRE(all_finite(s.world.balls));

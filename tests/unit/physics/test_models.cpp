@@ -85,7 +85,7 @@ TEST_CASE("Models: a fast rocket tunnels in discrete but not in continuous", "[m
 
 TEST_CASE("Models: continuous leaves no overlap behind", "[models]") {
   World w = walled(100, 100, {});
-  for (BallId i = 0; i < 40; ++i) {
+  for (std::uint32_t i = 0; i < 40; ++i) {
     w.balls.push_back(ball(i + 1, 10 + (i % 8) * 11.0, 10 + (i / 8) * 11.0, 37.0 * ((i * 7) % 5) - 70,
                            29.0 * ((i * 3) % 7) - 80, 4, 1 + i % 3));
   }

@@ -117,7 +117,7 @@ inline std::vector<Message> all_messages() {
       Hello{"ann", "", "", "....", "0123456789abcdef"},
       Hello{"bob", std::string(32, 'a'), std::string(48, '0'), "", "fedcba9876543210"},
       Challenge{"00000000000003e8" + std::string(32, 'f')},
-      Welcome{3, std::string(32, 'b'), 100, 20, 500, 300, 8, 10000, 60000, 8, 12345, true},
+      Welcome{3, std::string(32, 'b'), 100, 20, 500, 300, 8, 10000, 60000, 8, 12345, true, {0.02, 1.25, 1.2}},
       Error{"version", "protocol version 2 is not supported; this server speaks version 1"},
       Input{41, {{10, -1, 1, false}, {9, 0, 0, true}}},
       Command{1, CommandOp::buy, 'm'},

@@ -85,6 +85,26 @@ TEST_CASE("Game host: a purchase in the wrong phase is refused with its reason",
   CHECK(rig.host->match().players[0].eco.coins == 0);
 }
 
+TEST_CASE("Game host: each command is answered with the step's result, by its rid", "[server][host]") {
+  Rig rig;
+  auto& a = rig.add("ann");
+  for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
+  REQUIRE(a.state() == protocol::ClientState::connected);
+  rig.tick();
+  const std::uint32_t again = a.send_command(protocol::CommandOp::play_again, 0, rig.now);
+  const std::uint32_t ready = a.send_command(protocol::CommandOp::ready, 0, rig.now);
+  for (int i = 0; i < 20; ++i) rig.tick();
+  const auto results = a.take_results();
+  REQUIRE(results.size() == 2);
+  CHECK(results[0].command_rid == again);
+  CHECK_FALSE(results[0].ok);
+  CHECK(results[0].code == "phase");
+  CHECK(results[1].command_rid == ready);
+  CHECK(results[1].ok);
+  CHECK(results[1].code == "ok");
+  CHECK(rig.host->match().phase == sim::Phase::playing);
+}
+
 TEST_CASE("Game host: the record of a session replays with every hash equal", "[server][host]") {
   Rig rig;
   std::stringstream record;

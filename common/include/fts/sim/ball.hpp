@@ -3,11 +3,10 @@
 
 #include <cstdint>
 
+#include "fts/sim/id.hpp"
 #include "fts/sim/vec2.hpp"
 
 namespace fts::sim {
-
-using BallId = std::uint32_t;
 
 struct Ball {
   BallId id = 0;

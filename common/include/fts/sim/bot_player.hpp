@@ -29,14 +29,14 @@ struct BotSight {
 // the bot's own ball on the platform.
 PlayerInput bot_play_input(const BotSight& sight);
 
-// What the bot's shopping needs to see; prices in Item order (mass .. bank).
+// What the bot's shopping needs to see; prices in item table order (as on the wire).
 struct ShopSight {
   Coins coins = 0;
   std::int64_t lives = 0;
   bool bank = false;
   double accel_u_per_s2 = 0, vmax_u_per_s = 0;
   std::int64_t mass = 0;
-  std::array<Coins, 7> prices{};
+  std::array<Coins, kItemCount> prices{};
   double start_accel_u_per_s2 = 200, start_vmax_u_per_s = 170;
   std::int64_t start_mass = 40;
 };

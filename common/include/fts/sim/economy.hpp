@@ -4,32 +4,27 @@
 // here overflows, goes negative or becomes NaN, whatever the number of levels or buys.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <optional>
 #include <string_view>
 
 #include "fts/sim/config.hpp"
+#include "fts/sim/items.hpp"
 
 namespace fts::sim {
 
 using Coins = std::int64_t;
 
-enum class Item : std::uint8_t { mass, speed, accel, rockets, life, multiplier, bank };
-inline constexpr Item kAllItems[] = {Item::mass, Item::speed,      Item::accel, Item::rockets,
-                                     Item::life, Item::multiplier, Item::bank};
-
-// "mass", "speed", ... and the shop keys "m", "s", "a", "r", "l", "x", "b".
-std::optional<Item> parse_item(std::string_view s);
-std::string_view to_string(Item item);
-char shop_key(Item item);
-
-enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item };
+enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item, no_player };
 std::string_view to_string(Refusal r);
 
+// The current price of each item (its table row says the rule). A whole-price item holds
+// an integer; life (x1.015 per level) and multiplier (x1.5 without a floor) grow
+// fractionally and are charged floor(price).
 struct Prices {
-  Coins mass = 0, speed = 0, accel = 0, rockets = 0, bank = 0;
-  double life = 0.0;        // grows by x1.015 per level: fractional; charged floor(life)
-  double multiplier = 0.0;  // grows by x1.5 without a floor: charged floor(multiplier)
+  std::array<double, kItemCount> by_item{};
+  double& operator[](Item item) { return by_item[index_of(item)]; }
+  double operator[](Item item) const { return by_item[index_of(item)]; }
 };
 
 struct Economy {
@@ -65,6 +60,8 @@ Coins sat_add(Coins a, Coins b, Coins cap);
 Coins floor_mul(Coins a, double f, Coins cap);
 // floor(x) clamped to [0, cap].
 Coins floor_clamp(double x, Coins cap);
+// v clamped to [lo, hi]; NaN becomes lo.
+double clamp_double(double v, double lo, double hi);
 
 Economy start_economy(const MatchConfig& cfg);
 // The price charged now for `item` (an integer number of coins).

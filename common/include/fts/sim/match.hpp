@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "fts/sim/config.hpp"
@@ -17,7 +18,6 @@
 
 namespace fts::sim {
 
-using PlayerId = std::uint32_t;  // chosen by the caller (the server's session slot); 0 is null
 
 enum class Phase : std::uint8_t { lobby, playing, shop, game_over };
 std::string_view to_string(Phase p);
@@ -33,6 +33,20 @@ enum class CommandKind : std::uint8_t { buy, ready, play_again };
 struct Command {
   CommandKind kind = CommandKind::ready;
   std::string item;  // buy only: "mass" or "m", ...; anything else is refused as unknown_item
+  std::uint32_t tag = 0;  // the caller's, echoed in the command's result (the server's rid);
+                          // no part of the match: not recorded, not hashed
+};
+
+// The outcome of one command, decided by the code that ran it.
+struct CommandResult {
+  PlayerId player = 0;
+  std::uint32_t tag = 0;  // the command's tag
+  CommandKind kind = CommandKind::ready;
+  Refusal code = Refusal::none;  // none: done
+  Item item = Item::mass;        // buy: the item (mass when the name was unknown)
+  Coins price = 0;               // buy: charged, or the price that was refused
+  Coins coins_after = 0;         // buy: the buyer's coins after the command
+  bool ok() const { return code == Refusal::none; }
 };
 
 struct PlayerTick {
@@ -65,21 +79,75 @@ enum class EventKind : std::uint8_t {
 };
 std::string_view to_string(EventKind k);
 
-struct Event {
-  EventKind kind = EventKind::joined;
-  PlayerId player = 0;         // 0: nobody (an untouched enemy fell)
-  BallId ball = 0;             // the enemy, the rocket, the player's ball
+// One record per event kind, so that a reader sees only the fields its kind sets.
+struct Joined {
+  PlayerId player = 0;
+  std::string name;
+};
+struct JoinRefused {
+  PlayerId player = 0;
+  std::string reason;  // "bad_id", "id_in_use", "match_full", "bad_name"
+};
+struct Left {
+  PlayerId player = 0;
+};
+struct LevelStarted {
   std::int64_t level = 0;
-  Coins coins = 0;             // enemy_defeated: coins earned
-  std::int64_t lives_left = 0; // player_fell
-  bool restart = false;        // level_started: the same level again after everyone fell
-  Item item = Item::mass;      // purchase
-  bool ok = false;             // purchase
+  bool restart = false;  // the same level again after everyone fell
+};
+struct EnemyDefeated {
+  BallId enemy = 0;
+  PlayerId player = 0;  // credited; 0: nobody (the enemy fell untouched)
+  std::int64_t level = 0;
+  Coins coins = 0;      // earned by `player`
+};
+struct PlayerFell {
+  PlayerId player = 0;
+  BallId ball = 0;
+  std::int64_t level = 0;
+  std::int64_t lives_left = 0;
+};
+struct PlayerRespawned {
+  PlayerId player = 0;
+  BallId ball = 0;
+};
+struct LevelComplete {
+  std::int64_t level = 0;
+};
+struct Purchased {  // tried: ok or refused (the buyer's command result says the same)
+  PlayerId player = 0;
+  std::string asked;  // the item as asked ("m", "mass", or anything)
+  Item item = Item::mass;
+  bool ok = false;
   Refusal reason = Refusal::none;
   Coins price = 0;
   Coins coins_after = 0;
-  std::string text;            // joined: name; join_refused: reason; purchase: the item as asked
 };
+struct RocketFired {
+  PlayerId player = 0;
+  BallId rocket = 0;
+};
+struct GameOver {
+  std::int64_t level = 0;
+};
+struct InterestPaid {  // bank interest at a level's end
+  PlayerId player = 0;
+  Coins coins = 0;
+};
+
+// Alternatives in EventKind order.
+using Event = std::variant<Joined, JoinRefused, Left, LevelStarted, EnemyDefeated, PlayerFell, PlayerRespawned,
+                           LevelComplete, Purchased, RocketFired, GameOver, InterestPaid>;
+static_assert(std::variant_size_v<Event> == static_cast<std::size_t>(EventKind::interest) + 1);
+inline EventKind kind_of(const Event& e) { return static_cast<EventKind>(e.index()); }
+
+// std::visit with one lambda per record: a kind without a lambda does not compile.
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 
 enum class BodyKind : std::uint8_t { enemy, player, rocket };
 std::string_view to_string(BodyKind k);
@@ -125,15 +193,20 @@ struct MatchState {
   StepConstants step_k;
   std::map<BallId, Body> bodies;
   std::vector<Player> players;  // sorted by id
-  BallId next_ball_id = 1;
+  std::uint32_t next_ball_id = 1;  // the next ball's id
 };
 
 // A fresh match in the lobby. cfg must be valid (see validate()).
 MatchState make_match(const MatchConfig& cfg, std::uint64_t seed);
+// What one tick produced: its events, and one result per command it was given, in the
+// order the step applied them (player id, then the player's command order).
+struct TickOutput {
+  std::vector<Event> events;
+  std::vector<CommandResult> results;
+};
 // Advances the match by one tick.
-std::vector<Event> step(MatchState& state, const TickInputs& inputs);
-// Whether a ready / play-again command from this player takes effect now (the server
-// answers the command from these, before the step applies it).
+TickOutput step(MatchState& state, const TickInputs& inputs);
+// Whether a ready / play-again command from this player takes effect now.
 bool accepts_ready(const MatchState& s, const Player& p);
 bool accepts_play_again(const MatchState& s);
 // FNV-1a over every bit of the state, the Rng included.

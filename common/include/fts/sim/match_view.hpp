@@ -2,6 +2,7 @@
 // internals (Rng, credit marks, goals stay on the server).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,8 +16,7 @@ struct PlayerView {
   std::string name;
   Coins coins = 0;
   std::int64_t lives = 0;
-  Coins price_mass = 0, price_speed = 0, price_accel = 0, price_rockets = 0, price_life = 0,
-        price_multiplier = 0, price_bank = 0;
+  std::array<Coins, kItemCount> prices{};  // charged now, item table order
   std::int64_t mass = 0;
   double vmax_u_per_s = 0.0;
   double accel_u_per_s2 = 0.0;
@@ -44,6 +44,8 @@ struct MatchView {
   std::int64_t level = 0;
   std::int64_t levels_cleared = 0;
   std::int64_t shop_ticks_left = 0;  // shop phase only
+  // The tick at which the lobby or the shop stops waiting (-1: no countdown running).
+  std::int64_t deadline_tick = -1;
   std::vector<PlayerView> players;   // by id
   std::vector<BallView> balls;       // by id
 };

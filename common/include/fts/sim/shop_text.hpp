@@ -15,7 +15,8 @@ std::string with_thousands(std::int64_t v);
 // Two decimals, locale-free and correctly rounded: 1.0612 -> "1.06".
 std::string fixed2(double v);
 
-// The shop after `level` was completed, for a player's economy.
-std::vector<std::string> shop_lines(const Economy& e, std::int64_t level);
+// The shop after `level` was completed, for a player's economy: four heading lines, then
+// each item's lines (item table order), then the prompt. `terms` are the server's.
+std::vector<std::string> shop_lines(const Economy& e, std::int64_t level, const ShopTerms& terms = {});
 
 }  // namespace fts::sim

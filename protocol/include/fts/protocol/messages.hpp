@@ -48,6 +48,7 @@ struct Welcome {
   std::uint32_t input_redundancy = 8;  // send at least this many recent input frames
   std::uint32_t server_tick = 0;
   bool reconnected = false;
+  sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
 
   bool operator==(const Welcome&) const = default;
 };
@@ -83,7 +84,7 @@ enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknow
 struct Command {
   std::uint32_t rid = 0;  // reliable id, 1, 2, 3, ... per session
   CommandOp op = CommandOp::ready;
-  char item = 0;  // buy only: one of m s a r l x b; 0 when missing or not one character
+  char item = 0;  // buy only: an item's shop key (m s a r l x b); 0 when missing or not one character
   bool operator==(const Command&) const = default;
 };
 
@@ -131,7 +132,7 @@ struct PlayerEntry {
   std::optional<double> mass, vmax_u_per_s, accel_u_per_s2, multiplier;
   std::optional<bool> bank;
   std::optional<Weapon> weapon;
-  std::optional<std::array<std::int64_t, 7>> prices;
+  std::optional<std::array<std::int64_t, sim::kItemCount>> prices;
   std::optional<bool> ready, alive;
   bool operator==(const PlayerEntry&) const = default;
 };

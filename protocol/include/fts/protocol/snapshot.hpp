@@ -7,15 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "fts/sim/items.hpp"
+
 namespace fts::protocol {
 
 enum class Phase : std::uint8_t { lobby = 0, play = 1, shop = 2, over = 3 };
 enum class BallKind : std::uint8_t { enemy = 0, player = 1, rocket = 2 };
 enum class Weapon : std::uint8_t { none = 0, rockets = 1 };
 
-// Shop items in wire order: m s a r l x b (mass, speed, accel, rockets, life, multiplier, bank).
-inline constexpr std::array<char, 7> kShopItems = {'m', 's', 'a', 'r', 'l', 'x', 'b'};
-// Index of a shop key in kShopItems, or -1.
+// Shop items are common's item table (fts/sim/items.hpp): an item's byte is its shop key,
+// prices travel in table order. Index of a shop key in that order, or -1.
 int shop_index(char item);
 
 struct BallState {
@@ -41,7 +42,7 @@ struct PlayerState {
   double multiplier = 1;
   bool bank = false;
   Weapon weapon = Weapon::none;
-  std::array<std::int64_t, 7> prices{};  // current price per shop item, kShopItems order
+  std::array<std::int64_t, sim::kItemCount> prices{};  // current price per item, item table order
   bool ready = false;
   bool alive = false;  // has a ball on the platform
 
