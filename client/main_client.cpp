@@ -294,6 +294,7 @@ class Game {
       view_.arena_width_u = w.arena_width_u;
       view_.arena_height_u = w.arena_height_u;
       view_.shop_terms = w.shop;
+      view_.tick_rate_hz = w.tick_rate_hz;
       clock_.set_tick_rate(w.tick_rate_hz);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
       std::string why;

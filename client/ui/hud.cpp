@@ -82,6 +82,12 @@ std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t l
   return sim::shop_lines(economy_of(p), level, terms);
 }
 
+int countdown_s(const Snapshot& s, double tick_rate_hz) {
+  if (s.deadline_tick == 0 || tick_rate_hz <= 0) return -1;
+  if (s.deadline_tick <= s.tick) return 0;
+  return static_cast<int>((s.deadline_tick - s.tick + tick_rate_hz - 1) / tick_rate_hz);
+}
+
 std::string ready_line(const Snapshot& s) {
   std::string out = "Ready:";
   bool first = true;

@@ -29,6 +29,10 @@ sim::Economy economy_of(const PlayerState& p);
 std::vector<std::string> shop_screen_lines(const PlayerState& p, std::uint32_t level,
                                            const sim::ShopTerms& terms = {});
 // "Ready: ann (ready), bob (shopping)".
+// Whole seconds until the snapshot's lobby/shop deadline (rounded up), or -1 when no
+// countdown runs.
+int countdown_s(const protocol::Snapshot& s, double tick_rate_hz);
+
 std::string ready_line(const Snapshot& s);
 // Controls for the phase.
 std::string help_line(protocol::Phase phase);

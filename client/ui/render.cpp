@@ -135,6 +135,8 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view) {
   if (!view.shop_result.empty()) s.put(2, last + 1, view.shop_result, kMessageStyle);
   std::string ready = ready_line(snap);
   if (me != nullptr && me->ready) ready += "   You are ready: waiting for the others.";
+  if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
+    ready += "   Next level in " + std::to_string(left) + " s.";
   s.put(2, last + 2, ready);
 }
 
@@ -169,6 +171,8 @@ Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double a
     } else if (snap.phase == Phase::lobby) {
       put_centred(s, mid, " Waiting for the match to start: press Enter when ready ", kTitleStyle);
       if (!snap.players.empty()) put_centred(s, mid + 2, " " + ready_line(snap) + " ", kHudStyle);
+      if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
+        put_centred(s, mid + 4, " The match starts in " + std::to_string(left) + " s, ready or not ", kHudStyle);
     } else if (me != nullptr && !me->alive) {
       put_centred(s, mid, me->lives > 0 ? " You fell off: respawning... " : " You are out: watching ",
                   kTitleStyle);

@@ -19,6 +19,7 @@ struct ViewState {
   std::string shop_result;   // the outcome of the last purchase (already sanitised)
   bool color = true;
   sim::ShopTerms shop_terms;  // the server's, from its welcome
+  double tick_rate_hz = 100;  // the server's, from its welcome (countdowns)
 };
 
 }  // namespace fts::client

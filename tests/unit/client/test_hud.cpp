@@ -64,3 +64,30 @@ TEST_CASE("events are described for the message line", "[client][hud]") {
         "ann knocked an enemy off: +41 coins.");
   CHECK(describe_event(Event{1, 1, EventKind::level_complete, 0, 0, 3}, snap, 1) == "Level 3 Complete");
 }
+
+TEST_CASE("lobby and shop countdowns from the snapshot's deadline", "[client][hud][countdown]") {
+  protocol::Snapshot s;
+  s.tick = 700;
+  CHECK(countdown_s(s, 100) == -1);  // no deadline: no countdown
+  s.deadline_tick = 3000;
+  CHECK(countdown_s(s, 100) == 23);
+  CHECK(countdown_s(s, 50) == 46);
+  s.deadline_tick = 701;
+  CHECK(countdown_s(s, 100) == 1);  // rounded up: never "0 s" while waiting
+  s.deadline_tick = 700;
+  CHECK(countdown_s(s, 100) == 0);
+  // The lobby screen shows it.
+  s.phase = protocol::Phase::lobby;
+  s.deadline_tick = 3000;
+  protocol::PlayerState p;
+  p.id = 1;
+  p.name = "ann";
+  s.players.push_back(p);
+  ViewState view;
+  view.my_player_id = 1;
+  const Screen screen = render(s, s, 0, {100, 30}, view);
+  bool found = false;
+  for (int r = 0; r < screen.rows(); ++r)
+    found = found || screen.line(r).find("The match starts in 23 s") != std::string::npos;
+  CHECK(found);
+}
