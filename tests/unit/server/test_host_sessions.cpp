@@ -47,6 +47,20 @@ struct Rig {
     for (int i = 0; i < n; ++i) tick();
   }
   const sim::Player& me() { return *sim::find_player(host->match(), 1); }
+  // Ready, then ticks until the level runs.
+  void play() {
+    client.send_command(protocol::CommandOp::ready, 0, now);
+    for (int i = 0; i < 100 && host->match().phase != sim::Phase::playing; ++i) tick();
+    REQUIRE(host->match().phase == sim::Phase::playing);
+  }
+  // Up held for 50 ms (one frame per tick), then the client process dies without a word.
+  void hold_up_then_die() {
+    for (int i = 0; i < 5; ++i) {
+      client.send_input({0, 0, 1, false}, now);
+      tick();
+    }
+    alive = false;
+  }
 };
 
 }  // namespace
@@ -77,16 +91,9 @@ TEST_CASE("Host sessions: a command that cannot be applied is answered, and the 
 TEST_CASE("Host sessions: a client killed while holding a key loses no life", "[server][host][sessions]") {
   sim::MatchConfig cfg;
   Rig rig(cfg);
-  rig.client.send_command(protocol::CommandOp::ready, 0, rig.now);
-  for (int i = 0; i < 100 && rig.host->match().phase != sim::Phase::playing; ++i) rig.tick();
-  REQUIRE(rig.host->match().phase == sim::Phase::playing);
+  rig.play();
   const auto lives = rig.me().eco.lives;
-  // Up, held for 50 ms (one frame per tick), then the process dies without a word.
-  for (int i = 0; i < 5; ++i) {
-    rig.client.send_input({0, 0, 1, false}, rig.now);
-    rig.tick();
-  }
-  rig.alive = false;
+  rig.hold_up_then_die();
   REQUIRE(sim::find_ball(rig.host->match().world, rig.me().ball));
   // Ten seconds of server time, up to the time-out: the ball stops, on the platform.
   rig.ticks(950);
@@ -108,23 +115,16 @@ TEST_CASE("Host sessions: with the expiry off (huge), the same crash drives the 
   rig.client.connect(rig.now);
   for (int i = 0; i < 50 && rig.client.state() != protocol::ClientState::connected; ++i) rig.tick();
   rig.tick();
-  rig.client.send_command(protocol::CommandOp::ready, 0, rig.now);
-  for (int i = 0; i < 100 && rig.host->match().phase != sim::Phase::playing; ++i) rig.tick();
-  REQUIRE(rig.host->match().phase == sim::Phase::playing);
+  rig.play();
   const auto lives = rig.me().eco.lives;
-  for (int i = 0; i < 5; ++i) {
-    rig.client.send_input({0, 0, 1, false}, rig.now);
-    rig.tick();
-  }
-  rig.alive = false;
+  rig.hold_up_then_die();
   rig.ticks(950);
   CHECK(rig.me().eco.lives < lives);
 }
 
 TEST_CASE("Host sessions: a quit takes the ball off at once and keeps the coins", "[server][host][sessions]") {
   Rig rig;
-  rig.client.send_command(protocol::CommandOp::ready, 0, rig.now);
-  for (int i = 0; i < 100 && rig.host->match().phase != sim::Phase::playing; ++i) rig.tick();
+  rig.play();
   REQUIRE(rig.me().ball != 0);
   const auto lives = rig.me().eco.lives;
   rig.client.disconnect(rig.now, "quit");
