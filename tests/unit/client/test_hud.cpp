@@ -66,7 +66,7 @@ TEST_CASE("events are described for the message line", "[client][hud]") {
 }
 
 TEST_CASE("lobby and shop countdowns from the snapshot's deadline", "[client][hud][countdown]") {
-  protocol::Snapshot s;
+  Snapshot s;
   s.tick = 700;
   CHECK(countdown_s(s, 100) == -1);  // no deadline: no countdown
   s.deadline_tick = 3000;
@@ -77,9 +77,9 @@ TEST_CASE("lobby and shop countdowns from the snapshot's deadline", "[client][hu
   s.deadline_tick = 700;
   CHECK(countdown_s(s, 100) == 0);
   // The lobby screen shows it.
-  s.phase = protocol::Phase::lobby;
+  s.phase = Phase::lobby;
   s.deadline_tick = 3000;
-  protocol::PlayerState p;
+  PlayerState p;
   p.id = 1;
   p.name = "ann";
   s.players.push_back(p);

@@ -21,12 +21,12 @@ TEST_CASE("Lobby: an idle player does not hold the lobby past the time-out", "[m
   REQUIRE(s.lobby_deadline_tick == first_ready_tick + 200);
   std::vector<Event> ev;
   while (s.phase == Phase::lobby && s.tick < first_ready_tick + 1000) {
-    auto e = step(s, {});
+    auto e = step(s, {}).events;
     ev.insert(ev.end(), e.begin(), e.end());
   }
   REQUIRE(s.phase == Phase::playing);
   CHECK(s.tick - 1 == first_ready_tick + 200);
-  CHECK(of_kind(ev, EventKind::level_started).size() == 1);
+  CHECK(of<LevelStarted>(ev).size() == 1);
   for (const Player& p : s.players) CHECK(p.ball != 0);  // the idle players play too
   CHECK(s.lobby_deadline_tick == -1);
 }
@@ -49,8 +49,8 @@ TEST_CASE("Quit: the ball leaves at once, no life is lost, progress is kept", "[
   REQUIRE(ball != 0);
   TickInputs q;
   q.quit.push_back(1);
-  const auto ev = step(s, q);
-  CHECK(of_kind(ev, EventKind::player_fell).empty());
+  const auto ev = step(s, q).events;
+  CHECK(of<PlayerFell>(ev).empty());
   const Player* p = find_player(s, 1);
   REQUIRE(p);
   CHECK(p->ball == 0);
@@ -80,12 +80,12 @@ TEST_CASE("Quit: the seat is given up for a new player", "[match][quit]") {
   MatchState s = started(2, 5, cfg);
   TickInputs join3;
   join3.joins.push_back({3, "carol"});
-  CHECK(of_kind(step(s, join3), EventKind::join_refused).size() == 1);
+  CHECK(of<JoinRefused>(step(s, join3).events).size() == 1);
   TickInputs q;
   q.quit.push_back(2);
   step(s, q);
   join3.joins[0].player = 4;
-  CHECK(of_kind(step(s, join3), EventKind::joined).size() == 1);
+  CHECK(of<Joined>(step(s, join3).events).size() == 1);
   CHECK(find_player(s, 2) != nullptr);  // the quitter's progress is still there
 }
 
@@ -95,8 +95,8 @@ TEST_CASE("Quit: when everyone quit, the level waits instead of restarting", "[m
   q.quit.push_back(1);
   step(s, q);
   const auto ev = run(s, 500);
-  CHECK(of_kind(ev, EventKind::level_started).empty());
-  CHECK(of_kind(ev, EventKind::game_over).empty());
+  CHECK(of<LevelStarted>(ev).empty());
+  CHECK(of<GameOver>(ev).empty());
   CHECK(s.phase == Phase::playing);
 }
 

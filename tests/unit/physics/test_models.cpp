@@ -172,7 +172,7 @@ TEST_CASE("Step buffers: the world owns them; a copy starts empty and steps the 
     INFO(to_string(m));
     World a;
     a.arena = {60, 60, Boundary::walls};
-    for (BallId id = 1; id <= 100; ++id)
+    for (std::uint32_t id = 1; id <= 100; ++id)
       a.balls.push_back(ball(id, 3.0 + 5.5 * ((id - 1) % 10), 3.0 + 5.5 * ((id - 1) / 10), 7.0 * (id % 3) - 7.0,
                              5.0 * (id % 5) - 10.0, 1, 1 + id % 4));
     auto s = settings(m);
