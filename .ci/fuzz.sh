@@ -18,11 +18,12 @@ cmake --build "$build" -j"$jobs" --target fts_fuzz_decode
 
 corpus="$build/fuzz-corpus"
 mkdir -p "$corpus"
-# Seeds: a JSON ping and a few header shapes, so the fuzzer starts past the header.
-printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"ping"}]' >"$corpus/ping.json.bin"
-printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"input","ack":3,"f":[[1,1,-1,0]]}]' >"$corpus/input.json.bin"
-printf 'FTSP\x00\x01\x01\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x91\x81\xa1t\xa4ping' >"$corpus/ping.msgpack.bin"
-printf 'FTSP\x00\x01\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00[{"t":"snap","tick":5,"base":4,"part":0,"parts":1,"phase":"play","level":1,"balls":[[1,2,3,4,5]],"players":[{"i":1,"c":5}],"gone":[2],"events":[[4,0,1,2,3]]}]' >"$corpus/snap.json.bin"
+# Seeds: a JSON ping and a few header shapes (version 2, 21-byte header), so the fuzzer
+# starts past the header.
+printf 'FTSP\x00\x02\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x00\x00[{"t":"ping"}]' >"$corpus/ping.json.bin"
+printf 'FTSP\x00\x02\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x00\x00[{"t":"input","ack":3,"f":[[1,1,-1,0]]}]' >"$corpus/input.json.bin"
+printf 'FTSP\x00\x02\x01\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x00\x00\x91\x81\xa1t\xa4ping' >"$corpus/ping.msgpack.bin"
+printf 'FTSP\x00\x02\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x00\x00\x00\x00\x00[{"t":"snap","tick":5,"base":4,"part":0,"parts":1,"phase":"play","level":1,"balls":[[1,2,3,4,5]],"players":[{"i":1,"c":5}],"gone":[2],"events":[[1,4,0,1,2,3]]}]' >"$corpus/snap.json.bin"
 
 cd "$build"
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
