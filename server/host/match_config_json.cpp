@@ -116,6 +116,7 @@ std::string to_input_line(std::int64_t tick, const sim::TickInputs& in) {
   if (!in.leaves.empty()) j["leaves"] = in.leaves;
   if (!in.away.empty()) j["away"] = in.away;
   if (!in.back.empty()) j["back"] = in.back;
+  if (!in.quit.empty()) j["quit"] = in.quit;
   if (!in.players.empty()) {
     auto& a = j["players"] = nlohmann::json::array();
     for (const auto& p : in.players) {
@@ -165,7 +166,7 @@ std::variant<InputLine, std::string> parse_input_line(const std::string& line) {
 std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& j) {
   try {
     Fields f(j, "");
-    f.only({"tick", "joins", "leaves", "away", "back", "players"});
+    f.only({"tick", "joins", "leaves", "away", "back", "quit", "players"});
     InputLine out;
     out.tick = f.integer("tick");
     if (out.tick < 0) f.fail("tick", "must be >= 0, got " + std::to_string(out.tick));
@@ -183,7 +184,7 @@ std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& 
       }
     }
     for (auto [key, dest] : {std::pair{"leaves", &out.inputs.leaves}, std::pair{"away", &out.inputs.away},
-                             std::pair{"back", &out.inputs.back}}) {
+                             std::pair{"back", &out.inputs.back}, std::pair{"quit", &out.inputs.quit}}) {
       const auto* a = list(key);
       if (!a) continue;
       for (std::size_t i = 0; i < a->size(); ++i) {

@@ -22,7 +22,9 @@ RecordWriter::RecordWriter(std::ostream& out, std::uint64_t seed, const sim::Mat
 }
 
 void RecordWriter::inputs(std::int64_t tick, const sim::TickInputs& in) {
-  if (in.joins.empty() && in.leaves.empty() && in.away.empty() && in.back.empty() && in.players.empty()) return;
+  if (in.joins.empty() && in.leaves.empty() && in.away.empty() && in.back.empty() && in.quit.empty() &&
+      in.players.empty())
+    return;
   out_ << to_input_line(tick, in) << "\n";
 }
 

@@ -50,6 +50,9 @@ TEST_CASE("Input log: one line per tick round-trips every input and command") {
   TickInputs in;
   in.joins = {{1, "ann"}, {2, "bob"}};
   in.leaves = {3};
+  in.away = {4};
+  in.back = {5};
+  in.quit = {6};  // regression: quits were not recorded, so a replay diverged after one
   in.players.push_back({1, {1, -1, true}, {{CommandKind::buy, "mass"}, {CommandKind::ready, {}}}});
   in.players.push_back({2, {0, 1, false}, {{CommandKind::play_again, {}}}});
   const std::string line = fts::host::to_input_line(42, in);
@@ -62,6 +65,9 @@ TEST_CASE("Input log: one line per tick round-trips every input and command") {
   REQUIRE(got.inputs.players.size() == 2);
   CHECK(got.inputs.players[0].input.move_y == -1);
   CHECK(got.inputs.players[0].commands[0].item == "mass");
+  CHECK(got.inputs.away == std::vector<PlayerId>{4});
+  CHECK(got.inputs.back == std::vector<PlayerId>{5});
+  CHECK(got.inputs.quit == std::vector<PlayerId>{6});
 }
 
 TEST_CASE("Input log: a bad line names the field") {
