@@ -71,7 +71,7 @@ def ledger(text):
         earned[m.group(1)] = earned.get(m.group(1), 0) + int(m.group(2))
     for m in re.finditer(r"interest player=(\d+) coins=(\d+)", text):
         earned[m.group(1)] = earned.get(m.group(1), 0) + int(m.group(2))
-    for m in re.finditer(r"purchase player=(\d+) item=\w+ ok=true reason=\w+ price=(\d+)", text):
+    for m in re.finditer(r"purchase player=(\d+) item=\w+ ok=true reason=\w* price=(\d+)", text):
         spent[m.group(1)] = spent.get(m.group(1), 0) + int(m.group(2))
     return earned, spent
 
