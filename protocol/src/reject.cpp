@@ -23,6 +23,8 @@ std::string_view to_string(Reject reason) {
     case Reject::stale: return "stale";
     case Reject::rate_limited: return "rate_limited";
     case Reject::overflow: return "overflow";
+    case Reject::address_full: return "address_full";
+    case Reject::idle: return "idle";
     case Reject::count_: break;
   }
   return "unknown";

@@ -33,6 +33,7 @@ void ServerEndpoint::observe_time(std::uint64_t now_ms) {
     for (auto& [id, s] : sessions_) {
       s.last_receive_ms += gap;
       s.disconnected_ms += gap;
+      s.last_active_ms += gap;
     }
     stalled_ms_ += gap;
   }
@@ -42,13 +43,16 @@ void ServerEndpoint::observe_time(std::uint64_t now_ms) {
 ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view host, std::uint64_t now_ms) {
   if (auto it = addresses_.find(host); it != addresses_.end()) return &it->second;
   if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
-  AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms)};
+  AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
+                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms)};
   return &addresses_.emplace(std::string(host), a).first->second;
 }
 
 // A host whose buckets are full again has been quiet for a while: nothing to remember.
 void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
-  std::erase_if(addresses_, [&](const auto& kv) { return kv.second.datagrams.full(now_ms); });
+  std::erase_if(addresses_, [&](const auto& kv) {
+    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms);
+  });
 }
 
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
@@ -56,10 +60,12 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
   observe_time(now_ms);
   // Cheapest checks first: the sender's rate, the header, the session and its rate; the
   // payload is parsed only for a datagram that passed them all.
-  if (AddressState* a = address_state(host_of(from), now_ms); a && !a->datagrams.take(now_ms))
-    return rejects_.add(Reject::rate_limited);
+  AddressState* host = address_state(host_of(from), now_ms);
+  if (host && !host->datagrams.take(now_ms)) return rejects_.add(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
   if (!header) return rejects_.add(header.error());
+  // Handshake datagrams cost a keyed hash and a reply: 10 a second per host (ioquake3).
+  if (header->session == 0 && host && !host->hellos.take(now_ms)) return rejects_.add(Reject::rate_limited);
   if (header->version != config_.version) {
     rejects_.add(Reject::bad_version);
     if (bytes.size() >= kMinHelloBytes) {
@@ -133,6 +139,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.last_send_ms = now_ms;
   s.last_input_seq = 0;
   s.unanswered = 0;
+  s.last_active_ms = now_ms;
   s.datagrams = TokenBucket(config_.session_datagrams_per_s, config_.session_datagram_burst, now_ms);
   s.acks = AckWindow{};
   s.results = ReliableSender<Result>{};
@@ -198,6 +205,13 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   if (seats_taken() >= config_.max_players || sessions_.size() >= config_.max_sessions())
     return refuse_full(from, enc, request_bytes);
+  if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
+    rejects_.add(Reject::address_full);
+    const std::string text = "this address has " + std::to_string(config_.max_sessions_per_address) +
+                             " players already; no more from it";
+    reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
+    return;
+  }
   std::uint32_t player_id = 1;
   while (sessions_.count(player_id)) ++player_id;
   Session& s = sessions_[player_id];
@@ -214,6 +228,12 @@ void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size
   const std::string text = "the server is full (" + std::to_string(config_.max_players) +
                            " players); try again later";
   reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
+}
+
+std::size_t ServerEndpoint::seats_taken_from(std::string_view host) const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+    return !kv.second.quit && host_of(kv.second.address) == host;
+  }));
 }
 
 std::size_t ServerEndpoint::seats_taken() const {
@@ -252,6 +272,10 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
         }
         s.last_input_seq = f.seq;
         inputs_.push_back({s.player_id, f});
+        if (f.move_x != 0 || f.move_y != 0 || f.fire) {
+          s.last_active_ms = now_ms;
+          s.played = true;
+        }
       }
     } else if (const auto* c = std::get_if<Command>(&m)) {
       // rid 0 names no place in the reliable order: that message alone is dropped.
@@ -263,6 +287,8 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
       for (auto& cmd : s.commands.take()) {
         commands_.push_back({s.player_id, cmd});
         ++s.unanswered;
+        s.last_active_ms = now_ms;
+        s.played = true;
       }
       if (s.commands.buffered() + s.unanswered > config_.max_pending_commands)
         return overflow(s, "commands", now_ms);
@@ -365,8 +391,23 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
     last_forget_ms_ = now_ms;
   }
   std::vector<std::uint32_t> expired;
+  std::vector<std::uint32_t> idle;
+  std::vector<std::uint32_t> never_played;
   for (auto& [id, s] : sessions_) {
-    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) drop_connection(s, "timeout", now_ms);
+    if (idle_paused_) s.last_active_ms = now_ms;
+    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) {
+      drop_connection(s, "timeout", now_ms);
+      // A session that never played (a probe whose bye was lost, a script that only
+      // shook hands) holds no slot: it is freed at its time-out.
+      if (!s.played) {
+        never_played.push_back(id);
+        continue;
+      }
+    }
+    if (s.connected && config_.idle_timeout_ms != 0 && now_ms - s.last_active_ms >= config_.idle_timeout_ms) {
+      idle.push_back(id);
+      continue;
+    }
     if (!s.connected) {
       if (now_ms - s.disconnected_ms >= config_.reconnect_window_ms) expired.push_back(id);
       continue;
@@ -375,6 +416,11 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
       send_packet(s, {}, true, now_ms);
   }
   for (auto id : expired) release(id, "reconnect window over");
+  for (auto id : never_played) release(id, "timeout");
+  for (auto id : idle) {
+    rejects_.add(Reject::idle);
+    kick(id, "idle", "no input for " + std::to_string(config_.idle_timeout_ms / 1000) + " s; the slot is freed", now_ms);
+  }
 }
 
 std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }

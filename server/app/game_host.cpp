@@ -69,6 +69,8 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
 }
 
 sim::TickInputs GameHost::gather(std::vector<PendingAnswer>& answers, std::uint64_t now_ms) {
+  // Nobody idles while the players cannot act: lobby, shop countdown, game over.
+  endpoint_.set_idle_paused(match_.phase != sim::Phase::playing);
   endpoint_.update(now_ms);
   sim::TickInputs in;
   for (const auto& e : endpoint_.take_events()) {

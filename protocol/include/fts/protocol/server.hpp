@@ -62,6 +62,16 @@ struct ServerConfig {
   // quiet hosts are forgotten (once a second), so that a spoofed flood cannot lock out
   // new players.
   std::size_t max_tracked_addresses = 4096;
+  // Fair slots. Seated sessions from one host (households share one NAT address); the
+  // next new player from it gets error "address_full".
+  std::size_t max_sessions_per_address = 4;
+  // Handshake datagrams (session 0) per host; over it they are dropped (rate_limited).
+  std::uint32_t hellos_per_s = 10;
+  std::uint32_t hello_burst = 10;
+  // A connected session that sends no real input (a frame with a key down, or a
+  // command) for this long is dropped with error "idle"; never while the host says the
+  // players cannot act (set_idle_paused: lobby, shop, game over). 0: never.
+  std::uint64_t idle_timeout_ms = 120000;
   // Settings sent in every welcome (player_id, token, server_tick, reconnected are set
   // per client).
   Welcome settings;
@@ -126,6 +136,9 @@ class ServerEndpoint {
             std::uint64_t now_ms);
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
+  // While paused (the host's lobby, shop and game-over phases) nobody idles: every
+  // session's idle clock restarts when the pause ends.
+  void set_idle_paused(bool paused) { idle_paused_ = paused; }
   // The tick reported in welcomes.
   void set_server_tick(std::uint32_t tick) { server_tick_ = tick; }
 
@@ -157,6 +170,8 @@ class ServerEndpoint {
     std::uint64_t disconnected_ms = 0;
     std::uint32_t last_input_seq = 0;
     std::size_t unanswered = 0;  // commands handed to the game, not yet answered
+    std::uint64_t last_active_ms = 0;  // last real input (idle time-out)
+    bool played = false;  // sent real input once: a lost connection holds its slot
     std::uint64_t rate_limited = 0;
     TokenBucket datagrams;
     AckWindow acks;
@@ -167,6 +182,7 @@ class ServerEndpoint {
 
   struct AddressState {
     TokenBucket datagrams;
+    TokenBucket hellos;
   };
 
   AddressState* address_state(std::string_view host, std::uint64_t now_ms);
@@ -183,6 +199,7 @@ class ServerEndpoint {
                      std::uint64_t now_ms);
   void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
   std::size_t seats_taken() const;
+  std::size_t seats_taken_from(std::string_view host) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
@@ -195,6 +212,7 @@ class ServerEndpoint {
   std::map<std::uint32_t, std::uint32_t> by_session_id_;
   std::map<std::string, AddressState, std::less<>> addresses_;  // by host
   std::uint64_t last_forget_ms_ = 0;
+  bool idle_paused_ = false;
   std::uint64_t sessions_made_ = 0;
   std::uint32_t server_tick_ = 0;
   std::uint64_t last_call_ms_ = 0;
