@@ -31,6 +31,10 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.max_players = o.max_players;
   c.timeout_ms = o.timeout_ms;
   c.reconnect_window_ms = o.reconnect_window_ms;
+  c.max_sessions_per_address = o.max_per_address;
+  c.idle_timeout_ms = o.idle_timeout_ms;
+  // A host may send what its sessions may send together.
+  c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * o.max_per_address;
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
