@@ -195,7 +195,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
         log_record(spdlog::level::info, "level_complete", {{"level", e.level}});
         break;
       case sim::EventKind::purchase:
-        log_record(spdlog::level::info, "purchase",
+        log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
                    {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
                     {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
         break;
@@ -211,6 +211,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
       default: break;
     }
   }
+  refused_log_.flush(now_ms);
 }
 
 void GameHost::tick(std::uint64_t now_ms) {
