@@ -18,15 +18,83 @@ std::string dump(const json& j) {
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
+// nlohmann's tree builder behind a gate: parsing stops at the first array or object
+// nested deeper than kMaxNestingDepth, the first container that claims more elements
+// than the payload has bytes (MessagePack states its sizes), or value number
+// kMaxPayloadValues + 1. A hostile payload costs one partial pass over its bytes and
+// never builds a deep tree (PROTOCOL.md 10).
+class BoundedSax {
+ public:
+  using number_integer_t = json::number_integer_t;
+  using number_unsigned_t = json::number_unsigned_t;
+  using number_float_t = json::number_float_t;
+  using string_t = json::string_t;
+  using binary_t = json::binary_t;
+
+  BoundedSax(json& root, std::size_t payload_bytes) : dom_(root, /*allow_exceptions=*/false), bytes_(payload_bytes) {}
+
+  bool null() { return value() && dom_.null(); }
+  bool boolean(bool v) { return value() && dom_.boolean(v); }
+  bool number_integer(number_integer_t v) { return value() && dom_.number_integer(v); }
+  bool number_unsigned(number_unsigned_t v) { return value() && dom_.number_unsigned(v); }
+  bool number_float(number_float_t v, const string_t& s) { return value() && dom_.number_float(v, s); }
+  bool string(string_t& v) { return value() && dom_.string(v); }
+  bool binary(binary_t& v) { return value() && dom_.binary(v); }
+  bool start_object(std::size_t n) { return open(n) && dom_.start_object(n); }
+  bool key(string_t& k) { return dom_.key(k); }
+  bool end_object() {
+    --depth_;
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t n) { return open(n) && dom_.start_array(n); }
+  bool end_array() {
+    --depth_;
+    return dom_.end_array();
+  }
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& ex) {
+    return dom_.parse_error(position, token, ex);
+  }
+
+  // Stopped by a bound (out_of_range) rather than by bad syntax (garbage).
+  bool over_bound() const { return over_bound_; }
+
+ private:
+  bool value() {
+    if (++values_ <= kMaxPayloadValues) return true;
+    over_bound_ = true;
+    return false;
+  }
+  bool open(std::size_t declared) {
+    if (!value()) return false;
+    const bool unknown = declared == static_cast<std::size_t>(-1);  // JSON text does not say
+    if (++depth_ > kMaxNestingDepth || (!unknown && declared > bytes_)) {
+      over_bound_ = true;
+      return false;
+    }
+    return true;
+  }
+
+  nlohmann::detail::json_sax_dom_parser<json> dom_;
+  std::size_t bytes_;
+  std::size_t depth_ = 0;
+  std::size_t values_ = 0;
+  bool over_bound_ = false;
+};
+
 Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload) {
   if (payload.empty()) return Reject::truncated;
   json j;
-  if (encoding == Encoding::json) {
-    j = json::parse(payload.begin(), payload.end(), nullptr, /*allow_exceptions=*/false);
-  } else {
-    j = json::from_msgpack(payload.begin(), payload.end(), /*strict=*/true, /*allow_exceptions=*/false);
+  BoundedSax sax(j, payload.size());
+  const auto format = encoding == Encoding::json ? json::input_format_t::json : json::input_format_t::msgpack;
+  bool parsed = false;
+  try {
+    parsed = json::sax_parse(payload.begin(), payload.end(), &sax, format, /*strict=*/true);
+  } catch (const json::exception&) {
+    parsed = false;  // the tree builder refuses sizes beyond max_size() by throwing
   }
-  if (j.is_discarded() || !j.is_array() || j.empty()) return Reject::garbage;
+  if (sax.over_bound()) return Reject::out_of_range;
+  if (!parsed || !j.is_array() || j.empty()) return Reject::garbage;
   if (j.size() > kMaxMessagesPerDatagram) return Reject::out_of_range;
   std::vector<Message> messages;
   messages.reserve(j.size());

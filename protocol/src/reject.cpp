@@ -21,6 +21,10 @@ std::string_view to_string(Reject reason) {
     case Reject::server_full: return "server_full";
     case Reject::unknown_base: return "unknown_base";
     case Reject::stale: return "stale";
+    case Reject::rate_limited: return "rate_limited";
+    case Reject::overflow: return "overflow";
+    case Reject::address_full: return "address_full";
+    case Reject::idle: return "idle";
     case Reject::count_: break;
   }
   return "unknown";

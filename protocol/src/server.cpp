@@ -33,17 +33,39 @@ void ServerEndpoint::observe_time(std::uint64_t now_ms) {
     for (auto& [id, s] : sessions_) {
       s.last_receive_ms += gap;
       s.disconnected_ms += gap;
+      s.last_active_ms += gap;
     }
     stalled_ms_ += gap;
   }
   last_call_ms_ = std::max(last_call_ms_, now_ms);
 }
 
+ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view host, std::uint64_t now_ms) {
+  if (auto it = addresses_.find(host); it != addresses_.end()) return &it->second;
+  if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
+  AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
+                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms)};
+  return &addresses_.emplace(std::string(host), a).first->second;
+}
+
+// A host whose buckets are full again has been quiet for a while: nothing to remember.
+void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
+  std::erase_if(addresses_, [&](const auto& kv) {
+    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms);
+  });
+}
+
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
   observe_time(now_ms);
+  // Cheapest checks first: the sender's rate, the header, the session and its rate; the
+  // payload is parsed only for a datagram that passed them all.
+  AddressState* host = address_state(host_of(from), now_ms);
+  if (host && !host->datagrams.take(now_ms)) return rejects_.add(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
   if (!header) return rejects_.add(header.error());
+  // Handshake datagrams cost a keyed hash and a reply: 10 a second per host (ioquake3).
+  if (header->session == 0 && host && !host->hellos.take(now_ms)) return rejects_.add(Reject::rate_limited);
   if (header->version != config_.version) {
     rejects_.add(Reject::bad_version);
     if (bytes.size() >= kMinHelloBytes) {
@@ -56,6 +78,16 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
       if (reply.size() <= bytes.size()) emit(from, std::move(reply));
     }
     return;
+  }
+  if (header->session != 0) {
+    auto sid = by_session_id_.find(header->session);
+    if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
+    Session& s = sessions_.at(sid->second);
+    if (s.address != from) return rejects_.add(Reject::address_mismatch);
+    if (!s.datagrams.take(now_ms)) {
+      ++s.rate_limited;
+      return rejects_.add(Reject::rate_limited);
+    }
   }
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
@@ -106,6 +138,9 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.last_receive_ms = now_ms;
   s.last_send_ms = now_ms;
   s.last_input_seq = 0;
+  s.unanswered = 0;
+  s.last_active_ms = now_ms;
+  s.datagrams = TokenBucket(config_.session_datagrams_per_s, config_.session_datagram_burst, now_ms);
   s.acks = AckWindow{};
   s.results = ReliableSender<Result>{};
   s.commands = ReliableReceiver<Command>{};
@@ -170,6 +205,13 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   if (seats_taken() >= config_.max_players || sessions_.size() >= config_.max_sessions())
     return refuse_full(from, enc, request_bytes);
+  if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
+    rejects_.add(Reject::address_full);
+    const std::string text = "this address has " + std::to_string(config_.max_sessions_per_address) +
+                             " players already; no more from it";
+    reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
+    return;
+  }
   std::uint32_t player_id = 1;
   while (sessions_.count(player_id)) ++player_id;
   Session& s = sessions_[player_id];
@@ -186,6 +228,12 @@ void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size
   const std::string text = "the server is full (" + std::to_string(config_.max_players) +
                            " players); try again later";
   reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
+}
+
+std::size_t ServerEndpoint::seats_taken_from(std::string_view host) const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+    return !kv.second.quit && host_of(kv.second.address) == host;
+  }));
 }
 
 std::size_t ServerEndpoint::seats_taken() const {
@@ -224,6 +272,10 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
         }
         s.last_input_seq = f.seq;
         inputs_.push_back({s.player_id, f});
+        if (f.move_x != 0 || f.move_y != 0 || f.fire) {
+          s.last_active_ms = now_ms;
+          s.played = true;
+        }
       }
     } else if (const auto* c = std::get_if<Command>(&m)) {
       // rid 0 names no place in the reliable order: that message alone is dropped.
@@ -232,7 +284,14 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
         continue;
       }
       if (auto why = s.commands.accept(*c)) rejects_.add(*why);
-      for (auto& cmd : s.commands.take()) commands_.push_back({s.player_id, cmd});
+      for (auto& cmd : s.commands.take()) {
+        commands_.push_back({s.player_id, cmd});
+        ++s.unanswered;
+        s.last_active_ms = now_ms;
+        s.played = true;
+      }
+      if (s.commands.buffered() + s.unanswered > config_.max_pending_commands)
+        return overflow(s, "commands", now_ms);
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       // A player who quits gives its seat up at once; its progress stays for the window.
       s.quit = true;
@@ -275,8 +334,22 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
   for (auto* text : {&code, &message})
     for (char& c : *text)
       if (c < 0x20 || c > 0x7E) c = '?';
+  if (s.unanswered > 0) --s.unanswered;
   s.results.push(Result{0, command_rid, ok, std::move(code), std::move(message)});
-  if (s.connected) send_packet(s, {}, true, now_ms);
+  // Sent by the next update(), batched with the session's other due results.
+  if (s.results.pending() > config_.max_pending_results) overflow(s, "results", now_ms);
+}
+
+// A session over a queue cap: what it queued is forgotten and it is closed, as yojimbo
+// disconnects a client whose queue is full. Invalidates `s`.
+void ServerEndpoint::overflow(Session& s, const std::string& what, std::uint64_t now_ms) {
+  rejects_.add(Reject::overflow);
+  const std::uint32_t id = s.player_id;
+  std::erase_if(commands_, [&](const PlayerCommand& c) { return c.player_id == id; });
+  std::erase_if(inputs_, [&](const PlayerInput& i) { return i.player_id == id; });
+  kick(id, "overflow",
+       "too many " + what + " waiting on this connection (results are not acknowledged); it is closed",
+       now_ms);
 }
 
 void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms) {
@@ -313,9 +386,28 @@ void ServerEndpoint::shutdown(std::uint64_t now_ms) {
 
 void ServerEndpoint::update(std::uint64_t now_ms) {
   observe_time(now_ms);
+  if (now_ms >= last_forget_ms_ + 1000) {
+    forget_quiet_addresses(now_ms);
+    last_forget_ms_ = now_ms;
+  }
   std::vector<std::uint32_t> expired;
+  std::vector<std::uint32_t> idle;
+  std::vector<std::uint32_t> never_played;
   for (auto& [id, s] : sessions_) {
-    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) drop_connection(s, "timeout", now_ms);
+    if (idle_paused_) s.last_active_ms = now_ms;
+    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) {
+      drop_connection(s, "timeout", now_ms);
+      // A session that never played (a probe whose bye was lost, a script that only
+      // shook hands) holds no slot: it is freed at its time-out.
+      if (!s.played) {
+        never_played.push_back(id);
+        continue;
+      }
+    }
+    if (s.connected && config_.idle_timeout_ms != 0 && now_ms - s.last_active_ms >= config_.idle_timeout_ms) {
+      idle.push_back(id);
+      continue;
+    }
     if (!s.connected) {
       if (now_ms - s.disconnected_ms >= config_.reconnect_window_ms) expired.push_back(id);
       continue;
@@ -324,6 +416,19 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
       send_packet(s, {}, true, now_ms);
   }
   for (auto id : expired) release(id, "reconnect window over");
+  for (auto id : never_played) release(id, "timeout");
+  // An idle player gives its seat up as if it had quit: what it earned is kept for the
+  // reconnect window (its token takes it back while a seat is free).
+  for (auto id : idle) {
+    rejects_.add(Reject::idle);
+    Session& s = sessions_.at(id);
+    send_packet(s,
+                {Error{"idle", "no input for " + std::to_string(config_.idle_timeout_ms / 1000) +
+                                   " s: your seat is freed; your progress is kept for the reconnect window"}},
+                false, now_ms);
+    s.quit = true;
+    drop_connection(s, "idle", now_ms);
+  }
 }
 
 std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }
@@ -334,7 +439,8 @@ std::vector<PlayerCommand> ServerEndpoint::take_commands() { return std::exchang
 std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
   for (const auto& [id, s] : sessions_)
-    out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding});
+    out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
+                   s.rate_limited});
   return out;
 }
 

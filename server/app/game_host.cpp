@@ -44,6 +44,10 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.max_players = o.max_players;
   c.timeout_ms = o.timeout_ms;
   c.reconnect_window_ms = o.reconnect_window_ms;
+  c.max_sessions_per_address = o.max_per_address;
+  c.idle_timeout_ms = o.idle_timeout_ms;
+  // A host may send what its sessions may send together.
+  c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * o.max_per_address;
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
@@ -83,6 +87,8 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
 }
 
 sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
+  // Nobody idles while the players cannot act: lobby, shop countdown, game over.
+  endpoint_.set_idle_paused(match_.phase != sim::Phase::playing);
   endpoint_.update(now_ms);
   sim::TickInputs in;
   for (const auto& e : endpoint_.take_events()) {
@@ -175,7 +181,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
             },
             [&](const sim::LevelComplete& e) { log_record(spdlog::level::info, "level_complete", {{"level", e.level}}); },
             [&](const sim::Purchased& e) {
-              log_record(spdlog::level::info, "purchase",
+              log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
                          {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
                           {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
             },
@@ -193,6 +199,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
         },
         event);
   }
+  refused_log_.flush(now_ms);
 }
 
 void GameHost::tick(std::uint64_t now_ms) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/log.hpp"
 #include "app/options.hpp"
 #include "app/stats.hpp"
 #include "fts/protocol/server.hpp"
@@ -63,6 +64,7 @@ class GameHost {
   std::uint32_t ticks_per_snapshot_ = 5;
   sim::Phase last_phase_ = sim::Phase::lobby;
   Stats stats_;
+  RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,

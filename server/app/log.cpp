@@ -59,4 +59,27 @@ void log_record(spdlog::level::level_enum level, std::string_view event, std::in
   spdlog::log(level, "{}", line);
 }
 
+RateLimitedLog::RateLimitedLog(std::string event, std::uint64_t interval_ms, std::uint32_t info_burst)
+    : summary_event_(std::move(event) + "_summary"), interval_ms_(interval_ms), info_burst_(info_burst) {}
+
+spdlog::level::level_enum RateLimitedLog::level(std::uint64_t now_ms) {
+  flush(now_ms);
+  if (at_info_ < info_burst_) {
+    ++at_info_;
+    return spdlog::level::info;
+  }
+  ++demoted_;
+  ++demoted_total_;
+  return spdlog::level::debug;
+}
+
+void RateLimitedLog::flush(std::uint64_t now_ms) {
+  if (now_ms < interval_start_ms_ + interval_ms_) return;
+  if (demoted_ > 0)
+    log_record(spdlog::level::info, summary_event_, {{"at_debug", demoted_}, {"interval_ms", interval_ms_}});
+  interval_start_ms_ = now_ms;
+  at_info_ = 0;
+  demoted_ = 0;
+}
+
 }  // namespace fts::server

@@ -42,4 +42,27 @@ struct LogField {
 
 void log_record(spdlog::level::level_enum level, std::string_view event, std::initializer_list<LogField> fields = {});
 
+// Records a client can cause at will (refused commands): the first `info_burst` of each
+// interval at info, the rest at debug, and at the end of an interval with some at debug
+// one info summary `<event>_summary at_debug=N interval_ms=M` (16 000 refused buys are 16 000
+// debug lines, not 16 000 info lines). Time is passed in.
+class RateLimitedLog {
+ public:
+  RateLimitedLog(std::string event, std::uint64_t interval_ms = 10000, std::uint32_t info_burst = 5);
+  // The level for one more record at now_ms.
+  spdlog::level::level_enum level(std::uint64_t now_ms);
+  // Writes the summary if the interval is over and some records went to debug.
+  void flush(std::uint64_t now_ms);
+  std::uint64_t demoted_total() const { return demoted_total_; }
+
+ private:
+  std::string summary_event_;
+  std::uint64_t interval_ms_;
+  std::uint32_t info_burst_;
+  std::uint64_t interval_start_ms_ = 0;
+  std::uint32_t at_info_ = 0;
+  std::uint64_t demoted_ = 0;
+  std::uint64_t demoted_total_ = 0;
+};
+
 }  // namespace fts::server

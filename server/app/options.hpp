@@ -29,6 +29,8 @@ struct Options {
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
   std::uint32_t input_expiry_ms = 150;  // a held input goes neutral without a new frame
+  std::uint32_t max_per_address = 4;      // seated players from one host (address without port)
+  std::uint32_t idle_timeout_ms = 120000;  // no real input this long while playing: dropped (0: never)
   std::uint32_t stats_interval_ms = 10000;
   double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
   bool help = false;

@@ -60,6 +60,9 @@ TEST_CASE("ClientConnection: a lost connection resumes with its token from a fre
   const std::string token = rig.conn.token();
   CHECK_FALSE(token.empty());
   CHECK(rig.conn.attempt() == 1);
+  // A player (it pressed a key): its slot is held when the connection is lost.
+  rig.conn.endpoint().send_input({1, 1, 0, false}, rig.now);
+  rig.step();
 
   rig.link_up = false;  // the server hears nothing and says nothing
   REQUIRE(rig.run_until([&] { return rig.conn.attempt() == 2; }, 5000));

@@ -128,12 +128,15 @@ TEST_CASE("time-out, then the slot is held for the reconnect window", "[protocol
   Peer& p = h.add_client(client_config("ann"));
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+  p.client.send_input({1, 1, 0, false}, h.now);  // a player, not a probe (6: slots)
+  h.step(h.now + 5);
   h.server.take_events();
   // The link goes silent both ways.
   p.up = LossyLink({1.0, 0, 0, 0, 1});
   p.down = LossyLink({1.0, 0, 0, 0, 2});
   const std::uint64_t silent_from = h.now;
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::timed_out; }, silent_from + 11000));
+  h.run_until([] { return false; }, h.now + 50);  // the server heard the input last: it times out a bit later
   auto events = h.server.take_events();
   REQUIRE(events.size() == 1);
   CHECK(events[0].kind == ServerEvent::Kind::disconnected);

@@ -138,6 +138,8 @@ TEST_CASE("Sessions: a silent client still times out", "[protocol][sessions][sta
   Peer& p = h.add_client(named("ann"));
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+  p.client.send_input({1, 1, 0, false}, h.now);  // a player: its slot is held, not freed
+  h.step(h.now + 5);
   h.server.take_events();
   // The server runs on (updates every 10 ms) while the client says nothing.
   for (std::uint64_t t = h.now; t < h.now + 10100; t += 10) h.server.update(t);

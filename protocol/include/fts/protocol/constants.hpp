@@ -30,6 +30,11 @@ inline constexpr std::size_t kMaxEventsPerMessage = 64;
 inline constexpr std::uint32_t kMaxSnapshotParts = 16;
 inline constexpr std::int64_t kMaxCoins = 1'000'000'000'000'000;  // 10^15
 inline constexpr std::int64_t kMaxQuantized = std::int64_t{1} << 40;
+// Payload shape, checked while parsing (both encodings): arrays and objects nested at
+// most this deep (a snapshot needs 5), and at most this many values in all (a value
+// takes at least one byte, so a datagram cannot hold more).
+inline constexpr std::size_t kMaxNestingDepth = 6;
+inline constexpr std::size_t kMaxPayloadValues = kMaxDatagramBytes;
 
 // The two payload encodings; the client picks one at connect, the header names it.
 enum class Encoding : std::uint8_t { json = 0, msgpack = 1 };

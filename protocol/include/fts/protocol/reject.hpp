@@ -26,6 +26,10 @@ enum class Reject : std::uint8_t {
   server_full,        // no free player slot
   unknown_base,       // snapshot delta against a snapshot we do not have
   stale,              // older than what we already have (sequence or snapshot tick)
+  rate_limited,       // over the session's or the address's datagram rate
+  overflow,           // a session over a queue cap: the session is dropped (error "overflow")
+  address_full,       // a new session from a host that has max_sessions_per_address already
+  idle,               // a session without real input for idle_timeout_ms: dropped (error "idle")
   count_
 };
 

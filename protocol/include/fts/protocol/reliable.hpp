@@ -99,6 +99,9 @@ class ReliableReceiver {
   // Messages ready for the application, in rid order, each exactly once.
   std::vector<T> take() { return std::exchange(ready_, {}); }
 
+  // Received out of order and held until the gap before them is filled.
+  std::size_t buffered() const { return buffered_.size(); }
+
  private:
   std::uint32_t next_rid_ = 1;
   std::map<std::uint32_t, T> buffered_;

@@ -16,6 +16,7 @@
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/cookie.hpp"
+#include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
@@ -44,6 +45,33 @@ struct ServerConfig {
   // Sessions kept at most (seated players plus players who quit and keep their progress
   // for the reconnect window).
   std::size_t max_sessions() const { return 4 * static_cast<std::size_t>(max_players); }
+  // Bounds on what one session may make the server hold (PROTOCOL.md 10). A session over
+  // either cap is dropped at once with error "overflow" (counted as overflow).
+  // Results sent and not yet acknowledged by the client.
+  std::size_t max_pending_results = 64;
+  // Commands buffered out of order plus commands handed to the game and not yet answered.
+  std::size_t max_pending_commands = 64;
+  // Datagram rates (token buckets); a datagram over a rate is dropped (rate_limited).
+  // An honest client sends one input per tick (100/s) plus heartbeats and commands.
+  std::uint32_t session_datagrams_per_s = 250;
+  std::uint32_t session_datagram_burst = 250;
+  // Per host (the address without its port), before anything else is looked at.
+  std::uint32_t address_datagrams_per_s = 1000;
+  std::uint32_t address_datagram_burst = 1000;
+  // Hosts whose rates are tracked at most; past it, a new host is not rate limited until
+  // quiet hosts are forgotten (once a second), so that a spoofed flood cannot lock out
+  // new players.
+  std::size_t max_tracked_addresses = 4096;
+  // Fair slots. Seated sessions from one host (households share one NAT address); the
+  // next new player from it gets error "address_full".
+  std::size_t max_sessions_per_address = 4;
+  // Handshake datagrams (session 0) per host; over it they are dropped (rate_limited).
+  std::uint32_t hellos_per_s = 10;
+  std::uint32_t hello_burst = 10;
+  // A connected session that sends no real input (a frame with a key down, or a
+  // command) for this long is dropped with error "idle"; never while the host says the
+  // players cannot act (set_idle_paused: lobby, shop, game over). 0: never.
+  std::uint64_t idle_timeout_ms = 120000;
   // Settings sent in every welcome (player_id, token, server_tick, reconnected are set
   // per client).
   Welcome settings;
@@ -86,6 +114,7 @@ struct SessionInfo {
   double rtt_ms = 0;
   std::optional<std::uint32_t> acked_snapshot;
   Encoding encoding = Encoding::msgpack;
+  std::uint64_t rate_limited = 0;  // datagrams of this session dropped over its rate
 };
 
 class ServerEndpoint {
@@ -99,6 +128,7 @@ class ServerEndpoint {
   // Sends the snapshot to one connected player (delta against what it acknowledged).
   void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
   // Answers a command (reliably). code: "ok" or a refusal code; message for a person.
+  // Queued: the next update() sends the session's due results together in one datagram.
   void send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
                    std::string message, std::uint64_t now_ms);
   // Ends a session now (error sent to the client, slot released).
@@ -106,6 +136,9 @@ class ServerEndpoint {
             std::uint64_t now_ms);
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
+  // While paused (the host's lobby, shop and game-over phases) nobody idles: every
+  // session's idle clock restarts when the pause ends.
+  void set_idle_paused(bool paused) { idle_paused_ = paused; }
   // The tick reported in welcomes.
   void set_server_tick(std::uint32_t tick) { server_tick_ = tick; }
 
@@ -136,12 +169,25 @@ class ServerEndpoint {
     std::uint64_t last_send_ms = 0;
     std::uint64_t disconnected_ms = 0;
     std::uint32_t last_input_seq = 0;
+    std::size_t unanswered = 0;  // commands handed to the game, not yet answered
+    std::uint64_t last_active_ms = 0;  // last real input (idle time-out)
+    bool played = false;  // sent real input once: a lost connection holds its slot
+    std::uint64_t rate_limited = 0;
+    TokenBucket datagrams;
     AckWindow acks;
     ReliableSender<Result> results;
     ReliableReceiver<Command> commands;
     SnapshotSender snapshots;
   };
 
+  struct AddressState {
+    TokenBucket datagrams;
+    TokenBucket hellos;
+  };
+
+  AddressState* address_state(std::string_view host, std::uint64_t now_ms);
+  void forget_quiet_addresses(std::uint64_t now_ms);
+  void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
                     std::size_t request_bytes, std::uint64_t now_ms);
   void handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms);
@@ -153,6 +199,7 @@ class ServerEndpoint {
                      std::uint64_t now_ms);
   void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
   std::size_t seats_taken() const;
+  std::size_t seats_taken_from(std::string_view host) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
@@ -163,6 +210,9 @@ class ServerEndpoint {
   std::map<std::uint32_t, Session> sessions_;  // by player id
   std::map<Address, std::uint32_t> by_address_;
   std::map<std::uint32_t, std::uint32_t> by_session_id_;
+  std::map<std::string, AddressState, std::less<>> addresses_;  // by host
+  std::uint64_t last_forget_ms_ = 0;
+  bool idle_paused_ = false;
   std::uint64_t sessions_made_ = 0;
   std::uint32_t server_tick_ = 0;
   std::uint64_t last_call_ms_ = 0;

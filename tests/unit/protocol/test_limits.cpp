@@ -1,0 +1,238 @@
+// Abuse bounds (issue 12): queue caps that drop the session, results batched into the
+// next update, datagram rates per session and per host. Time is stepped by hand.
+#include <catch2/catch.hpp>
+
+#include "harness.hpp"
+
+using namespace fts::protocol;
+using namespace fts::protocol::test;
+
+namespace {
+
+// One connected client; `raw` sends datagrams on its session as a script would.
+struct Flooder {
+  Harness h;
+  Peer* peer = nullptr;
+  std::uint32_t session = 0;
+  std::uint32_t player = 0;
+  std::uint16_t sequence = 1000;
+
+  explicit Flooder(ServerConfig config = test_server_config()) : h(std::move(config)) {
+    peer = &h.add_client(ClientConfig{});
+    peer->client.connect(h.now);
+    REQUIRE(h.run_until([&] { return peer->client.state() == ClientState::connected; }, 1000));
+    player = peer->client.welcome()->player_id;
+    h.server.take_events();
+    peer->client.send_input({0, 0, 0, false}, h.now);
+    auto out = peer->client.take_datagrams();
+    REQUIRE(!out.empty());
+    session = read_header(out[0])->session;
+  }
+
+  void raw(std::vector<Message> messages) {
+    Header hd;
+    hd.session = session;
+    hd.sequence = ++sequence;
+    h.server.receive(peer->address, encode_datagram(hd, messages), h.now);
+  }
+
+  bool released_for(const std::string& reason) {
+    for (const auto& e : h.server.take_events())
+      if (e.kind == ServerEvent::Kind::released && e.player_id == player && e.reason == reason) return true;
+    return false;
+  }
+
+  std::vector<Error> errors_sent() {
+    std::vector<Error> out;
+    for (const auto& o : h.server.take_datagrams()) {
+      auto d = decode_datagram(o.bytes);
+      REQUIRE(d);
+      for (const auto& m : d->messages)
+        if (const auto* e = std::get_if<Error>(&m)) out.push_back(*e);
+    }
+    return out;
+  }
+};
+
+std::size_t results_in(const std::vector<Outgoing>& out) {
+  std::size_t n = 0;
+  for (const auto& o : out) {
+    auto d = decode_datagram(o.bytes);
+    REQUIRE(d);
+    for (const auto& m : d->messages) n += std::holds_alternative<Result>(m) ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("Limits: a token bucket refills with the time passed in", "[protocol][limits]") {
+  TokenBucket b(10, 3, 1000);
+  CHECK(b.take(1000));
+  CHECK(b.take(1000));
+  CHECK(b.take(1000));
+  CHECK_FALSE(b.take(1000));   // burst spent
+  CHECK_FALSE(b.take(1099));   // 0.99 tokens
+  CHECK(b.take(1100));         // one more after 100 ms at 10/s
+  CHECK_FALSE(b.full(1100));
+  CHECK(b.full(1400));         // 3 tokens after 300 ms more
+  CHECK_FALSE(b.take(900));    // time going backwards gives nothing
+}
+
+TEST_CASE("Limits: the host of an address", "[protocol][limits]") {
+  CHECK(host_of("192.0.2.7:40000") == "192.0.2.7");
+  CHECK(host_of("[::1]:5000") == "[::1]");
+  CHECK(host_of("::1") == "::1");
+  CHECK(host_of("localhost") == "localhost");
+}
+
+TEST_CASE("Limits: results ride the next update, batched", "[protocol][limits]") {
+  Flooder f;
+  f.h.server.take_datagrams();
+  for (std::uint32_t rid = 1; rid <= 5; ++rid) f.h.server.send_result(f.player, rid, true, "ok", "done", f.h.now);
+  CHECK(f.h.server.take_datagrams().empty());  // nothing sent per result
+  f.h.server.update(f.h.now + 1);
+  auto first = f.h.server.take_datagrams();
+  CHECK(first.size() == 1);
+  CHECK(results_in(first) == 3);
+  f.h.server.update(f.h.now + 2);
+  auto second = f.h.server.take_datagrams();
+  CHECK(second.size() == 1);
+  CHECK(results_in(second) == 2);
+}
+
+TEST_CASE("Limits: unacknowledged results past the cap drop the session", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.max_pending_results = 10;
+  Flooder f(config);
+  f.h.server.take_datagrams();
+  for (std::uint32_t rid = 1; rid <= 10; ++rid) f.h.server.send_result(f.player, rid, true, "ok", "done", f.h.now);
+  CHECK(f.h.server.connected_players().size() == 1);
+  CHECK(f.h.server.rejects()[Reject::overflow] == 0);
+  f.h.server.send_result(f.player, 11, true, "ok", "done", f.h.now);  // the 11th, never acknowledged
+  CHECK(f.h.server.connected_players().empty());
+  CHECK(f.h.server.rejects()[Reject::overflow] == 1);
+  CHECK(f.released_for("overflow"));
+  const auto errors = f.errors_sent();
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].code == "overflow");
+}
+
+TEST_CASE("Limits: acknowledged results never reach the cap", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.max_pending_results = 8;  // the client acknowledges every 100 ms at least
+  Harness h(config);
+  Peer& p = h.add_client(ClientConfig{});
+  p.client.connect(h.now);
+  REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+  const std::uint32_t player = p.client.welcome()->player_id;
+  for (std::uint32_t rid = 1; rid <= 40; ++rid) {
+    h.server.send_result(player, rid, true, "ok", "done", h.now);
+    h.run_until([] { return false; }, h.now + 25);
+  }
+  CHECK(h.server.connected_players().size() == 1);
+  CHECK(h.server.rejects()[Reject::overflow] == 0);
+}
+
+TEST_CASE("Limits: commands past the cap drop the session", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.max_pending_commands = 40;
+  SECTION("delivered and not answered") {
+    Flooder f(config);
+    std::vector<Message> batch;
+    for (std::uint32_t rid = 1; rid <= 32; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm'});
+    f.raw(batch);
+    CHECK(f.h.server.rejects()[Reject::overflow] == 0);
+    batch.clear();
+    for (std::uint32_t rid = 33; rid <= 41; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm'});
+    f.raw(batch);
+    CHECK(f.h.server.rejects()[Reject::overflow] == 1);
+    CHECK(f.h.server.take_commands().empty());  // what it queued is not handed to the game
+    CHECK(f.released_for("overflow"));
+  }
+  SECTION("answered at once, the flood is bounded by the results") {
+    Flooder f(config);
+    std::uint32_t rid = 1;
+    for (int packet = 0; packet < 10 && !f.h.server.connected_players().empty(); ++packet) {
+      std::vector<Message> batch;
+      for (int i = 0; i < 32; ++i) batch.push_back(Command{rid++, CommandOp::buy, 'm'});
+      f.raw(batch);
+      for (const auto& c : f.h.server.take_commands())
+        f.h.server.send_result(c.player_id, c.command.rid, false, "coins", "no", f.h.now);
+    }
+    CHECK(f.h.server.connected_players().empty());
+    CHECK(f.h.server.rejects()[Reject::overflow] == 1);
+  }
+  SECTION("buffered out of order") {
+    Flooder f(config);
+    std::vector<Message> batch;
+    for (std::uint32_t rid = 2; rid <= 33; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm'});
+    f.raw(batch);  // 32 held: rid 1 is missing
+    CHECK(f.h.server.take_commands().empty());
+    CHECK(f.h.server.rejects()[Reject::overflow] == 0);
+    batch.clear();
+    for (std::uint32_t rid = 100; rid <= 108; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm'});
+    f.raw(batch);
+    CHECK(f.h.server.rejects()[Reject::overflow] == 1);
+  }
+}
+
+TEST_CASE("Limits: a session over its datagram rate is dropped per datagram, counted", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.session_datagrams_per_s = 100;
+  config.session_datagram_burst = 50;
+  Flooder f(config);
+  f.h.now += 1000;  // the bucket is full again, whatever the handshake took
+  const auto limited = f.h.server.rejects()[Reject::rate_limited];
+  std::uint32_t seq = 1;
+  std::size_t inputs = 0;
+  for (int i = 0; i < 80; ++i) {
+    f.raw({Input{0, {InputFrame{seq++, 1, 0, false}}}});
+    inputs += f.h.server.take_inputs().size();
+  }
+  CHECK(inputs == 50);  // the burst
+  CHECK(f.h.server.rejects()[Reject::rate_limited] == limited + 30);
+  CHECK(f.h.server.sessions().at(0).rate_limited == 30);
+  f.h.now += 100;  // 10 more tokens
+  for (int i = 0; i < 20; ++i) {
+    f.raw({Input{0, {InputFrame{seq++, 1, 0, false}}}});
+    inputs += f.h.server.take_inputs().size();
+  }
+  CHECK(inputs == 60);
+  CHECK(f.h.server.connected_players().size() == 1);  // limited, not dropped
+}
+
+TEST_CASE("Limits: a host over its datagram rate is refused before any parse", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.address_datagrams_per_s = 100;
+  config.address_datagram_burst = 20;
+  ServerEndpoint server(config);
+  const std::vector<std::uint8_t> junk(40, 'x');
+  for (int port = 1; port <= 30; ++port) server.receive("198.51.100.9:" + std::to_string(port), junk, 1000);
+  CHECK(server.rejects()[Reject::wrong_protocol_id] == 20);
+  CHECK(server.rejects()[Reject::rate_limited] == 10);
+  server.receive("198.51.100.10:1", junk, 1000);  // another host has its own bucket
+  CHECK(server.rejects()[Reject::wrong_protocol_id] == 21);
+  server.receive("198.51.100.9:1", junk, 1010);  // one token back after 10 ms
+  CHECK(server.rejects()[Reject::wrong_protocol_id] == 22);
+}
+
+TEST_CASE("Limits: hosts tracked are bounded and quiet ones forgotten", "[protocol][limits]") {
+  ServerConfig config = test_server_config();
+  config.address_datagrams_per_s = 10;
+  config.address_datagram_burst = 1;
+  config.max_tracked_addresses = 2;
+  ServerEndpoint server(config);
+  const std::vector<std::uint8_t> junk(40, 'x');
+  server.receive("10.0.0.1:1", junk, 1000);
+  server.receive("10.0.0.2:1", junk, 1000);
+  server.receive("10.0.0.1:1", junk, 1000);  // tracked, limited
+  CHECK(server.rejects()[Reject::rate_limited] == 1);
+  server.receive("10.0.0.3:1", junk, 1000);  // past the bound: not tracked, not limited
+  server.receive("10.0.0.3:1", junk, 1000);
+  CHECK(server.rejects()[Reject::rate_limited] == 1);
+  server.update(2000);  // 10.0.0.1 and .2 are full again: forgotten
+  server.receive("10.0.0.3:1", junk, 2000);
+  server.receive("10.0.0.3:1", junk, 2000);  // now tracked
+  CHECK(server.rejects()[Reject::rate_limited] == 2);
+}
