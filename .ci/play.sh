@@ -16,7 +16,9 @@ pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
 trap cleanup EXIT INT TERM
 
-./build/server/fts-server --port "$port" >"$log" 2>&1 &
+# Every local client (the bots and you) comes from 127.0.0.1: lift the per-address cap.
+per_address=$((nbots + 4 > 64 ? 64 : nbots + 4))
+./build/server/fts-server --port "$port" --max-per-address "$per_address" >"$log" 2>&1 &
 pids+=($!)
 for _ in $(seq 1 100); do  # up to 10 s for the ready line
   grep -q " ready " "$log" && break
