@@ -18,7 +18,7 @@ void Grid::build() {
   const std::size_t n = boxes.size();
   overflow_.clear();
   if (n == 0) {
-    nx_ = ny_ = 1;
+    grid_ = GridLayout{};
     start_.assign(3, 0);
     slots_.clear();
     return;
@@ -65,37 +65,18 @@ void Grid::build() {
       }
     }
   }
-  if (!std::isfinite(lo_x) || !std::isfinite(hi_x)) lo_x = hi_x = 0.0;
-  if (!std::isfinite(lo_y) || !std::isfinite(hi_y)) lo_y = hi_y = 0.0;
-  double cell = widest > 0.0 ? widest * kCellScale : kCellScale;
-  if (!std::isfinite(cell)) cell = 1.0;
-  origin_x_ = lo_x;
-  origin_y_ = lo_y;
-  // Bound the cell count to a few per box: grow the cell when the boxes are sparse.
-  const double max_cells = 4.0 * static_cast<double>(n) + 64.0;
-  for (;;) {
-    const double cx = std::floor((hi_x - lo_x) / cell) + 1.0;
-    const double cy = std::floor((hi_y - lo_y) / cell) + 1.0;
-    if (cx * cy <= max_cells) {
-      nx_ = static_cast<std::uint32_t>(cx);
-      ny_ = static_cast<std::uint32_t>(cy);
-      break;
-    }
-    cell *= 1.5;
-  }
-  cell_ = cell;
-  inv_cell_ = 1.0 / cell;
+  grid_ = GridLayout::fit(lo_x, hi_x, lo_y, hi_y, widest * kCellScale, n);
 
   // Counting sort: start_[c + 1] counts cell c, then (prefix sum) marks its end; filing
   // from the last box down moves it to the cell's beginning, boxes in index order.
-  const std::size_t ncells = static_cast<std::size_t>(nx_) * ny_;
+  const std::size_t ncells = grid_.cells();
   start_.assign(ncells + 2, 0);
   std::uint32_t* count = start_.data() + 1;
   const bool overflow = !overflow_.empty();
   for (std::size_t i = 0; i < n; ++i) {
     if (overflow && overflow_flag_[i]) continue;
     const Box& b = boxes[i];
-    const std::uint32_t c = cell_y(0.5 * (b.y0 + b.y1)) * nx_ + cell_x(0.5 * (b.x0 + b.x1));
+    const std::uint32_t c = grid_.cell_of(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1));
     home_[i] = c;
     ++count[c];
   }

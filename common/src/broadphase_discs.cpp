@@ -55,43 +55,19 @@ void DiscGrid::file(const std::vector<Ball>& balls) {
       }
     }
   }
-  if (!std::isfinite(lo_x) || !std::isfinite(hi_x)) lo_x = hi_x = 0.0;
-  if (!std::isfinite(lo_y) || !std::isfinite(hi_y)) lo_y = hi_y = 0.0;
-  double cell = kCellDiameters * 2.0 * r_max;
-  if (!(cell > 0.0)) cell = 1.0;
-  // Few cells per disc: grow the cells when the discs are sparse.
-  const double max_cells = 4.0 * static_cast<double>(n) + 64.0;
-  for (;;) {
-    const double cx = std::floor((hi_x - lo_x) / cell) + 1.0;
-    const double cy = std::floor((hi_y - lo_y) / cell) + 1.0;
-    if (cx * cy <= max_cells) {
-      nx_ = static_cast<std::uint32_t>(cx);
-      ny_ = static_cast<std::uint32_t>(cy);
-      break;
-    }
-    cell *= 1.5;
-  }
-  origin_x_ = lo_x;
-  origin_y_ = lo_y;
-  inv_cell_ = 1.0 / cell;
+  grid_ = GridLayout::fit(lo_x, hi_x, lo_y, hi_y, kCellDiameters * 2.0 * r_max, n);
 
   // Counting sort: start_[c + 1] counts cell c, then (prefix sum) marks its end; filing
   // from the last disc down moves it to the cell's beginning, discs in index order.
   // So cell c is [start_[c + 1], start_[c + 2]).
-  const std::size_t ncells = static_cast<std::size_t>(nx_) * ny_;
+  const std::size_t ncells = grid_.cells();
   start_.assign(ncells + 2, 0);
-  const double ox = origin_x_, oy = origin_y_, inv = inv_cell_;
-  const std::uint32_t last_x = nx_ - 1, last_y = ny_ - 1;
-  auto index = [inv](double v, double origin, std::uint32_t last) -> std::uint32_t {
-    const double c = (v - origin) * inv;
-    if (!(c > 0.0)) return 0;  // also NaN
-    return c >= static_cast<double>(last) ? last : static_cast<std::uint32_t>(c);
-  };
+  const GridLayout grid = grid_;
   std::uint32_t* count = start_.data() + 1;
   for (std::size_t i = 0; i < n; ++i) {
     if (has_giants && cell_[i] == kGiant) continue;
     const Ball& b = balls[i];
-    const std::uint32_t c = index(b.pos.y, oy, last_y) * nx_ + index(b.pos.x, ox, last_x);
+    const std::uint32_t c = grid.cell_of(b.pos.x, b.pos.y);
     cell_[i] = c;
     ++count[c];
   }
@@ -113,18 +89,12 @@ void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::p
   file(balls);
   const Slot* slots = slots_.data();
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
-  for (std::uint32_t cy = 0; cy < ny_; ++cy) {
-    const std::uint32_t row = cy * nx_;
-    const bool above = cy + 1 < ny_;
-    for (std::uint32_t cx = 0; cx < nx_; ++cx) {
-      const std::uint32_t c = row + cx;
+  for (std::uint32_t cy = 0; cy < grid_.ny; ++cy) {
+    for (std::uint32_t cx = 0; cx < grid_.nx; ++cx) {
+      const std::uint32_t c = cy * grid_.nx + cx;
       const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
       if (p0 == p1) continue;
-      // Own cell's rest and the right neighbour: one range. The row above, from the
-      // left neighbour to the right one: another.
-      const std::uint32_t right_end = begin[cx + 1 < nx_ ? c + 2 : c + 1];
-      const std::uint32_t up0 = above ? begin[c + nx_ - (cx > 0 ? 1 : 0)] : 0;
-      const std::uint32_t up1 = above ? begin[c + nx_ + (cx + 1 < nx_ ? 2 : 1)] : 0;
+      const auto [right_end, up0, up1] = half_stencil(grid_, begin, cx, cy);
       for (std::uint32_t p = p0; p < p1; ++p) {
         const Slot a = slots[p];
         for (std::uint32_t q = p + 1; q < right_end; ++q) {

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "fts/sim/grid_layout.hpp"
+
 namespace fts::sim {
 
 struct Box {
@@ -49,12 +51,8 @@ class Grid {
     Box box;
     std::uint32_t id;
   };
-  std::uint32_t cell_x(double x) const;
-  std::uint32_t cell_y(double y) const;
-
   std::vector<Box> boxes_;
-  double origin_x_ = 0, origin_y_ = 0, inv_cell_ = 1, cell_ = 1;
-  std::uint32_t nx_ = 1, ny_ = 1;
+  GridLayout grid_;
   std::vector<std::uint32_t> start_;  // cell c holds slots [start_[c + 1], start_[c + 2])
   std::vector<Slot> slots_;           // filed boxes in cell order
   std::vector<std::uint32_t> home_;   // per box: its cell
@@ -72,16 +70,12 @@ void Grid::for_each_overlapping_pair(Fn&& fn) {
   std::uint32_t* hits = hits_.data();
   const Slot* slots = slots_.data();
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
-  for (std::uint32_t cy = 0; cy < ny_; ++cy) {
-    const std::uint32_t row = cy * nx_;
-    const bool above = cy + 1 < ny_;
-    for (std::uint32_t cx = 0; cx < nx_; ++cx) {
-      const std::uint32_t c = row + cx;
+  for (std::uint32_t cy = 0; cy < grid_.ny; ++cy) {
+    for (std::uint32_t cx = 0; cx < grid_.nx; ++cx) {
+      const std::uint32_t c = cy * grid_.nx + cx;
       const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
       if (p0 == p1) continue;
-      const std::uint32_t right_end = begin[cx + 1 < nx_ ? c + 2 : c + 1];
-      const std::uint32_t up0 = above ? begin[c + nx_ - (cx > 0 ? 1 : 0)] : 0;
-      const std::uint32_t up1 = above ? begin[c + nx_ + (cx + 1 < nx_ ? 2 : 1)] : 0;
+      const auto [right_end, up0, up1] = half_stencil(grid_, begin, cx, cy);
       for (std::uint32_t p = p0; p < p1; ++p) {
         const Box a = slots[p].box;
         const std::uint32_t i = slots[p].id;
@@ -113,28 +107,16 @@ void Grid::for_each_overlapping_pair(Fn&& fn) {
 template <class Fn>
 void Grid::query(const Box& box, Fn&& fn) const {
   // Filed boxes reach at most half a cell beyond their centre's cell.
-  const double h = 0.5 * cell_;
-  const std::uint32_t x0 = cell_x(box.x0 - h), x1 = cell_x(box.x1 + h);
-  const std::uint32_t y0 = cell_y(box.y0 - h), y1 = cell_y(box.y1 + h);
+  const double h = 0.5 * grid_.cell;
+  const std::uint32_t x0 = grid_.column(box.x0 - h), x1 = grid_.column(box.x1 + h);
+  const std::uint32_t y0 = grid_.row(box.y0 - h), y1 = grid_.row(box.y1 + h);
   const std::uint32_t* begin = start_.data() + 1;
   for (std::uint32_t cy = y0; cy <= y1; ++cy) {
     // The cells x0..x1 of a row are one contiguous range of slots.
-    const std::uint32_t row = cy * nx_;
+    const std::uint32_t row = cy * grid_.nx;
     for (std::uint32_t p = begin[row + x0], end = begin[row + x1 + 1]; p < end; ++p) fn(slots_[p].id);
   }
   for (std::uint32_t j : overflow_) fn(j);
-}
-
-inline std::uint32_t Grid::cell_x(double x) const {
-  const double c = (x - origin_x_) * inv_cell_;
-  if (!(c > 0.0)) return 0;  // also NaN
-  return c >= static_cast<double>(nx_ - 1) ? nx_ - 1 : static_cast<std::uint32_t>(c);  // floor for c > 0
-}
-
-inline std::uint32_t Grid::cell_y(double y) const {
-  const double c = (y - origin_y_) * inv_cell_;
-  if (!(c > 0.0)) return 0;
-  return c >= static_cast<double>(ny_ - 1) ? ny_ - 1 : static_cast<std::uint32_t>(c);
 }
 
 }  // namespace fts::sim

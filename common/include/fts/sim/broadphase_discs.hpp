@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fts/sim/ball.hpp"
+#include "fts/sim/grid_layout.hpp"
 
 namespace fts::sim {
 
@@ -25,8 +26,7 @@ class DiscGrid {
  private:
   void file(const std::vector<Ball>& balls);
 
-  double origin_x_ = 0, origin_y_ = 0, inv_cell_ = 1;
-  std::uint32_t nx_ = 1, ny_ = 1;
+  GridLayout grid_;
   std::vector<std::uint32_t> start_;  // cell c holds sorted slots [start_[c+1], start_[c+2])
   std::vector<std::uint32_t> cell_;   // per ball: its cell, or kGiant
   struct Slot {
