@@ -4,10 +4,19 @@
 //
 // Each ball keeps its own clock t_i inside the tick and is advanced lazily. Events are
 // invalidated by per-ball stamps instead of being removed from the heap. All working
-// memory is the world's (World::buffers). The broad
-// phase indexes each ball's swept box for the whole tick (with a margin); a ball whose
-// path leaves its box after a collision joins a small "escaped" list that every
-// re-query also scans, which keeps the search complete without rebuilding the grid.
+// memory is the world's (World::buffers).
+//
+// The broad phase is a skin, kept across ticks (a Verlet list, as molecular dynamics
+// codes keep one): each ball's skin box is its position at the last build +- (radius +
+// half_skin), and the pairs whose skin boxes overlap are listed once per build. A ball
+// whose path in a tick stays within half_skin of where the skin was built can only meet
+// its listed neighbours. A ball whose path leaves its skin (at the start of a tick, or
+// after a collision) joins a small "escaped" list: it finds its partners with a query of
+// the skin grid, and every other refresh also scans the list. When too many balls have
+// left, or a ball was added, removed or resized, the skin is rebuilt. Which pairs are
+// offered never changes a result, only its cost: every pair that can meet is predicted
+// by the same formula and the heap orders events by (time, a, b), so a world stepped
+// with or without its cache ends in the same bits.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +30,12 @@ namespace {
 constexpr std::uint32_t kWallX = 0xffffff00u;
 constexpr std::uint32_t kWallY = 0xffffff01u;
 constexpr std::uint32_t kFall = 0xffffff02u;
+// Half the skin, in rms travels per tick plus mean radii (cost only; see build_skin).
+// callgrind, gas-10000 continuous, 50 ticks, instructions by kSkinTravels: 3: 249 M,
+// 4: 212 M, 6: 207 M, 8: ~230 M, 12: 271 M, 20: 390 M (wider skins list more pairs to
+// predict every tick; narrower ones rebuild more often).
+constexpr double kSkinTravels = 6.0;
+constexpr double kSkinRadii = 0.05;
 
 // b is another ball's index or kWallX / kWallY / kFall.
 using Event = TimedEvent;
@@ -60,7 +75,7 @@ class Solver {
         grid_mode_(use_grid(s, world.balls.size())), t_(world.buffers.t), stamp_(world.buffers.stamp),
         alive_(world.buffers.alive), escaped_flag_(world.buffers.escaped_flag),
         escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
-        heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box) {}
+        heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box), skin_(world.buffers) {}
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
 
@@ -69,7 +84,7 @@ class Solver {
     t_.assign(n, 0.0);
     stamp_.assign(n, 0);
     alive_.assign(n, 1);
-    escaped_flag_.assign(n, 0);
+    escaped_flag_.resize(n);  // cleared by each initial_events
     escaped_box_.resize(n);  // written when a ball escapes, read only after
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
@@ -83,6 +98,7 @@ class Solver {
         if (d < reach) separate(a, b, contact_normal(a, b), reach - d);
       }
       if (world_.arena.boundary == Boundary::walls) clamp_all_into_walls();
+      world_.buffers.skin_valid = false;  // the balls moved
       initial_events();
     }
     process();
@@ -107,25 +123,119 @@ class Solver {
             std::max(b.pos.x, end.x) + m, std::max(b.pos.y, end.y) + m};
   }
 
-  // Builds the broad phase and the first events; returns whether overlaps were found.
+  // The first events of the tick; returns whether overlapping balls were found.
   bool initial_events() {
     heap_.clear();
     overlaps_.clear();
     escaped_.clear();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i) boundary_event(i);
-    auto pair = [&](std::uint32_t i, std::uint32_t j) { pair_event(i, j, true); };
-    if (grid_mode_) {
-      std::vector<Box>& boxes = grid_.boxes();
-      boxes.resize(n);
-      for (std::uint32_t i = 0; i < n; ++i) boxes[i] = path_box(i, 0.5);
-      grid_.build();
-      grid_.for_each_overlapping_pair(pair);
-    } else {
+    if (!grid_mode_) {
       for (std::uint32_t i = 0; i < n; ++i)
-        for (std::uint32_t j = i + 1; j < n; ++j) pair(i, j);
+        for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
+      return !overlaps_.empty();
+    }
+    if (!skin_fits()) {
+      build_skin();
+      skin_fits();  // a ball faster than the skin leaves it even now
+    }
+    // Each pair once: listed pairs of balls in their skins, then each escaped ball
+    // against the balls in their skins (a grid query) and the later escaped ones.
+    for (auto [i, j] : skin_.skin_pairs)
+      if (!escaped_flag_[i] && !escaped_flag_[j]) pair_event(i, j, true);
+    for (std::size_t k = 0; k < escaped_.size(); ++k) {
+      const std::uint32_t i = escaped_[k];
+      const Box now = path_box(i, 0.0);
+      grid_.query(now, [&](std::uint32_t j) {
+        if (!escaped_flag_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, true);
+      });
+      for (std::size_t m = k + 1; m < escaped_.size(); ++m)
+        if (overlaps(escaped_box_[i], escaped_box_[escaped_[m]])) pair_event(i, escaped_[m], true);
     }
     return !overlaps_.empty();
+  }
+
+  // Whether ball i's path for the rest of the tick stays within half_skin of where the
+  // skin was built (a straight path: both ends suffice). 1 % short of the box, so that
+  // rounding cannot put a ball that passes outside it.
+  bool in_skin(std::uint32_t i) const {
+    const double h = 0.99 * skin_.half_skin;
+    const double h2 = h * h;
+    const Vec2 o = skin_.skin_origin[i];
+    return length_sq(balls_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
+  }
+
+  void escape(std::uint32_t i) {
+    escaped_flag_[i] = 1;
+    escaped_.push_back(i);
+    escaped_box_[i] = path_box(i, 0.1);
+  }
+
+  // Whether the skin still fits the balls: the same balls, and few enough of them
+  // leaving it this tick that the escaped list stays short. Those leaving it are escaped.
+  bool skin_fits() {
+    const std::size_t n = balls_.size();
+    std::fill(escaped_flag_.begin(), escaped_flag_.end(), 0);
+    escaped_.clear();
+    if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n) return false;
+    const std::size_t allowed = 32 + n / 256;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (balls_[i].id.value != skin_.skin_id[i] || balls_[i].radius != skin_.skin_radius[i]) return false;
+      if (!in_skin(i)) {
+        if (escaped_.size() == allowed) return false;
+        escape(i);
+      }
+    }
+    return true;
+  }
+
+  void build_skin() {
+    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
+    // Half the skin: a few ticks of the typical (rms) travel plus a little of the mean
+    // radius, so a ball at a typical speed keeps its skin for several ticks while the
+    // boxes stay small. Only the cost depends on it.
+    double travel_sq = 0.0, radius_sum = 0.0;
+    for (const Ball& b : balls_) {
+      travel_sq += length_sq(b.vel) * dt_ * dt_;
+      radius_sum += b.radius;
+    }
+    const double inv_n = 1.0 / static_cast<double>(n);
+    double h = kSkinTravels * std::sqrt(travel_sq * inv_n) + kSkinRadii * radius_sum * inv_n;
+    if (!(h > 0.0) || !std::isfinite(h)) h = 0.0;
+    skin_.half_skin = h;
+    skin_.skin_origin.resize(n);
+    skin_.skin_id.resize(n);
+    skin_.skin_radius.resize(n);
+    std::vector<Box>& boxes = grid_.boxes();
+    boxes.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const Ball& b = balls_[i];
+      skin_.skin_origin[i] = b.pos;
+      skin_.skin_id[i] = b.id.value;
+      skin_.skin_radius[i] = b.radius;
+      const double m = b.radius + h;
+      boxes[i] = {b.pos.x - m, b.pos.y - m, b.pos.x + m, b.pos.y + m};
+    }
+    grid_.build();
+    auto& pairs = skin_.skin_pairs;
+    pairs.clear();
+    grid_.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) { pairs.emplace_back(i, j); });
+    // Per ball, the same pairs (a counting sort into CSR).
+    auto& start = skin_.near_start;
+    start.assign(n + 1, 0);
+    for (auto [i, j] : pairs) {
+      ++start[i + 1];
+      ++start[j + 1];
+    }
+    for (std::uint32_t i = 0; i < n; ++i) start[i + 1] += start[i];
+    skin_.near.resize(start[n]);
+    skin_.near_fill.assign(start.begin(), start.end() - 1);
+    for (auto [i, j] : pairs) {
+      skin_.near[skin_.near_fill[i]++] = j;
+      skin_.near[skin_.near_fill[j]++] = i;
+    }
+    skin_.skin_valid = true;
+    ++skin_.skin_builds;
   }
 
   void clamp_all_into_walls() {
@@ -209,23 +319,23 @@ class Solver {
       return;
     }
     const Box now = path_box(i, 0.0);
-    if (!escaped_flag_[i] && !grid_.is_overflow(i)) {
-      const Box& home = grid_.box(i);
-      if (now.x0 < home.x0 || now.y0 < home.y0 || now.x1 > home.x1 || now.y1 > home.y1) {
-        escaped_flag_[i] = 1;
-        escaped_.push_back(i);
+    if (escaped_flag_[i]) {
+      escaped_box_[i] = path_box(i, 0.1);  // its path until its next event
+    } else if (!in_skin(i)) {
+      escape(i);
+    }
+    if (escaped_flag_[i]) {
+      grid_.query(now, [&](std::uint32_t j) {
+        if (!escaped_flag_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, false);
+      });
+    } else {
+      for (std::uint32_t k = skin_.near_start[i], end = skin_.near_start[i + 1]; k < end; ++k) {
+        const std::uint32_t j = skin_.near[k];
+        if (!escaped_flag_[j]) pair_event(i, j, false);
       }
     }
-    // An escaped ball's path for the rest of the tick, kept until its next event (which
-    // refreshes it again); the small margin covers rounding, so the test below skips
-    // only pairs that cannot meet. Without it every refresh predicted against every
-    // escaped ball, which grew with N x escapes (gas-100000: 3x the cost per body-step
-    // of gas-10000).
-    if (escaped_flag_[i]) escaped_box_[i] = path_box(i, 0.1);
-    grid_.query(now, [&](std::uint32_t j) {
-      if (escaped_flag_[j]) return;  // scanned below
-      if (grid_.is_overflow(j) || overlaps(now, grid_.box(j))) pair_event(i, j, false);
-    });
+    // An escaped ball's box holds its path until its next event (the small margin
+    // covers rounding), so the test skips only pairs that cannot meet.
     for (std::uint32_t j : escaped_)
       if (overlaps(now, escaped_box_[j])) pair_event(i, j, false);
   }
@@ -288,6 +398,7 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i)
       if (alive_[i]) advance(i, dt_);
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
+      skin_.skin_valid = false;       // the indices shift
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
         if (alive_[i]) balls_[out++] = balls_[i];
@@ -313,6 +424,7 @@ class Solver {
   Grid& grid_;
   EventHeap heap_;
   std::vector<Box>& escaped_box_;
+  StepBuffers& skin_;
 };
 
 }  // namespace

@@ -195,3 +195,52 @@ TEST_CASE("Step buffers: the world owns them; a copy starts empty and steps the 
     CHECK(state_hash(c.balls) == state_hash(b.balls));
   }
 }
+
+TEST_CASE("Continuous skin: a cached skin gives the same bits as one rebuilt every tick", "[models]") {
+  // A gas with a wide spread of speeds (some balls leave their skin every tick, the
+  // skin is rebuilt every few ticks), a rocket that crosses many skins, an open edge
+  // that removes balls (indices shift), and a ball resized between ticks.
+  for (Boundary edge : {Boundary::walls, Boundary::open}) {
+    INFO((edge == Boundary::walls ? "walls" : "open"));
+    World cached;
+    cached.arena = {120, 120, edge};
+    std::uint32_t id = 1;
+    for (int gy = 0; gy < 14; ++gy)
+      for (int gx = 0; gx < 14; ++gx, ++id) {
+        const double speed = 2.0 + 9.0 * (id % 7);
+        cached.balls.push_back(ball(id, 4.0 + 8.2 * gx, 4.0 + 8.2 * gy, speed * ((id % 3) - 1.0),
+                                    speed * ((id % 5) - 2.0) * 0.5, 1.0 + 0.25 * (id % 3), 1 + id % 4));
+      }
+    cached.balls.push_back(ball(id, 60, 2, 3000, 1700, 0.5, 1));
+    auto s = settings(Model::continuous);
+    s.broadphase = Broadphase::grid;
+    const auto k = make_step_constants(s, 0.01);
+    World fresh = cached;
+    StepReport rc, rf;
+    std::uint64_t collisions = 0;
+    for (int tick = 0; tick < 200; ++tick) {
+      if (tick == 80 && cached.balls.size() > 3) {
+        cached.balls[3].radius *= 1.5;
+        fresh.balls[3].radius *= 1.5;
+      }
+      step(cached, s, k, rc);
+      fresh.buffers = StepBuffers{};  // no cache: the skin is built from scratch
+      step(fresh, s, k, rf);
+      REQUIRE(rc.collisions == rf.collisions);
+      REQUIRE(state_hash(cached.balls) == state_hash(fresh.balls));
+      collisions += rc.collisions;
+    }
+    CHECK(collisions > 100);
+    // The cache was really used: far fewer builds than ticks.
+    CHECK(cached.buffers.skin_builds < 150);
+    CHECK(cached.buffers.skin_builds > 1);
+    // And the grid agrees with all pairs.
+    World pairs = fresh;
+    World grid = fresh;
+    auto sp = s;
+    sp.broadphase = Broadphase::pairs;
+    run(pairs, sp, 0.01, 50);
+    run(grid, s, 0.01, 50);
+    CHECK(state_hash(pairs.balls) == state_hash(grid.balls));
+  }
+}

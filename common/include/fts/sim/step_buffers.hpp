@@ -1,7 +1,9 @@
 // The memory one physics step works in, owned by the world that is stepped (as Box2D
 // v3's world owns its per-step stack): no thread_local scratch, no buffer borrowed from
-// elsewhere. Capacity is all that survives a step; every step rebuilds the contents.
-// So copying a world copies no buffers: the copy starts with empty ones.
+// elsewhere. Capacity survives a step, and one cache: the continuous model's skin grid
+// (below), which is checked against the balls at every step and rebuilt when it no longer
+// covers them, so results never depend on it. Copying a world copies no buffers: the
+// copy starts with empty ones (and builds its own cache), and steps to the same bits.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 
 #include "fts/sim/broadphase.hpp"
 #include "fts/sim/broadphase_discs.hpp"
+#include "fts/sim/vec2.hpp"
 
 namespace fts::sim {
 
@@ -41,6 +44,21 @@ struct StepBuffers {
   std::vector<std::uint32_t> escaped;
   std::vector<Box> escaped_box;  // an escaped ball's path box until its next event
   std::vector<detail::TimedEvent> heap;
+  // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
+  // the last build +- (radius + half_skin); `grid` indexes those boxes and `skin_pairs`
+  // lists the pairs whose boxes overlap (i < j; `near` the same per ball, CSR). A ball
+  // whose whole path stays within half_skin of its `skin_origin` can only meet its listed
+  // neighbours and the balls that left their own skin (step_continuous.cpp).
+  std::vector<Vec2> skin_origin;
+  std::vector<std::uint32_t> skin_id;   // the ball ids and radii it was built for: any
+  std::vector<double> skin_radius;      // change (a ball added, removed, resized) rebuilds
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> skin_pairs;
+  std::vector<std::uint32_t> near_start;  // ball i's neighbours: near[near_start[i] .. near_start[i + 1])
+  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t> near_fill;   // build scratch
+  double half_skin = 0.0;
+  bool skin_valid = false;
+  std::uint64_t skin_builds = 0;  // how often it was rebuilt (benchmarks and tests)
 };
 
 }  // namespace fts::sim
