@@ -158,7 +158,7 @@ class Solver {
   // Whether ball i's path for the rest of the tick stays within half_skin of where the
   // skin was built (a straight path: both ends suffice). 1 % short of the box, so that
   // rounding cannot put a ball that passes outside it.
-  bool in_skin(std::uint32_t i) const {
+  [[gnu::always_inline]] bool in_skin(std::uint32_t i) const {
     const double h = 0.99 * skin_.half_skin;
     const double h2 = h * h;
     const Vec2 o = skin_.skin_origin[i];
@@ -246,7 +246,7 @@ class Solver {
     }
   }
 
-  void pair_event(std::uint32_t i, std::uint32_t j, bool record_overlap) {
+  [[gnu::always_inline]] void pair_event(std::uint32_t i, std::uint32_t j, bool record_overlap) {
     if (i == j || !alive_[i] || !alive_[j]) return;
     const double t0 = std::max(t_[i], t_[j]);
     const Vec2 d = pos_at(j, t0) - pos_at(i, t0);
@@ -273,16 +273,21 @@ class Solver {
     heap_.push({t, lo, hi, stamp_[lo], stamp_[hi]});
   }
 
+  // Most balls cannot reach an edge this tick: an inlined test skips the divisions.
   void boundary_event(std::uint32_t i) {
     const Ball& b = balls_[i];
     const Arena& a = world_.arena;
-    // Most balls cannot reach an edge this tick: skip the divisions for them.
-    const double reach = std::fabs(b.vel.x) + std::fabs(b.vel.y);
-    const double travel = reach * (dt_ - t_[i]);
+    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - t_[i]);
     const double inset = a.boundary == Boundary::walls ? b.radius : 0.0;
     if (b.pos.x - travel > inset && b.pos.x + travel < a.width_u - inset && b.pos.y - travel > inset &&
         b.pos.y + travel < a.height_u - inset)
       return;
+    edge_event(i);
+  }
+
+  [[gnu::noinline]] void edge_event(std::uint32_t i) {
+    const Ball& b = balls_[i];
+    const Arena& a = world_.arena;
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t kind = kWallX;
     auto axis = [&](double p, double v, double lo, double hi, std::uint32_t k) {
