@@ -86,6 +86,13 @@ class Solver {
     alive_.assign(n, 1);
     escaped_flag_.resize(n);  // cleared by each initial_events
     escaped_box_.resize(n);  // written when a ball escapes, read only after
+    // Raw pointers into the buffers, which keep their size for the whole solve: through
+    // the vectors every access reloads the data pointer (a store might alias it).
+    B_ = balls_.data();
+    T_ = t_.data();
+    S_ = stamp_.data();
+    A_ = alive_.data();
+    E_ = escaped_flag_.data();
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
     if (initial_events() && !overlaps_.empty()) {
@@ -106,18 +113,18 @@ class Solver {
   }
 
  private:
-  Vec2 pos_at(std::uint32_t i, double t) const { return balls_[i].pos + balls_[i].vel * (t - t_[i]); }
+  Vec2 pos_at(std::uint32_t i, double t) const { return B_[i].pos + B_[i].vel * (t - T_[i]); }
 
   void advance(std::uint32_t i, double t) {
-    balls_[i].pos = pos_at(i, t);
-    t_[i] = t;
+    B_[i].pos = pos_at(i, t);
+    T_[i] = t;
   }
 
   Box path_box(std::uint32_t i, double margin_scale) const {
-    const Ball& b = balls_[i];
+    const Ball& b = B_[i];
     const Vec2 end = pos_at(i, dt_);
     // |vx| + |vy| bounds the speed from above without a square root.
-    const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - t_[i]);
+    const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - T_[i]);
     const double m = b.radius * (1.0 + 0.05 * margin_scale) + speed_margin;
     return {std::min(b.pos.x, end.x) - m, std::min(b.pos.y, end.y) - m,
             std::max(b.pos.x, end.x) + m, std::max(b.pos.y, end.y) + m};
@@ -142,12 +149,12 @@ class Solver {
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
     // against the balls in their skins (a grid query) and the later escaped ones.
     for (auto [i, j] : skin_.skin_pairs)
-      if (!escaped_flag_[i] && !escaped_flag_[j]) pair_event(i, j, true);
+      if (!E_[i] && !E_[j]) pair_event(i, j, true);
     for (std::size_t k = 0; k < escaped_.size(); ++k) {
       const std::uint32_t i = escaped_[k];
       const Box now = path_box(i, 0.0);
       grid_.query(now, [&](std::uint32_t j) {
-        if (!escaped_flag_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, true);
+        if (!E_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, true);
       });
       for (std::size_t m = k + 1; m < escaped_.size(); ++m)
         if (overlaps(escaped_box_[i], escaped_box_[escaped_[m]])) pair_event(i, escaped_[m], true);
@@ -162,11 +169,11 @@ class Solver {
     const double h = 0.99 * skin_.half_skin;
     const double h2 = h * h;
     const Vec2 o = skin_.skin_origin[i];
-    return length_sq(balls_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
+    return length_sq(B_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
   }
 
   void escape(std::uint32_t i) {
-    escaped_flag_[i] = 1;
+    E_[i] = 1;
     escaped_.push_back(i);
     escaped_box_[i] = path_box(i, 0.1);
   }
@@ -180,7 +187,7 @@ class Solver {
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n) return false;
     const std::size_t allowed = 32 + n / 256;
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (balls_[i].id.value != skin_.skin_id[i] || balls_[i].radius != skin_.skin_radius[i]) return false;
+      if (B_[i].id.value != skin_.skin_id[i] || B_[i].radius != skin_.skin_radius[i]) return false;
       if (!in_skin(i)) {
         if (escaped_.size() == allowed) return false;
         escape(i);
@@ -209,7 +216,7 @@ class Solver {
     std::vector<Box>& boxes = grid_.boxes();
     boxes.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) {
-      const Ball& b = balls_[i];
+      const Ball& b = B_[i];
       skin_.skin_origin[i] = b.pos;
       skin_.skin_id[i] = b.id.value;
       skin_.skin_radius[i] = b.radius;
@@ -247,11 +254,11 @@ class Solver {
   }
 
   [[gnu::always_inline]] void pair_event(std::uint32_t i, std::uint32_t j, bool record_overlap) {
-    if (i == j || !alive_[i] || !alive_[j]) return;
-    const double t0 = std::max(t_[i], t_[j]);
+    if (i == j || !A_[i] || !A_[j]) return;
+    const double t0 = std::max(T_[i], T_[j]);
     const Vec2 d = pos_at(j, t0) - pos_at(i, t0);
-    const Vec2 w = balls_[j].vel - balls_[i].vel;
-    const double reach = balls_[i].radius + balls_[j].radius;
+    const Vec2 w = B_[j].vel - B_[i].vel;
+    const double reach = B_[i].radius + B_[j].radius;
     const double c = length_sq(d) - reach * reach;
     if (c < 0.0 && record_overlap && -c > 1e-9 * reach * reach) {
       overlaps_.emplace_back(std::min(i, j), std::max(i, j));
@@ -270,14 +277,14 @@ class Solver {
     }
     if (!(t <= dt_)) return;
     const std::uint32_t lo = std::min(i, j), hi = std::max(i, j);
-    heap_.push({t, lo, hi, stamp_[lo], stamp_[hi]});
+    heap_.push({t, lo, hi, S_[lo], S_[hi]});
   }
 
   // Most balls cannot reach an edge this tick: an inlined test skips the divisions.
   void boundary_event(std::uint32_t i) {
-    const Ball& b = balls_[i];
+    const Ball& b = B_[i];
     const Arena& a = world_.arena;
-    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - t_[i]);
+    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - T_[i]);
     const double inset = a.boundary == Boundary::walls ? b.radius : 0.0;
     if (b.pos.x - travel > inset && b.pos.x + travel < a.width_u - inset && b.pos.y - travel > inset &&
         b.pos.y + travel < a.height_u - inset)
@@ -286,7 +293,7 @@ class Solver {
   }
 
   [[gnu::noinline]] void edge_event(std::uint32_t i) {
-    const Ball& b = balls_[i];
+    const Ball& b = B_[i];
     const Arena& a = world_.arena;
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t kind = kWallX;
@@ -306,14 +313,14 @@ class Solver {
       // Already off the platform (pushed out by a separation): it falls now, whatever
       // its velocity.
       if (!(b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u)) {
-        heap_.push({t_[i], i, kFall, stamp_[i], 0});
+        heap_.push({T_[i], i, kFall, S_[i], 0});
         return;
       }
       axis(b.pos.x, b.vel.x, 0.0, a.width_u, kFall);
       axis(b.pos.y, b.vel.y, 0.0, a.height_u, kFall);
     }
-    const double t = t_[i] + best;
-    if (t <= dt_) heap_.push({t, i, kind, stamp_[i], 0});
+    const double t = T_[i] + best;
+    if (t <= dt_) heap_.push({t, i, kind, S_[i], 0});
   }
 
   // Events of ball i against everything it may meet in the rest of the tick.
@@ -324,19 +331,19 @@ class Solver {
       return;
     }
     const Box now = path_box(i, 0.0);
-    if (escaped_flag_[i]) {
+    if (E_[i]) {
       escaped_box_[i] = path_box(i, 0.1);  // its path until its next event
     } else if (!in_skin(i)) {
       escape(i);
     }
-    if (escaped_flag_[i]) {
+    if (E_[i]) {
       grid_.query(now, [&](std::uint32_t j) {
-        if (!escaped_flag_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, false);
+        if (!E_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, false);
       });
     } else {
       for (std::uint32_t k = skin_.near_start[i], end = skin_.near_start[i + 1]; k < end; ++k) {
         const std::uint32_t j = skin_.near[k];
-        if (!escaped_flag_[j]) pair_event(i, j, false);
+        if (!E_[j]) pair_event(i, j, false);
       }
     }
     // An escaped ball's box holds its path until its next event (the small margin
@@ -351,8 +358,8 @@ class Solver {
     while (!heap_.empty()) {
       const Event e = heap_.top();
       heap_.pop();
-      if (!alive_[e.a] || stamp_[e.a] != e.stamp_a) continue;
-      if (e.b < kWallX && (!alive_[e.b] || stamp_[e.b] != e.stamp_b)) continue;
+      if (!A_[e.a] || S_[e.a] != e.stamp_a) continue;
+      if (e.b < kWallX && (!A_[e.b] || S_[e.b] != e.stamp_b)) continue;
       if (++handled > budget) {
         ++report_.event_cap_hits;
         return;
@@ -367,10 +374,10 @@ class Solver {
 
   void wall(const Event& e) {
     advance(e.a, e.t);
-    Ball& b = balls_[e.a];
-    ++stamp_[e.a];
+    Ball& b = B_[e.a];
+    ++S_[e.a];
     if (e.b == kFall) {
-      alive_[e.a] = 0;
+      A_[e.a] = 0;
       report_.fallen.push_back(b.id);
       return;
     }
@@ -387,13 +394,13 @@ class Solver {
   void collide(const Event& e) {
     advance(e.a, e.t);
     advance(e.b, e.t);
-    Ball& a = balls_[e.a];
-    Ball& b = balls_[e.b];
+    Ball& a = B_[e.a];
+    Ball& b = B_[e.b];
     if (!respond_elastic(a, b, contact_normal(a, b))) return;
     ++report_.collisions;
     report_.contacts.push_back({a.id, b.id});
-    ++stamp_[e.a];
-    ++stamp_[e.b];
+    ++S_[e.a];
+    ++S_[e.b];
     refresh(e.a);
     refresh(e.b);
   }
@@ -430,6 +437,11 @@ class Solver {
   EventHeap heap_;
   std::vector<Box>& escaped_box_;
   StepBuffers& skin_;
+  Ball* B_ = nullptr;
+  double* T_ = nullptr;
+  std::uint32_t* S_ = nullptr;
+  std::uint8_t* A_ = nullptr;
+  std::uint8_t* E_ = nullptr;
 };
 
 }  // namespace
