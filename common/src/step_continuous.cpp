@@ -186,9 +186,17 @@ class Solver {
     escaped_.clear();
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n) return false;
     const std::size_t allowed = 32 + n / 256;
+    const std::uint32_t* ids = skin_.skin_id.data();
+    const double* radii = skin_.skin_radius.data();
+    const Vec2* origins = skin_.skin_origin.data();
+    const double h = 0.99 * skin_.half_skin, h2 = h * h, dt = dt_;
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (B_[i].id.value != skin_.skin_id[i] || B_[i].radius != skin_.skin_radius[i]) return false;
-      if (!in_skin(i)) {
+      const Ball& b = B_[i];
+      if (b.id.value != ids[i] || b.radius != radii[i]) return false;
+      // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
+      const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
+      const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
+      if (!(dx * dx + dy * dy <= h2 && ex * ex + ey * ey <= h2)) {
         if (escaped_.size() == allowed) return false;
         escape(i);
       }
