@@ -234,7 +234,13 @@ class Solver {
     grid_.build();
     auto& pairs = skin_.skin_pairs;
     pairs.clear();
-    grid_.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) { pairs.emplace_back(i, j); });
+    // Two balls each within half_skin of their origins can touch only if their origins
+    // are within r_i + r_j + 2 half_skin: a disc test, tighter than the boxes' (about
+    // a fifth fewer pairs to predict every tick).
+    grid_.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) {
+      const double reach = balls_[i].radius + balls_[j].radius + 2.0 * h;
+      if (length_sq(balls_[j].pos - balls_[i].pos) <= reach * reach) pairs.emplace_back(i, j);
+    });
     // Per ball, the same pairs (a counting sort into CSR).
     auto& start = skin_.near_start;
     start.assign(n + 1, 0);
