@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
     jc.sync_ms = options.journal_sync_ms;
     jc.checkpoint_every_ticks = static_cast<std::int64_t>(options.journal_checkpoint_s * config.tick_rate_hz);
     host.journal_to(jc);
+    if (const auto err = host.journal()->stats().error; !err.empty()) return fail(err);
   }
   const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
   if (const auto* j = host.journal()) {

@@ -1,6 +1,7 @@
 #include "host/journal.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,8 +25,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kJournalFormat = 1;
 
-json session_json(const JournalSession& s) {
-  json j;
+using ojson = nlohmann::ordered_json;
+
+ojson session_json(const JournalSession& s) {
+  ojson j;
   j["player"] = s.player;
   j["name"] = s.name;
   j["verifier"] = s.verifier;
@@ -96,9 +99,17 @@ JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_co
   for (auto& s : sessions) sessions_[s.player] = std::move(s);
   std::error_code ec;
   std::filesystem::create_directories(cfg_.dir, ec);
+  // One writer per room directory: a second server on the same journal would interleave
+  // segments. The lock goes with the process (a crash releases it).
+  const auto lock_path = cfg_.dir / "lock";
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    stats_.error = "journal: " + cfg_.dir.string() + " is in use by another process (or cannot be locked)";
+    stop_ = true;
+    return;
+  }
   const auto existing = list_segments(cfg_.dir);
   segment_ = existing.empty() ? 0 : existing.back().first;
-  first_segment_ = segment_ + 1;
   checkpoint(state, event_seq);
   thread_ = std::thread([this] { run(); });
 }
@@ -109,13 +120,15 @@ JournalWriter::~JournalWriter() {
     stop_ = true;
   }
   wake_.notify_all();
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
   if (fd_ >= 0) ::close(fd_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 void JournalWriter::push(Record r) {
   {
     std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal (see the constructor)
     if (dropping_ || queue_.size() >= cfg_.max_queued) {
       dropping_ = true;
       ++stats_.dropped;
@@ -132,6 +145,7 @@ void JournalWriter::checkpoint(const sim::MatchState& state, std::uint32_t event
   for (const auto& [id, s] : sessions_) sessions.push_back(s);
   {
     std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal (see the constructor)
     // After a drop, the new segment waits until the writer has caught up by half.
     if (dropping_ && queue_.size() > cfg_.max_queued / 2) return;
     dropping_ = false;
@@ -171,6 +185,7 @@ void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_se
 
 void JournalWriter::flush() {
   std::unique_lock lock(mu_);
+  if (!thread_.joinable()) return;
   const std::uint64_t target = pushed_;
   flush_requested_ = true;
   wake_.notify_one();
@@ -240,7 +255,7 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                                      R"(","event_seq":)" + std::to_string(x.event_seq) + "}");
                    },
                    [&](Session& x) {
-                     json j;
+                     ojson j;
                      j["tick"] = x.tick;
                      j["session"] = session_json(x.s);
                      put(x.tick, j.dump());
@@ -253,19 +268,19 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                      write_out();
                      if (!open_segment()) return;
                      new_segment = true;
-                     json head;
+                     ojson head;
                      head["fts_journal"] = kJournalFormat;
                      head["version"] = cfg_.version;
                      head["room"] = cfg_.room;
                      head["segment"] = segment_;
                      head["seed"] = cfg_.seed;
-                     head["config"] = json::parse(header_config_);
-                     json cp;
+                     head["config"] = ojson::parse(header_config_);
+                     ojson cp;
                      cp["tick"] = x.state.tick;
                      cp["checkpoint"] = match_state_to_json(x.state);
                      cp["hash"] = hex16(sim::match_hash(x.state));
                      cp["event_seq"] = x.event_seq;
-                     json& sessions = cp["sessions"] = json::array();
+                     ojson& sessions = cp["sessions"] = ojson::array();
                      for (const auto& s : x.sessions) sessions.push_back(session_json(s));
                      put(x.state.tick, head.dump() + "\n" + cp.dump());
                    },

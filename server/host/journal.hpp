@@ -74,6 +74,8 @@ struct JournalStats {
 class JournalWriter {
  public:
   // Starts a new segment (after the newest one in cfg.dir) with a checkpoint of `state`.
+  // When the directory is locked by another writer, stats().error says so and nothing
+  // is ever written.
   JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_config, const sim::MatchState& state,
                 std::uint32_t event_seq, std::vector<JournalSession> sessions);
   ~JournalWriter();  // writes and syncs what is queued, then stops
@@ -140,8 +142,8 @@ class JournalWriter {
   JournalStats stats_;
   // Writer thread.
   int fd_ = -1;
+  int lock_fd_ = -1;  // flock on <dir>/lock for the writer's life
   std::uint64_t segment_ = 0;
-  std::uint64_t first_segment_ = 0;
   std::thread thread_;
 };
 
