@@ -35,6 +35,7 @@ class GameHost {
   // Journals this room from now on (a new segment starting with a checkpoint).
   void journal_to(host::JournalConfig config);
   const host::JournalWriter* journal() const { return journal_.get(); }
+  host::JournalWriter* journal() { return journal_.get(); }
   // The wire events of one step (for read_journal's event numbering).
   static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
 

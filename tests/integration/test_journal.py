@@ -98,7 +98,10 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check):
         first_ids = dict(re.findall(r"\bconnect player=(\d+) name=(jr\d+)", srv.text()))
         resumes = []
         for k in range(kills):
-            time.sleep(rng.uniform(2.0, 6.0))  # the random kill moment (the event under test)
+            # Something to lose: a bot has earned coins on this server, then a random moment.
+            wait_for(lambda: re.search(r"enemy_defeated enemy=\d+ player=[1-9]", srv.text()), 60,
+                     "a bot to defeat an enemy")
+            time.sleep(rng.uniform(0.5, 4.0))  # the random kill moment (the event under test)
             srv.proc.send_signal(signal.SIGKILL)
             srv.proc.wait()
             before = srv.text()
