@@ -126,7 +126,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
       {"--journal-dir", "FTS_JOURNAL_DIR", "", "keep each room's crash-safe journal under this directory"},
       {"--journal-sync-ms", "FTS_JOURNAL_SYNC_MS", "100", "make the journal durable (fdatasync) at most this often (ms)"},
-      {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "30", "write a journal checkpoint (new segment) this often (s)"},
+      {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "10", "write a journal checkpoint (new segment) this often (s)"},
   };
   return docs;
 }

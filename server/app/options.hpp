@@ -36,7 +36,7 @@ struct Options {
   // Crash-safe rooms (server/host/journal.hpp): "" : no journal.
   std::string journal_dir;
   std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
-  std::uint32_t journal_checkpoint_s = 30;   // a checkpoint (new segment) this often
+  std::uint32_t journal_checkpoint_s = 10;   // a checkpoint (new segment) this often
   bool resume = false;                       // rebuild the rooms of --journal-dir first  // ticks run this many times faster than real time (tests)
   bool help = false;
   bool version = false;

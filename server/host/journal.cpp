@@ -136,6 +136,9 @@ void JournalWriter::push(Record r) {
     }
     queue_.push_back(std::move(r));
     ++pushed_;
+    // Between syncs the writer sleeps on a timer; waking it for each record would cost
+    // the tick a futex call and the machine a context switch per record.
+    if (!writer_idle_) return;
   }
   wake_.notify_one();
 }
@@ -307,7 +310,9 @@ void JournalWriter::run() {
       // flush() does not wait).
       wake_.wait_until(lock, last_sync + std::chrono::milliseconds(cfg_.sync_ms),
                        [&] { return stop_ || flush_requested_; });
+      writer_idle_ = true;
       wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      writer_idle_ = false;
       batch.swap(queue_);
       stopping = stop_;
     }

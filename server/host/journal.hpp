@@ -52,7 +52,7 @@ struct JournalConfig {
   std::string version;
   std::uint64_t seed = 0;
   std::uint32_t sync_ms = 100;                  // fdatasync at most this often
-  std::int64_t checkpoint_every_ticks = 3000;   // a new segment (30 s at 100 Hz)
+  std::int64_t checkpoint_every_ticks = 1000;   // a new segment (10 s at 100 Hz)
   std::int64_t hash_every_ticks = 10;           // a hash line (also the resume's rollback points)
   std::size_t max_queued = 16384;               // records waiting for the writer; full: dropped
   std::size_t keep_segments = 2;                // >= 1
@@ -136,7 +136,8 @@ class JournalWriter {
   std::condition_variable done_;
   std::deque<Record> queue_;
   bool stop_ = false;
-  bool flush_requested_ = false;  // flush() waits: sync without waiting for sync_ms
+  bool flush_requested_ = false;
+  bool writer_idle_ = false;      // the writer waits for a first record (push wakes it)  // flush() waits: sync without waiting for sync_ms
   std::uint64_t pushed_ = 0;    // records queued so far
   std::uint64_t synced_ = 0;    // records durable so far
   JournalStats stats_;

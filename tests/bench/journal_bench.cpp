@@ -14,9 +14,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/game_host.hpp"
+#include "fts/sim/bot_player.hpp"
 #include "host/journal.hpp"
 
 using namespace fts;
@@ -27,20 +29,20 @@ namespace {
 
 constexpr std::uint32_t kPlayers = 4;
 
-// Players join, get ready, move in a fixed pattern, fire, buy now and then, and start
-// again after a game over.
+// Players join at tick 0, then play as the built-in bots (common/bot_player.hpp: they
+// push enemies off, shop and ready), and start again after a game over.
 sim::TickInputs inputs_at(const sim::MatchState& s) {
-  const std::int64_t tick = s.tick;
   sim::TickInputs in;
   for (std::uint32_t id = 1; id <= kPlayers; ++id) {
-    if (tick == 0) in.joins.push_back({id, "bench" + std::to_string(id)});
-    sim::PlayerTick t;
-    t.player = id;
-    t.input.move_x = static_cast<std::int8_t>((tick / 37 + id) % 3 - 1);
-    t.input.move_y = static_cast<std::int8_t>((tick / 53 + id * 7) % 3 - 1);
-    t.input.fire = (tick + id) % 41 == 0;
-    if (s.phase == sim::Phase::lobby || s.phase == sim::Phase::shop) t.commands.push_back({sim::CommandKind::ready, {}, 0});
-    if (s.phase == sim::Phase::shop && tick % 7 == 0) t.commands.push_back({sim::CommandKind::buy, "mass", 0});
+    if (s.tick == 0) {
+      in.joins.push_back({id, "bench" + std::to_string(id)});
+      sim::PlayerTick t;
+      t.player = id;
+      t.commands.push_back({sim::CommandKind::ready, {}, 0});
+      in.players.push_back(t);
+      continue;
+    }
+    sim::PlayerTick t = sim::bot_tick(s, id);
     if (s.phase == sim::Phase::game_over) t.commands.push_back({sim::CommandKind::play_again, {}, 0});
     in.players.push_back(t);
   }
@@ -68,6 +70,7 @@ host::JournalConfig journal_config(const fs::path& dir, std::int64_t checkpoint_
   c.version = "bench";
   c.seed = 7;
   c.checkpoint_every_ticks = checkpoint_ticks;
+  c.max_queued = 1 << 24;  // played faster than real time: the writer must not drop
   return c;
 }
 
@@ -104,8 +107,8 @@ double read_ms(const fs::path& dir, std::int64_t& replayed, bool& ok, std::uint6
 
 int main(int argc, char** argv) {
   double minutes = 10;
-  double checkpoint_s = 30;
-  std::int64_t tick_ticks = 30000;
+  double checkpoint_s = 10;
+  std::int64_t tick_ticks = 3000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--minutes") minutes = std::atof(argv[i + 1]);
@@ -124,11 +127,18 @@ int main(int argc, char** argv) {
   // 1. Tick time, same run: match A plain, match B journaled, stepped alternately.
   {
     sim::MatchState a = sim::make_match(cfg, 7), b = sim::make_match(cfg, 7);
-    host::JournalWriter w(journal_config(root / "tick", static_cast<std::int64_t>(checkpoint_s * cfg.tick_rate_hz)),
-                          cfg, b, 0, {});
+    auto jc = journal_config(root / "tick", static_cast<std::int64_t>(checkpoint_s * cfg.tick_rate_hz));
+    jc.checkpoint_every_ticks = 1000;  // a checkpoint every 10 s: its copy is on the tick path
+    jc.max_queued = 16384;             // the server's bound
+    host::JournalWriter w(jc, cfg, b, 0, {});
     std::vector<double> plain_us, journaled_us;
     std::uint32_t seq = 0;
+    // At the real tick rate, as a server runs (the writer syncs every 100 ms meanwhile).
+    auto next = Clock::now();
+    const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / cfg.tick_rate_hz));
     for (std::int64_t i = 0; i < tick_ticks; ++i) {
+      next += period;
+      std::this_thread::sleep_until(next);
       const auto in = inputs_at(a);
       auto t0 = Clock::now();
       sim::step(a, in);
@@ -144,9 +154,9 @@ int main(int argc, char** argv) {
     w.flush();
     const auto p = pct(plain_us), j = pct(journaled_us);
     std::printf("tick time over %lld ticks, %u players (us): without journal p50 %.1f p99 %.1f max %.0f | "
-                "with journal p50 %.1f p99 %.1f max %.0f | p99 ratio %.2f | dropped %llu\n",
+                "with journal p50 %.1f p99 %.1f max %.0f | p99 ratio %.2f | level %lld | dropped %llu\n",
                 static_cast<long long>(tick_ticks), kPlayers, p.p50, p.p99, p.max, j.p50, j.p99, j.max, j.p99 / p.p99,
-                static_cast<unsigned long long>(w.stats().dropped));
+                static_cast<long long>(b.level), static_cast<unsigned long long>(w.stats().dropped));
   }
 
   // 2 and 3. A long room, with and without checkpoints.
