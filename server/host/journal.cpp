@@ -152,7 +152,7 @@ void JournalWriter::checkpoint(const sim::MatchState& state, std::uint32_t event
     // After a drop, the new segment waits until the writer has caught up by half.
     if (dropping_ && queue_.size() > cfg_.max_queued / 2) return;
     dropping_ = false;
-    queue_.push_back(Checkpoint{state, event_seq, std::move(sessions)});
+    queue_.push_back(std::make_unique<Checkpoint>(Checkpoint{state, event_seq, std::move(sessions)}));
     ++pushed_;
   }
   next_checkpoint_tick_ = state.tick + cfg_.checkpoint_every_ticks;
@@ -267,7 +267,8 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                      put(x.tick, R"({"tick":)" + std::to_string(x.tick) + R"(,"released":)" +
                                      std::to_string(x.player) + "}");
                    },
-                   [&](Checkpoint& x) {
+                   [&](std::unique_ptr<Checkpoint>& cp_record) {
+                     const Checkpoint& x = *cp_record;
                      write_out();
                      if (!open_segment()) return;
                      new_segment = true;

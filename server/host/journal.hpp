@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -114,7 +115,8 @@ class JournalWriter {
     std::uint32_t event_seq;
     std::vector<JournalSession> sessions;
   };
-  using Record = std::variant<Inputs, Hash, Session, Released, Checkpoint>;
+  // A checkpoint is held by pointer: records stay small, so the queue's nodes are cheap.
+  using Record = std::variant<Inputs, Hash, Session, Released, std::unique_ptr<Checkpoint>>;
 
   void push(Record r);
   void checkpoint(const sim::MatchState& state, std::uint32_t event_seq);
