@@ -104,6 +104,20 @@ void GameHost::journal_session(const protocol::ServerEvent& e) {
   journal_->session(match_.tick, {e.player_id, e.name, endpoint_.session_verifier(e.player_id), quit});
 }
 
+// Every 10 s: a journal that dropped records or failed says so (once per change).
+void GameHost::watch_journal() {
+  const auto st = journal_->stats();
+  if (st.dropped != journal_dropped_logged_) {
+    log_record(spdlog::level::warn, "journal_dropped",
+               {{"records", st.dropped - journal_dropped_logged_}, {"total", st.dropped}, {"durable_tick", st.durable_tick}});
+    journal_dropped_logged_ = st.dropped;
+  }
+  if (!st.error.empty() && !journal_error_logged_) {
+    log_record(spdlog::level::err, "journal_failed", {{"error", st.error}, {"durable_tick", st.durable_tick}});
+    journal_error_logged_ = true;
+  }
+}
+
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   ++stats_.datagrams_in;
   stats_.bytes_in += bytes.size();
@@ -257,7 +271,10 @@ void GameHost::tick(std::uint64_t now_ms) {
     recent_.push_back(w);
   }
   while (recent_.size() > kRecentEvents) recent_.pop_front();
-  if (journal_) journal_->stepped(match_, event_seq_);
+  if (journal_) {
+    journal_->stepped(match_, event_seq_);
+    if (match_.tick % 1000 == 0) watch_journal();
+  }
 
   endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
   if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(now_ms);

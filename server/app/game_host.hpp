@@ -74,7 +74,10 @@ class GameHost {
   std::uint64_t stalled_logged_ms_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
   std::unique_ptr<host::RecordWriter> recorder_;
   void journal_session(const protocol::ServerEvent& e);
+  void watch_journal();
   std::unique_ptr<host::JournalWriter> journal_;
+  std::uint64_t journal_dropped_logged_ = 0;
+  bool journal_error_logged_ = false;
   std::uint32_t ticks_per_snapshot_ = 5;
   sim::Phase last_phase_ = sim::Phase::lobby;
   Stats stats_;
