@@ -1,6 +1,8 @@
 // fts-server: hosts one match over UDP. Settings come from flags and FTS_* variables
 // (see --help); every bad setting is reported before anything binds.
+#include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -8,6 +10,7 @@
 #include "app/log.hpp"
 #include "app/match_settings.hpp"
 #include "app/options.hpp"
+#include "host/journal.hpp"
 #include "host/record.hpp"
 #include "host/text.hpp"
 #include "net/udp_server.hpp"
@@ -23,6 +26,33 @@ std::optional<std::string> getenv_opt(const std::string& name) {
 int fail(const std::string& message) {
   std::cerr << "fts-server: " << message << "\n";
   return 2;
+}
+
+// Until the rooms land, the one match is the room "main": its journal is DIR/main.
+constexpr const char* kRoomCode = "main";
+
+// --resume: the room rebuilt from its journal, or nothing (reported) to start afresh.
+std::optional<fts::host::ResumedRoom> resume_room(const std::filesystem::path& dir) {
+  using namespace fts;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto r = host::read_journal(dir, &server::GameHost::wire_event_count);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (auto* err = std::get_if<std::string>(&r)) {
+    server::log_record(spdlog::level::err, "resume_skipped", {{"room", kRoomCode}, {"reason", *err}});
+    return std::nullopt;
+  }
+  auto& room = std::get<host::ResumedRoom>(r);
+  for (const auto& why : room.skipped)
+    server::log_record(spdlog::level::warn, "resume_segment_skipped", {{"room", kRoomCode}, {"reason", why}});
+  if (!room.damage.empty())
+    server::log_record(spdlog::level::warn, "resume_damage", {{"room", kRoomCode}, {"damage", room.damage}});
+  server::log_record(spdlog::level::info, "resumed",
+                     {{"room", kRoomCode}, {"tick", room.state.tick}, {"level", room.state.level},
+                      {"segment", room.segment}, {"checkpoint_tick", room.checkpoint_tick},
+                      {"ticks_replayed", room.ticks_replayed}, {"hashes_checked", room.hashes_checked},
+                      {"sessions", room.sessions.size()}, {"event_seq", room.event_seq},
+                      {"hash", host::hex16(sim::match_hash(room.state))}, {"ms", ms}});
+  return std::move(room);
 }
 
 }  // namespace
@@ -59,7 +89,7 @@ int main(int argc, char** argv) {
   // Defaults < --config file < FTS_* variables < flags.
   auto resolved = server::resolve_match_config(options);
   if (auto* err = std::get_if<std::string>(&resolved)) return fail(*err);
-  const auto& config = std::get<sim::MatchConfig>(resolved);
+  auto config = std::get<sim::MatchConfig>(resolved);
 
   std::ofstream record;
   if (!options.record_path.empty()) {
@@ -68,7 +98,34 @@ int main(int argc, char** argv) {
   }
 
   server::init_logging(options.log_level, options.log_format);
+  const std::filesystem::path room_dir = std::filesystem::path(options.journal_dir) / kRoomCode;
+  std::optional<host::ResumedRoom> resumed;
+  if (options.resume) resumed = resume_room(room_dir);
+  if (resumed) {  // the journal's match goes on: its seed and config win over the flags
+    config = resumed->config;
+    options.seed = resumed->seed;
+  }
   server::GameHost host(options, config, protocol::random_key());
+  if (resumed) host.resume_from(*resumed, 0);
   if (record.is_open()) host.record_to(record, FTS_VERSION);
-  return server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
+  if (!options.journal_dir.empty()) {
+    host::JournalConfig jc;
+    jc.dir = room_dir;
+    jc.room = kRoomCode;
+    jc.version = FTS_VERSION;
+    jc.seed = options.seed;
+    jc.sync_ms = options.journal_sync_ms;
+    jc.checkpoint_every_ticks = static_cast<std::int64_t>(options.journal_checkpoint_s * config.tick_rate_hz);
+    host.journal_to(jc);
+    if (const auto err = host.journal()->stats().error; !err.empty()) return fail(err);
+  }
+  const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
+  if (const auto* j = host.journal()) {
+    const auto st = j->stats();
+    server::log_record(st.error.empty() ? spdlog::level::info : spdlog::level::err, "journal",
+                       {{"room", kRoomCode}, {"records", st.records}, {"bytes", st.bytes}, {"syncs", st.syncs},
+                        {"segments", st.segments}, {"removed_segments", st.removed_segments},
+                        {"dropped", st.dropped}, {"durable_tick", st.durable_tick}, {"error", st.error}});
+  }
+  return rc;
 }

@@ -88,6 +88,14 @@ std::string derive_token(const ServerKey& key, std::uint64_t n) {
   return to_hex(h.data(), 16);
 }
 
+std::string token_verifier(std::string_view token) {
+  ensure_sodium();
+  std::array<std::uint8_t, 16> out{};
+  crypto_generichash(out.data(), out.size(), reinterpret_cast<const unsigned char*>(token.data()), token.size(),
+                     nullptr, 0);
+  return to_hex(out.data(), out.size());
+}
+
 std::uint32_t derive_session_id(const ServerKey& key, std::uint64_t n) {
   const auto h = keyed_hash(key, "session", n, {}, 16);
   std::uint32_t id = 0;

@@ -182,8 +182,11 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     if (s.connected && hello.token != s.token) drop_connection(s, "replaced by a new connection", now_ms);
   }
   if (!hello.token.empty()) {
-    auto it = std::find_if(sessions_.begin(), sessions_.end(),
-                           [&](const auto& kv) { return kv.second.token == hello.token; });
+    // A restored session knows only its token's verifier (compared once per hello).
+    const std::string verifier = token_verifier(hello.token);
+    auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == hello.token;
+    });
     if (it == sessions_.end()) {
       rejects_.add(Reject::bad_token);
       reply_unconnected(from, enc, 0,
@@ -192,6 +195,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     }
     Session& s = it->second;
+    s.token = hello.token;
     // A player who quit gave its seat up: it comes back only to a free one.
     if (s.quit && seats_taken() >= config_.max_players) return refuse_full(from, enc, request_bytes);
     // The token from another address takes the session over; the old address is told.
@@ -218,6 +222,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   s.player_id = player_id;
   s.name = hello.name;
   s.token = derive_token(config_.key, sessions_made_ + 1);
+  s.verifier = token_verifier(s.token);
   start_session(s, from, enc, hello.nonce, now_ms);
   events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, ""});
   send_welcome(s, from, enc, false, request_bytes);
@@ -376,6 +381,31 @@ void ServerEndpoint::kick(std::uint32_t player_id, const std::string& code, cons
   if (it->second.connected)
     send_packet(it->second, {Error{code.substr(0, 32), message.substr(0, kMaxTextBytes)}}, false, now_ms);
   release(player_id, code);
+}
+
+bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms) {
+  const bool hex32 = r.token_verifier.size() == 32 &&
+                     std::all_of(r.token_verifier.begin(), r.token_verifier.end(),
+                                 [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  if (r.player_id == 0 || sessions_.count(r.player_id) || !hex32 || !name_problem(r.name).empty() ||
+      sessions_.size() >= config_.max_sessions())
+    return false;
+  Session& s = sessions_[r.player_id];
+  s.player_id = r.player_id;
+  s.name = r.name;
+  s.verifier = r.token_verifier;
+  s.quit = r.quit;
+  s.played = true;  // it held a seat: the reconnect window applies
+  s.connected = false;
+  s.disconnected_ms = now_ms;
+  s.last_active_ms = now_ms;
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit});
+  return true;
+}
+
+std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {
+  auto it = sessions_.find(player_id);
+  return it == sessions_.end() ? std::string() : it->second.verifier;
 }
 
 void ServerEndpoint::shutdown(std::uint64_t now_ms) {

@@ -71,6 +71,53 @@ void GameHost::record_to(std::ostream& out, const std::string& version) {
   recorder_ = std::make_unique<host::RecordWriter>(out, options_.seed, match_.cfg, version);
 }
 
+std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutput& out) {
+  std::vector<protocol::Event> wire;
+  append_wire_events(tick + 1, out.events, wire);
+  return static_cast<std::uint32_t>(wire.size());
+}
+
+void GameHost::resume_from(const host::ResumedRoom& room, std::uint64_t now_ms) {
+  match_ = room.state;
+  event_seq_ = room.event_seq;
+  last_phase_ = match_.phase;
+  endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
+  for (const auto& s : room.sessions) {
+    // Each comes back as "disconnected" in the next tick's events: the match marks it away.
+    if (!endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms))
+      log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}});
+  }
+}
+
+void GameHost::journal_to(host::JournalConfig config) {
+  std::vector<host::JournalSession> sessions;
+  for (const auto& s : endpoint_.sessions())
+    sessions.push_back({s.player_id, s.name, endpoint_.session_verifier(s.player_id), !s.connected});
+  journal_ = std::make_unique<host::JournalWriter>(std::move(config), match_.cfg, match_, event_seq_, std::move(sessions));
+}
+
+void GameHost::journal_session(const protocol::ServerEvent& e) {
+  if (!journal_) return;
+  using K = protocol::ServerEvent::Kind;
+  if (e.kind == K::released) return journal_->released(match_.tick, e.player_id);
+  const bool quit = e.kind == K::disconnected && e.quit;
+  journal_->session(match_.tick, {e.player_id, e.name, endpoint_.session_verifier(e.player_id), quit});
+}
+
+// Every 10 s: a journal that dropped records or failed says so (once per change).
+void GameHost::watch_journal() {
+  const auto st = journal_->stats();
+  if (st.dropped != journal_dropped_logged_) {
+    log_record(spdlog::level::warn, "journal_dropped",
+               {{"records", st.dropped - journal_dropped_logged_}, {"total", st.dropped}, {"durable_tick", st.durable_tick}});
+    journal_dropped_logged_ = st.dropped;
+  }
+  if (!st.error.empty() && !journal_error_logged_) {
+    log_record(spdlog::level::err, "journal_failed", {{"error", st.error}, {"durable_tick", st.durable_tick}});
+    journal_error_logged_ = true;
+  }
+}
+
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   ++stats_.datagrams_in;
   stats_.bytes_in += bytes.size();
@@ -93,6 +140,7 @@ sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
   sim::TickInputs in;
   for (const auto& e : endpoint_.take_events()) {
     using K = protocol::ServerEvent::Kind;
+    journal_session(e);
     switch (e.kind) {
       case K::connected:
         in.joins.push_back({e.player_id, e.name});
@@ -183,17 +231,17 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
             [&](const sim::Purchased& e) {
               log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
                          {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
-                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}});
+                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}, {"tick", match_.tick}});
             },
             [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}}); },
             [&](const sim::EnemyDefeated& e) {
-              log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}});
+              log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}, {"tick", match_.tick}});
             },
             [&](const sim::PlayerFell& e) {
               log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
             },
             [&](const sim::InterestPaid& e) {
-              log_record(spdlog::level::debug, "interest", {{"player", e.player}, {"coins", e.coins}});
+              log_record(spdlog::level::debug, "interest", {{"player", e.player}, {"coins", e.coins}, {"tick", match_.tick}});
             },
             [](const auto&) {},  // the rest is not logged
         },
@@ -209,6 +257,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   const sim::TickInputs in = gather(now_ms);
   if (recorder_) recorder_->inputs(match_.tick, in);
+  if (journal_) journal_->inputs(match_.tick, in);
   const sim::TickOutput stepped = sim::step(match_, in);
   const std::vector<sim::Event>& events = stepped.events;
   if (recorder_) recorder_->stepped(match_);
@@ -222,6 +271,10 @@ void GameHost::tick(std::uint64_t now_ms) {
     recent_.push_back(w);
   }
   while (recent_.size() > kRecentEvents) recent_.pop_front();
+  if (journal_) {
+    journal_->stepped(match_, event_seq_);
+    if (match_.tick % 1000 == 0) watch_journal();
+  }
 
   endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
   if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(now_ms);
@@ -237,6 +290,8 @@ void GameHost::send_snapshots(std::uint64_t now_ms) {
 void GameHost::shutdown(std::uint64_t now_ms) {
   endpoint_.shutdown(now_ms);
   if (recorder_) recorder_->flush();
+  // The shutdown's releases are not journaled: a clean stop resumes like a crash.
+  if (journal_) journal_->flush();
 }
 
 }  // namespace fts::server

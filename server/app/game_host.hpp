@@ -16,6 +16,7 @@
 #include "app/stats.hpp"
 #include "fts/protocol/server.hpp"
 #include "fts/sim/match.hpp"
+#include "host/journal.hpp"
 #include "host/record.hpp"
 
 namespace fts::server {
@@ -26,6 +27,17 @@ class GameHost {
 
   // Writes the input log and hashes (--record) to `out` from now on.
   void record_to(std::ostream& out, const std::string& version);
+
+  // ---- crash-safe journal (issue 15): a room's hooks, kept together for the rooms merge.
+  // Resumes the room from its journal (read_journal): the match, the event numbering and
+  // the sessions (away until their clients come back with their tokens).
+  void resume_from(const host::ResumedRoom& room, std::uint64_t now_ms);
+  // Journals this room from now on (a new segment starting with a checkpoint).
+  void journal_to(host::JournalConfig config);
+  const host::JournalWriter* journal() const { return journal_.get(); }
+  host::JournalWriter* journal() { return journal_.get(); }
+  // The wire events of one step (for read_journal's event numbering).
+  static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
 
   void receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
   // One simulation tick: connection events, inputs and commands in, step, results and
@@ -61,6 +73,11 @@ class GameHost {
   std::uint32_t event_seq_ = 0;
   std::uint64_t stalled_logged_ms_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
   std::unique_ptr<host::RecordWriter> recorder_;
+  void journal_session(const protocol::ServerEvent& e);
+  void watch_journal();
+  std::unique_ptr<host::JournalWriter> journal_;
+  std::uint64_t journal_dropped_logged_ = 0;
+  bool journal_error_logged_ = false;
   std::uint32_t ticks_per_snapshot_ = 5;
   sim::Phase last_phase_ = sim::Phase::lobby;
   Stats stats_;

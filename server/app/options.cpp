@@ -77,6 +77,13 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.idle_timeout_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
   } else if (key == "stats-interval-ms") {
     if (!parse_uint<std::uint32_t>(value, o.stats_interval_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
+  } else if (key == "journal-dir") {
+    if (value.empty()) return bad("must be a directory");
+    o.journal_dir = value;
+  } else if (key == "journal-sync-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.journal_sync_ms, 1, 10000)) return bad("must be 1..10000 ms");
+  } else if (key == "journal-checkpoint-s") {
+    if (!parse_uint<std::uint32_t>(value, o.journal_checkpoint_s, 1, 3600)) return bad("must be 1..3600 s");
   } else if (key == "time-scale") {
     char* end = nullptr;
     o.time_scale = std::strtod(value.c_str(), &end);
@@ -117,6 +124,9 @@ const std::vector<OptionDoc>& option_docs() {
       {"--idle-timeout-ms", "FTS_IDLE_TIMEOUT_MS", "120000", "a player without input this long in a round is dropped (ms, 0: never)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
+      {"--journal-dir", "FTS_JOURNAL_DIR", "", "keep each room's crash-safe journal under this directory"},
+      {"--journal-sync-ms", "FTS_JOURNAL_SYNC_MS", "100", "make the journal durable (fdatasync) at most this often (ms)"},
+      {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "10", "write a journal checkpoint (new segment) this often (s)"},
   };
   return docs;
 }
@@ -128,6 +138,7 @@ std::string usage_text() {
     left.resize(30, ' ');
     s += left + d.meaning + " [" + d.env + (d.default_value.empty() ? "" : ", default " + d.default_value) + "]\n";
   }
+  s += "  --resume                    rebuild every room of --journal-dir, then open the port [FTS_RESUME=1]\n";
   s += "  --help                      this text\n  --version                   print the version\n";
   return s;
 }
@@ -143,6 +154,7 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   for (const auto& d : option_docs()) flags.push_back(app.add_option(d.flag));
   auto* help = app.add_flag("-h,--help");
   auto* version = app.add_flag("--version");
+  auto* resume = app.add_flag("--resume");
   try {
     app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
   } catch (const CLI::ArgumentMismatch&) {
@@ -160,6 +172,8 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   Options o;
   o.help = help->count() > 0;
   o.version = version->count() > 0;
+  if (auto v = env("FTS_RESUME")) o.resume = *v == "1";
+  if (resume->count() > 0) o.resume = true;
   for (std::size_t i = 0; i < flags.size(); ++i) {
     const std::string key = option_docs()[i].flag.substr(2);
     if (auto v = env(env_name(key))) {
@@ -171,6 +185,7 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
     const std::string& flag = option_docs()[i].flag;
     if (auto err = apply(o, flag.substr(2), flags[i]->results().back(), flag)) return *err;
   }
+  if (o.resume && o.journal_dir.empty()) return OptionError{"--resume: needs --journal-dir DIR (where the journals are)"};
   return o;
 }
 

@@ -32,7 +32,12 @@ struct Options {
   std::uint32_t max_per_address = 4;      // seated players from one host (address without port)
   std::uint32_t idle_timeout_ms = 120000;  // no real input this long while playing: dropped (0: never)
   std::uint32_t stats_interval_ms = 10000;
-  double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
+  double time_scale = 1.0;
+  // Crash-safe rooms (server/host/journal.hpp): "" : no journal.
+  std::string journal_dir;
+  std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
+  std::uint32_t journal_checkpoint_s = 10;   // a checkpoint (new segment) this often
+  bool resume = false;                       // rebuild the rooms of --journal-dir first  // ticks run this many times faster than real time (tests)
   bool help = false;
   bool version = false;
   // The settings given by a flag or an FTS_* variable, by flag name without dashes

@@ -30,6 +30,11 @@ CookieCheck check_cookie(const ServerKey& key, std::string_view address, std::st
 std::string derive_token(const ServerKey& key, std::uint64_t n);
 std::uint32_t derive_session_id(const ServerKey& key, std::uint64_t n);
 
+// What verifies a reconnect token without holding it (a journal stores this, never the
+// token): 32 hex digits of an unkeyed BLAKE2b of the token. Tokens are 128 random-looking
+// bits, so the verifier cannot be turned back into one.
+std::string token_verifier(std::string_view token);
+
 // Lower-case hex of bytes.
 std::string to_hex(const std::uint8_t* data, std::size_t size);
 

@@ -91,6 +91,16 @@ struct ServerEvent {
   bool quit = false;  // disconnected by the client's bye: its seat is free (PROTOCOL.md 5.4)
 };
 
+// A session carried over a server restart (from a room's journal): its player is away,
+// its seat held for the reconnect window, and a hello whose token matches the verifier
+// (token_verifier(token)) takes it back as a reconnect.
+struct RestoredSession {
+  std::uint32_t player_id = 0;
+  std::string name;
+  std::string token_verifier;
+  bool quit = false;  // had given its seat up (bye or idle) before the restart
+};
+
 struct Outgoing {
   Address to;
   std::vector<std::uint8_t> bytes;
@@ -134,6 +144,12 @@ class ServerEndpoint {
   // Ends a session now (error sent to the client, slot released).
   void kick(std::uint32_t player_id, const std::string& code, const std::string& message,
             std::uint64_t now_ms);
+  // Re-creates a session of a previous server process, disconnected as of now_ms (an
+  // event `disconnected` with reason "restart" tells the host). A player id in use or a
+  // bad verifier is refused (false), changing nothing.
+  bool restore_session(const RestoredSession& restored, std::uint64_t now_ms);
+  // The verifier of a session's token ("" for no such player).
+  std::string session_verifier(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
   // While paused (the host's lobby, shop and game-over phases) nobody idles: every
@@ -157,7 +173,8 @@ class ServerEndpoint {
   struct Session {
     std::uint32_t player_id = 0;
     std::string name;
-    std::string token;
+    std::string token;     // "" for a restored session until its client comes back
+    std::string verifier;  // token_verifier(token)
     std::uint32_t session_id = 0;
     Address address;
     Encoding encoding = Encoding::msgpack;

@@ -1,0 +1,496 @@
+#include "host/journal.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "host/json_fields.hpp"
+#include "host/match_config_json.hpp"
+#include "host/match_state_json.hpp"
+#include "host/text.hpp"
+
+namespace fts::host {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kJournalFormat = 1;
+
+using ojson = nlohmann::ordered_json;
+
+ojson session_json(const JournalSession& s) {
+  ojson j;
+  j["player"] = s.player;
+  j["name"] = s.name;
+  j["verifier"] = s.verifier;
+  j["quit"] = s.quit;
+  return j;
+}
+
+JournalSession session_from(const json& j) {
+  JournalSession s;
+  s.player = j.at("player").get<std::uint32_t>();
+  s.name = j.at("name").get<std::string>();
+  s.verifier = j.at("verifier").get<std::string>();
+  s.quit = j.at("quit").get<bool>();
+  return s;
+}
+
+// Writes all of `text`; false on an error (errno set).
+bool write_all(int fd, std::string_view text) {
+  while (!text.empty()) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    text.remove_prefix(static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
+// A new file's name is durable once its directory is synced.
+void sync_dir(const std::filesystem::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string segment_name(std::uint64_t n) {
+  std::string digits = std::to_string(n);
+  if (digits.size() < 6) digits.insert(0, 6 - digits.size(), '0');
+  return "journal-" + digits + ".jsonl";
+}
+
+std::vector<std::pair<std::uint64_t, std::filesystem::path>> list_segments(const std::filesystem::path& dir) {
+  std::vector<std::pair<std::uint64_t, std::filesystem::path>> out;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    constexpr std::string_view prefix = "journal-", suffix = ".jsonl";
+    if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix)) continue;
+    const auto n = to_integer(name.substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
+    if (n && *n > 0) out.emplace_back(static_cast<std::uint64_t>(*n), entry.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// ----- writer ------------------------------------------------------------------------
+
+JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_config, const sim::MatchState& state,
+                             std::uint32_t event_seq, std::vector<JournalSession> sessions)
+    : cfg_(std::move(cfg)), header_config_(match_config_to_json(match_config).dump()) {
+  cfg_.keep_segments = std::max<std::size_t>(1, cfg_.keep_segments);
+  cfg_.hash_every_ticks = std::max<std::int64_t>(1, cfg_.hash_every_ticks);
+  cfg_.checkpoint_every_ticks = std::max<std::int64_t>(1, cfg_.checkpoint_every_ticks);
+  for (auto& s : sessions) sessions_[s.player] = std::move(s);
+  std::error_code ec;
+  std::filesystem::create_directories(cfg_.dir, ec);
+  // One writer per room directory: a second server on the same journal would interleave
+  // segments. The lock goes with the process (a crash releases it).
+  const auto lock_path = cfg_.dir / "lock";
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    stats_.error = "journal: " + cfg_.dir.string() + " is in use by another process (or cannot be locked)";
+    stop_ = true;
+    return;
+  }
+  const auto existing = list_segments(cfg_.dir);
+  segment_ = existing.empty() ? 0 : existing.back().first;
+  checkpoint(state, event_seq);
+  thread_ = std::thread([this] { run(); });
+}
+
+JournalWriter::~JournalWriter() {
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  if (fd_ >= 0) ::close(fd_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+void JournalWriter::push(Record r) {
+  {
+    std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal (see the constructor)
+    if (dropping_ || queue_.size() >= cfg_.max_queued) {
+      dropping_ = true;
+      ++stats_.dropped;
+      return;
+    }
+    queue_.push_back(std::move(r));
+    ++pushed_;
+    // Between syncs the writer sleeps on a timer; waking it for each record would cost
+    // the tick a futex call and the machine a context switch per record.
+    if (!writer_idle_) return;
+  }
+  wake_.notify_one();
+}
+
+void JournalWriter::checkpoint(const sim::MatchState& state, std::uint32_t event_seq) {
+  std::vector<JournalSession> sessions;
+  for (const auto& [id, s] : sessions_) sessions.push_back(s);
+  {
+    std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal (see the constructor)
+    // After a drop, the new segment waits until the writer has caught up by half.
+    if (dropping_ && queue_.size() > cfg_.max_queued / 2) return;
+    dropping_ = false;
+    queue_.push_back(std::make_unique<Checkpoint>(Checkpoint{state, event_seq, std::move(sessions)}));
+    ++pushed_;
+  }
+  next_checkpoint_tick_ = state.tick + cfg_.checkpoint_every_ticks;
+  wake_.notify_one();
+}
+
+void JournalWriter::inputs(std::int64_t tick, const sim::TickInputs& in) {
+  if (in.joins.empty() && in.leaves.empty() && in.away.empty() && in.back.empty() && in.quit.empty() &&
+      in.players.empty())
+    return;
+  push(Inputs{tick, in});
+}
+
+void JournalWriter::session(std::int64_t tick, const JournalSession& s) {
+  sessions_[s.player] = s;
+  push(Session{tick, s});
+}
+
+void JournalWriter::released(std::int64_t tick, std::uint32_t player) {
+  sessions_.erase(player);
+  push(Released{tick, player});
+}
+
+void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_seq) {
+  bool dropping = false;
+  {
+    std::lock_guard lock(mu_);
+    dropping = dropping_;
+  }
+  if (state.tick >= next_checkpoint_tick_ || dropping) return checkpoint(state, event_seq);
+  if (state.tick % cfg_.hash_every_ticks == 0) push(Hash{state.tick, sim::match_hash(state), event_seq});
+}
+
+void JournalWriter::flush() {
+  std::unique_lock lock(mu_);
+  if (!thread_.joinable()) return;
+  const std::uint64_t target = pushed_;
+  flush_requested_ = true;
+  wake_.notify_one();
+  done_.wait(lock, [&] { return synced_ >= target || !stats_.error.empty(); });
+}
+
+JournalStats JournalWriter::stats() const {
+  std::lock_guard lock(mu_);
+  return stats_;
+}
+
+void JournalWriter::fail(const std::string& what) {
+  std::lock_guard lock(mu_);
+  if (stats_.error.empty()) stats_.error = what + ": " + std::strerror(errno);
+}
+
+bool JournalWriter::open_segment() {
+  if (fd_ >= 0) {
+    ::fdatasync(fd_);  // the old segment's tail is durable before the new one counts
+    ::close(fd_);
+  }
+  ++segment_;
+  const auto path = cfg_.dir / segment_name(segment_);
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0600);
+  if (fd_ < 0) {
+    fail("journal: cannot create " + path.string());
+    return false;
+  }
+  std::lock_guard lock(mu_);
+  ++stats_.segments;
+  return true;
+}
+
+void JournalWriter::remove_old_segments() {
+  const auto segments = list_segments(cfg_.dir);
+  if (segments.size() <= cfg_.keep_segments) return;
+  std::uint64_t removed = 0;
+  for (std::size_t i = 0; i + cfg_.keep_segments < segments.size(); ++i) {
+    std::error_code ec;
+    if (std::filesystem::remove(segments[i].second, ec)) ++removed;
+  }
+  sync_dir(cfg_.dir);
+  std::lock_guard lock(mu_);
+  stats_.removed_segments += removed;
+}
+
+std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
+  std::string text;
+  std::int64_t newest = -1;
+  bool new_segment = false;
+  auto put = [&](std::int64_t tick, std::string line) {
+    text += line;
+    text += '\n';
+    newest = std::max(newest, tick);
+  };
+  auto write_out = [&] {
+    if (fd_ >= 0 && !text.empty() && !write_all(fd_, text)) fail("journal: write");
+    std::lock_guard lock(mu_);
+    stats_.bytes += text.size();
+    text.clear();
+  };
+  for (Record& r : batch) {
+    std::visit(sim::Overloaded{
+                   [&](Inputs& x) { put(x.tick, to_input_line(x.tick, x.in)); },
+                   [&](Hash& x) {
+                     put(x.tick, R"({"tick":)" + std::to_string(x.tick) + R"(,"hash":")" + hex16(x.hash) +
+                                     R"(","event_seq":)" + std::to_string(x.event_seq) + "}");
+                   },
+                   [&](Session& x) {
+                     ojson j;
+                     j["tick"] = x.tick;
+                     j["session"] = session_json(x.s);
+                     put(x.tick, j.dump());
+                   },
+                   [&](Released& x) {
+                     put(x.tick, R"({"tick":)" + std::to_string(x.tick) + R"(,"released":)" +
+                                     std::to_string(x.player) + "}");
+                   },
+                   [&](std::unique_ptr<Checkpoint>& cp_record) {
+                     const Checkpoint& x = *cp_record;
+                     write_out();
+                     if (!open_segment()) return;
+                     new_segment = true;
+                     ojson head;
+                     head["fts_journal"] = kJournalFormat;
+                     head["version"] = cfg_.version;
+                     head["room"] = cfg_.room;
+                     head["segment"] = segment_;
+                     head["seed"] = cfg_.seed;
+                     head["config"] = ojson::parse(header_config_);
+                     ojson cp;
+                     cp["tick"] = x.state.tick;
+                     cp["checkpoint"] = match_state_to_json(x.state);
+                     cp["hash"] = hex16(sim::match_hash(x.state));
+                     cp["event_seq"] = x.event_seq;
+                     ojson& sessions = cp["sessions"] = ojson::array();
+                     for (const auto& s : x.sessions) sessions.push_back(session_json(s));
+                     put(x.state.tick, head.dump() + "\n" + cp.dump());
+                   },
+               },
+               r);
+  }
+  write_out();
+  if (fd_ >= 0 && ::fdatasync(fd_) != 0) fail("journal: fdatasync");
+  if (new_segment) {
+    sync_dir(cfg_.dir);
+    remove_old_segments();
+  }
+  return newest;
+}
+
+void JournalWriter::run() {
+  auto last_sync = Clock::now() - std::chrono::milliseconds(cfg_.sync_ms);
+  for (;;) {
+    std::deque<Record> batch;
+    bool stopping = false;
+    {
+      std::unique_lock lock(mu_);
+      // At most one sync per sync_ms: records gather in the queue meanwhile (a stop or a
+      // flush() does not wait).
+      wake_.wait_until(lock, last_sync + std::chrono::milliseconds(cfg_.sync_ms),
+                       [&] { return stop_ || flush_requested_; });
+      writer_idle_ = true;
+      wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      writer_idle_ = false;
+      batch.swap(queue_);
+      stopping = stop_;
+    }
+    const std::size_t n = batch.size();
+    std::int64_t newest = -1;
+    if (n > 0) {
+      newest = write_batch(batch);
+      last_sync = Clock::now();
+    }
+    {
+      std::lock_guard lock(mu_);
+      if (n > 0) {
+        ++stats_.syncs;
+        stats_.records += n;
+        synced_ += n;
+        if (synced_ >= pushed_) flush_requested_ = false;
+        if (newest >= 0 && stats_.error.empty()) stats_.durable_tick = std::max(stats_.durable_tick, newest);
+      }
+      if (stopping && queue_.empty()) {
+        done_.notify_all();
+        return;
+      }
+    }
+    done_.notify_all();
+  }
+}
+
+// ----- reader ------------------------------------------------------------------------
+
+namespace {
+
+struct Replay {
+  sim::MatchState state;
+  std::uint32_t event_seq = 0;
+  std::map<std::uint32_t, JournalSession> sessions;
+};
+
+struct SegmentStart {
+  ResumedRoom room;
+  Replay now;
+};
+
+// Header and checkpoint of one segment, or why they are not usable.
+std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
+  std::string line, why;
+  if (!std::getline(in, line) || in.eof()) return std::string("line 1: no complete header");
+  auto head = parse_json(line, why);
+  if (!head) return "line 1: invalid JSON: " + why;
+  SegmentStart s;
+  try {
+    if (head->at("fts_journal").get<int>() != kJournalFormat) return std::string("line 1: unknown journal format");
+    s.room.room = head->at("room").get<std::string>();
+    s.room.version = head->at("version").get<std::string>();
+    s.room.seed = head->at("seed").get<std::uint64_t>();
+    s.room.segment = head->at("segment").get<std::uint64_t>();
+    auto cfg = parse_match_config(head->at("config").dump());
+    if (auto* err = std::get_if<std::string>(&cfg)) return "line 1: config: " + *err;
+    s.room.config = std::get<sim::MatchConfig>(cfg);
+  } catch (const std::exception& e) {
+    return std::string("line 1: ") + e.what();
+  }
+  if (!std::getline(in, line) || in.eof()) return std::string("line 2: no complete checkpoint");
+  auto cp = parse_json(line, why);
+  if (!cp) return "line 2: invalid JSON: " + why;
+  try {
+    auto state = match_state_from_json(cp->at("checkpoint"), sim::make_match(s.room.config, s.room.seed));
+    if (auto* err = std::get_if<std::string>(&state)) return "line 2: " + *err;
+    s.now.state = std::move(std::get<sim::MatchState>(state));
+    const std::string want = cp->at("hash").get<std::string>();
+    const std::string got = hex16(sim::match_hash(s.now.state));
+    if (want != got) return "line 2: checkpoint hash " + want + ", read back " + got;
+    if (cp->at("tick").get<std::int64_t>() != s.now.state.tick) return std::string("line 2: tick differs from the state's");
+    s.now.event_seq = cp->at("event_seq").get<std::uint32_t>();
+    for (const json& js : cp->at("sessions")) {
+      JournalSession js2 = session_from(js);
+      s.now.sessions[js2.player] = std::move(js2);
+    }
+  } catch (const std::exception& e) {
+    return std::string("line 2: ") + e.what();
+  }
+  s.room.checkpoint_tick = s.now.state.tick;
+  return s;
+}
+
+// A replay's gaps are the journal's empty ticks; more than this is a damaged file.
+constexpr std::int64_t kMaxGapTicks = 10'000'000;
+
+// Replays the lines after the checkpoint into `r`; returns "" or the damage.
+std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r, const WireEventCount& wire_events) {
+  Replay good = now;  // the state at the last hash that matched (or the checkpoint)
+  auto step_one = [&](const sim::TickInputs& inputs) {
+    const std::int64_t tick = now.state.tick;
+    const sim::TickOutput out = sim::step(now.state, inputs);
+    if (wire_events) now.event_seq += wire_events(tick, out);
+    ++r.ticks_replayed;
+  };
+  auto reach = [&](std::int64_t tick, const std::string& where) -> std::string {
+    if (tick < now.state.tick) return where + "tick " + std::to_string(tick) + " goes back in time";
+    if (tick - now.state.tick > kMaxGapTicks) return where + "tick " + std::to_string(tick) + " is too far ahead";
+    while (now.state.tick < tick) step_one({});
+    return {};
+  };
+  std::string line, why;
+  for (std::int64_t no = 3; std::getline(in, line); ++no) {
+    const std::string where = "line " + std::to_string(no) + ": ";
+    if (in.eof()) return where + "torn (no end of line); resumed before it";
+    auto parsed = parse_json(line, why);
+    if (!parsed) return where + "invalid JSON (" + why + "); resumed before it";
+    const json& j = *parsed;
+    try {
+      if (j.contains("hash")) {
+        const std::int64_t tick = j.at("tick").get<std::int64_t>();
+        if (auto err = reach(tick, where); !err.empty()) return err;
+        const std::string got = hex16(sim::match_hash(now.state));
+        const std::string want = j.at("hash").get<std::string>();
+        const auto seq = j.at("event_seq").get<std::uint32_t>();
+        if (got != want || (wire_events && seq != now.event_seq)) {
+          const std::string damage = where + "hash mismatch at tick " + std::to_string(tick) + " (journal " + want +
+                                     ", replay " + got + "); resumed at tick " + std::to_string(good.state.tick);
+          now = std::move(good);
+          return damage;
+        }
+        now.event_seq = seq;
+        ++r.hashes_checked;
+        good = now;
+      } else if (j.contains("session")) {
+        JournalSession s = session_from(j.at("session"));
+        now.sessions[s.player] = std::move(s);
+      } else if (j.contains("released")) {
+        now.sessions.erase(j.at("released").get<std::uint32_t>());
+      } else {
+        auto il = input_line_from_json(j);
+        if (auto* err = std::get_if<std::string>(&il)) return where + *err + "; resumed before it";
+        const auto& input = std::get<InputLine>(il);
+        if (auto err = reach(input.tick, where); !err.empty()) return err;
+        step_one(input.inputs);
+      }
+    } catch (const std::exception& e) {
+      return where + e.what() + "; resumed before it";
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir,
+                                                    const WireEventCount& wire_events) {
+  const auto segments = list_segments(room_dir);
+  if (segments.empty()) return "no journal segments in " + room_dir.string();
+  std::vector<std::string> skipped;
+  for (auto it = segments.rbegin(); it != segments.rend(); ++it) {
+    std::ifstream in(it->second);
+    const std::string name = it->second.filename().string();
+    if (!in) {
+      skipped.push_back(name + ": cannot read");
+      continue;
+    }
+    auto start = open_segment_file(in);
+    if (auto* err = std::get_if<std::string>(&start)) {
+      skipped.push_back(name + ": " + *err);
+      continue;
+    }
+    auto& s = std::get<SegmentStart>(start);
+    ResumedRoom r = std::move(s.room);
+    Replay now = std::move(s.now);
+    r.damage = replay_lines(in, now, r, wire_events);
+    if (!r.damage.empty()) r.damage = name + ": " + r.damage;
+    r.state = std::move(now.state);
+    r.event_seq = now.event_seq;
+    for (auto& [id, js] : now.sessions) r.sessions.push_back(std::move(js));
+    r.skipped = std::move(skipped);
+    return r;
+  }
+  std::string why = "no usable journal segment in " + room_dir.string() + ":";
+  for (const auto& s : skipped) why += " [" + s + "]";
+  return why;
+}
+
+}  // namespace fts::host

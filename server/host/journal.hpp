@@ -1,0 +1,187 @@
+// A room's journal: what a restarted server needs to resume the room where it stood.
+// It is the match record (server/host/record.hpp: seed, config, input lines, hashes)
+// cut into segments that each begin with a checkpoint (the whole MatchState and its hash),
+// plus what the inputs do not carry: the sessions (player id, name, a verifier of the
+// reconnect token, never the token) and the event sequence number.
+//
+// One directory per room, one file per segment, one JSON object per line:
+//   journal-000001.jsonl
+//   {"fts_journal":1,"version":"0.1.0","room":"main","segment":1,"seed":7,"config":{...}}
+//   {"tick":0,"checkpoint":{...MatchState...},"hash":"9c3e...","event_seq":0,"sessions":[...]}
+//   {"tick":0,"session":{"player":1,"name":"ann","verifier":"5d1f...","quit":false}}
+//   {"tick":0,"joins":[{"player":1,"name":"ann"}]}          <- an input line (record.hpp)
+//   {"tick":10,"hash":"41aa...","event_seq":3}              <- after 10 ticks were stepped
+//   {"tick":57,"released":1}
+//
+// Durability: the tick thread only copies records into a bounded queue; a writer thread
+// appends them and calls fdatasync at most every sync_ms, so at most about sync_ms of play
+// is lost in a crash. When the queue is full the journal drops records (counted) until it
+// has room for a new checkpoint, which starts a new segment: a crash in between resumes
+// the room to the last record before the drop. A new segment is a checkpoint; once it is
+// durable, segments older than the newest keep_segments are removed, so the disk holds
+// about keep_segments x checkpoint_every_ticks of play per room, whatever the match length.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "fts/sim/match.hpp"
+
+namespace fts::host {
+
+struct JournalSession {
+  std::uint32_t player = 0;
+  std::string name;
+  std::string verifier;  // protocol::token_verifier(token)
+  bool quit = false;     // gave its seat up (bye or idle), progress kept
+  bool operator==(const JournalSession&) const = default;
+};
+
+struct JournalConfig {
+  std::filesystem::path dir;  // this room's directory (made if missing)
+  std::string room = "main";
+  std::string version;
+  std::uint64_t seed = 0;
+  std::uint32_t sync_ms = 100;                  // fdatasync at most this often
+  std::int64_t checkpoint_every_ticks = 1000;   // a new segment (10 s at 100 Hz)
+  std::int64_t hash_every_ticks = 10;           // a hash line (also the resume's rollback points)
+  std::size_t max_queued = 16384;               // records waiting for the writer; full: dropped
+  std::size_t keep_segments = 2;                // >= 1
+};
+
+struct JournalStats {
+  std::uint64_t records = 0;           // written
+  std::uint64_t bytes = 0;             // written
+  std::uint64_t syncs = 0;
+  std::uint64_t segments = 0;          // started by this writer
+  std::uint64_t removed_segments = 0;
+  std::uint64_t dropped = 0;           // records dropped for a full queue
+  std::int64_t durable_tick = -1;      // the newest tick whose records are durable
+  std::string error;                   // the first I/O error; the journal stopped there
+};
+
+// The writer. The tick thread calls inputs() before step() and stepped() after it;
+// neither blocks on the disk.
+class JournalWriter {
+ public:
+  // Starts a new segment (after the newest one in cfg.dir) with a checkpoint of `state`.
+  // When the directory is locked by another writer, stats().error says so and nothing
+  // is ever written.
+  JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_config, const sim::MatchState& state,
+                std::uint32_t event_seq, std::vector<JournalSession> sessions);
+  ~JournalWriter();  // writes and syncs what is queued, then stops
+  JournalWriter(const JournalWriter&) = delete;
+  JournalWriter& operator=(const JournalWriter&) = delete;
+
+  void inputs(std::int64_t tick, const sim::TickInputs& in);
+  void session(std::int64_t tick, const JournalSession& s);
+  void released(std::int64_t tick, std::uint32_t player);
+  // After a step: the hash line when due, the checkpoint (a new segment) when due.
+  void stepped(const sim::MatchState& state, std::uint32_t event_seq);
+  // Blocks until everything queued so far is written and synced (tests, shutdown).
+  void flush();
+  JournalStats stats() const;
+
+ private:
+  struct Inputs {
+    std::int64_t tick;
+    sim::TickInputs in;
+  };
+  struct Hash {
+    std::int64_t tick;
+    std::uint64_t hash;
+    std::uint32_t event_seq;
+  };
+  struct Session {
+    std::int64_t tick;
+    JournalSession s;
+  };
+  struct Released {
+    std::int64_t tick;
+    std::uint32_t player;
+  };
+  struct Checkpoint {
+    sim::MatchState state;
+    std::uint32_t event_seq;
+    std::vector<JournalSession> sessions;
+  };
+  // A checkpoint is held by pointer: records stay small, so the queue's nodes are cheap.
+  using Record = std::variant<Inputs, Hash, Session, Released, std::unique_ptr<Checkpoint>>;
+
+  void push(Record r);
+  void checkpoint(const sim::MatchState& state, std::uint32_t event_seq);
+  void run();
+  std::int64_t write_batch(std::deque<Record>& batch);  // the newest tick written
+  bool open_segment();
+  void remove_old_segments();
+  void fail(const std::string& what);
+
+  JournalConfig cfg_;
+  std::string header_config_;  // the MatchConfig as JSON, written in every header
+  // Tick thread.
+  std::map<std::uint32_t, JournalSession> sessions_;
+  std::int64_t next_checkpoint_tick_ = 0;
+  bool dropping_ = false;  // the queue overflowed: nothing is queued until the next checkpoint
+  // Shared.
+  mutable std::mutex mu_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  std::deque<Record> queue_;
+  bool stop_ = false;
+  bool flush_requested_ = false;
+  bool writer_idle_ = false;      // the writer waits for a first record (push wakes it)  // flush() waits: sync without waiting for sync_ms
+  std::uint64_t pushed_ = 0;    // records queued so far
+  std::uint64_t synced_ = 0;    // records durable so far
+  JournalStats stats_;
+  // Writer thread.
+  int fd_ = -1;
+  int lock_fd_ = -1;  // flock on <dir>/lock for the writer's life
+  std::uint64_t segment_ = 0;
+  std::thread thread_;
+};
+
+// ----- reading -----------------------------------------------------------------------
+
+// The file name of segment n ("journal-000001.jsonl") and the segments in a room's
+// directory, oldest first.
+std::string segment_name(std::uint64_t n);
+std::vector<std::pair<std::uint64_t, std::filesystem::path>> list_segments(const std::filesystem::path& dir);
+
+struct ResumedRoom {
+  std::string room;
+  std::string version;
+  std::uint64_t seed = 0;
+  sim::MatchConfig config;
+  sim::MatchState state;  // at the last good tick
+  std::uint32_t event_seq = 0;
+  std::vector<JournalSession> sessions;  // by player id
+  std::uint64_t segment = 0;             // the segment resumed from
+  std::int64_t checkpoint_tick = 0;
+  std::int64_t ticks_replayed = 0;
+  std::int64_t hashes_checked = 0;
+  std::string damage;                 // "": the segment read to its end; else where and why it stopped
+  std::vector<std::string> skipped;   // newer segments that could not be used, and why
+};
+
+// The wire events a step made (the server numbers them): called for every replayed tick
+// so that the resumed event_seq equals the crashed server's.
+using WireEventCount = std::function<std::uint32_t(std::int64_t tick, const sim::TickOutput&)>;
+
+// Rebuilds a room from the newest segment whose header and checkpoint are good: the
+// checkpoint (its hash checked), then every later line, each hash line checked. A torn or
+// unreadable line ends the replay there; a hash that differs rolls back to the last hash
+// that matched. Either way `damage` says so. Only when no segment is usable: a message.
+std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir,
+                                                    const WireEventCount& wire_events = {});
+
+}  // namespace fts::host
