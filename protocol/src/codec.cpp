@@ -146,6 +146,19 @@ Decoded<Message> read_message(wire::MsgpackReader& r) {
   const std::size_t n = r.map(kMaxPayloadValues);
   std::string_view type;
   bool typed = false;
+  // Our writers put "t" first: then the type is known without a pass over the rest.
+  if (n > 0 && r.str(kMaxTextBytes) == "t" && !r.failed()) {
+    type = r.str(kMaxTextBytes);
+    if (!r.failed() && (type == "snap" || type == "input")) {
+      r.seek(start);
+      Decoded<Message> out = type == "snap" ? read_table<SnapshotMsg>(r, wire::kSnapFields)
+                                            : read_table<Input>(r, wire::kInputFields);
+      return out;
+    }
+  }
+  if (r.failed()) return Reject::garbage;
+  r.seek(start);
+  r.map(kMaxPayloadValues);
   for (std::size_t i = 0; i < n && !r.failed(); ++i) {
     const std::string_view key = r.str(kMaxTextBytes);
     if (key == "t" && !r.failed()) {

@@ -122,7 +122,7 @@ enum class Presence : std::uint8_t {
 
 template <class M, class T, class K>
 struct Field {
-  const char* key;
+  std::string_view key;
   T M::*member;
   K kind;
   Presence presence = Presence::required;
@@ -220,7 +220,7 @@ void read_row(MsgpackReader& r, M& m, const std::tuple<F...>& table, std::size_t
 // One row per field: the entry's optional member and the state's member it mirrors.
 template <class S, class E, class T, class K>
 struct Synced {
-  const char* key;
+  std::string_view key;
   std::optional<T> E::*entry;
   T S::*state;
   K kind;

@@ -384,6 +384,7 @@ class MsgpackReader {
     if (at_end()) return fail(Reject::truncated);
     if (checked && ++values > kMaxPayloadValues) return fail(Reject::out_of_range);
     const std::uint8_t t = b_[pos_];
+    if (t < 0x80 || t >= 0xe0) return step(1);  // fixint, the most common value
     if (is_array_tag(t) || is_map_tag(t)) {
       const bool is_map = is_map_tag(t);
       if (checked && ++depth > kMaxNestingDepth) return fail(Reject::out_of_range);
