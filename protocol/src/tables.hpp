@@ -79,6 +79,7 @@ struct FullBalls {
   }
   void get(MsgpackReader& r, std::vector<BallEntry>& balls) const {
     const std::size_t n = r.array(kMaxBallsPerMessage);
+    balls.reserve(balls.size() + n);
     for (std::size_t i = 0; i < n && !r.failed(); ++i) {
       BallEntry b;
       BallKindOfEntry{}.get(r, b);
@@ -101,50 +102,48 @@ struct Motions {
       if (!b.full) return true;
     return false;
   }
-  static std::array<std::uint64_t, kStreams> codes(const BallEntry& b, std::uint32_t prev) {
+  using Codes = std::array<std::uint64_t, kStreams>;
+  static Codes codes(const BallEntry& b, std::uint32_t prev) {
     return {zigzag(static_cast<std::int64_t>(b.id) - prev - 1), zigzag(b.x), zigzag(b.y), zigzag(b.vx), zigzag(b.vy)};
   }
-  // Orders that make the streams shortest, and the total bits.
-  static std::size_t plan(const std::vector<BallEntry>& balls, std::array<unsigned, kStreams>& order, std::size_t& count) {
+  // The codes of every motion entry (computed once), the order of each stream that makes
+  // it shortest, and the total bits.
+  struct Plan {
+    std::array<Codes, kMaxBallsPerMessage> fixed;  // no allocation for a valid message
+    std::vector<Codes> more;                       // an oversize one (never sent) still encodes
+    std::size_t count = 0;
+    std::array<unsigned, kStreams> order{};
+    std::size_t bits = 0;
+    Codes& at(std::size_t i) { return i < fixed.size() ? fixed[i] : more[i - fixed.size()]; }
+  };
+  static void plan(const std::vector<BallEntry>& balls, Plan& p) {
     std::array<std::uint64_t, kStreams> sum{};
-    count = 0;
     std::uint32_t prev = 0;
     for (const auto& b : balls) {
       if (b.full) continue;
-      const auto c = codes(b, prev);
+      if (p.count >= p.fixed.size()) p.more.emplace_back();
+      Codes& c = p.at(p.count++);
+      c = codes(b, prev);
       for (std::size_t i = 0; i < kStreams; ++i) sum[i] += std::min<std::uint64_t>(c[i], std::uint64_t{1} << 50);
       prev = b.id;
-      ++count;
     }
-    std::size_t total = golomb_bits(count, kCountOrder) + kStreams * 6;
+    p.bits = golomb_bits(p.count, kCountOrder) + kStreams * 6;
     for (std::size_t i = 0; i < kStreams; ++i) {
-      const unsigned guess = count ? static_cast<unsigned>(std::bit_width(sum[i] / count)) : 0;
+      const unsigned guess = p.count ? static_cast<unsigned>(std::bit_width(sum[i] / p.count)) : 0;
       std::size_t best = SIZE_MAX;
       for (unsigned k = guess > 2 ? guess - 2 : 0; k <= std::min(guess + 1, kMaxOrder); ++k) {
         std::size_t bits = 0;
-        std::uint32_t p = 0;
-        for (const auto& b : balls) {
-          if (b.full) continue;
-          bits += golomb_bits(codes(b, p)[i], k);
-          p = b.id;
-        }
-        if (bits < best) best = bits, order[i] = k;
+        for (std::size_t e = 0; e < p.count; ++e) bits += golomb_bits(p.at(e)[i], k);
+        if (bits < best) best = bits, p.order[i] = k;
       }
-      total += best;
+      p.bits += best;
     }
-    return total;
   }
-  static void pack(BitWriter& bw, const std::vector<BallEntry>& balls, const std::array<unsigned, kStreams>& order,
-                   std::size_t count) {
-    bw.golomb(count, kCountOrder);
-    for (unsigned k : order) bw.bits(k, 6);
-    std::uint32_t prev = 0;
-    for (const auto& b : balls) {
-      if (b.full) continue;
-      const auto c = codes(b, prev);
-      for (std::size_t i = 0; i < kStreams; ++i) bw.golomb(c[i], order[i]);
-      prev = b.id;
-    }
+  static void pack(BitWriter& bw, Plan& p) {
+    bw.golomb(p.count, kCountOrder);
+    for (unsigned k : p.order) bw.bits(k, 6);
+    for (std::size_t e = 0; e < p.count; ++e)
+      for (std::size_t i = 0; i < kStreams; ++i) bw.golomb(p.at(e)[i], p.order[i]);
   }
 
   template <class W>
@@ -156,13 +155,13 @@ struct Motions {
       for (const auto& b : balls)
         if (!b.full) BallKindOfEntry{}.put(w, b);
     } else {
-      std::array<unsigned, kStreams> order{};
-      std::size_t count = 0;
-      const std::size_t bytes = (plan(balls, order, count) + 7) / 8;
+      Plan p;
+      plan(balls, p);
+      const std::size_t bytes = (p.bits + 7) / 8;
       if constexpr (std::is_same_v<W, MsgpackWriter>) {
         w.bin_header(bytes);
         BitWriter bw(w.buffer());
-        pack(bw, balls, order, count);
+        pack(bw, p);
       } else {
         w.bytes += bytes + (bytes <= UINT8_MAX ? 2 : bytes <= UINT16_MAX ? 3 : 5);
       }

@@ -30,7 +30,7 @@ struct ClientConfig {
   std::uint64_t connect_timeout_ms = 10000;
   std::uint64_t heartbeat_ms = 100;  // send at least this often once connected
   std::uint64_t resend_ms = 100;     // resend an unacknowledged command after this
-  std::size_t input_redundancy = 4;  // input frames per datagram (the welcome may raise it)
+  std::size_t input_redundancy = 3;  // input frames per datagram (the welcome may raise it)
   // The lean uplink (hold_input): a changed input goes out at most this often, an
   // unchanged one at least this often (the server's input expiry is 150 ms).
   std::uint64_t input_min_interval_ms = 20;

@@ -45,7 +45,7 @@ struct Welcome {
   std::uint32_t max_players = 8;
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
-  std::uint32_t input_redundancy = 4;  // send at least this many recent input frames
+  std::uint32_t input_redundancy = 3;  // send at least this many recent input frames
   std::uint32_t server_tick = 0;
   bool reconnected = false;
   sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
