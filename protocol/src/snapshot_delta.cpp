@@ -214,7 +214,7 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
       auto it = balls.find(e.id);
       if (it == balls.end()) return Reject::unknown_base;
       BallState& b = it->second;
-      const std::uint32_t ticks = first.tick - *first.base;
+      const std::uint32_t ticks = first.base ? first.tick - *first.base : 0;  // decoded: always a delta
       b.x = unq(qv_clamped(b.x) + predicted_step(qv_clamped(b.vx), ticks, first.tick_rate_hz) + e.x);
       b.y = unq(qv_clamped(b.y) + predicted_step(qv_clamped(b.vy), ticks, first.tick_rate_hz) + e.y);
       b.vx = unq(qv_clamped(b.vx) + e.vx);
