@@ -245,7 +245,7 @@ void Bot::update(std::uint64_t now_ms) {
       f.fire = true;
       script_.fire_once = false;
     }
-    conn_.endpoint().send_input(f, now_ms);
+    conn_.endpoint().hold_input(f, now_ms);  // sent on change, with a keep-alive (lean uplink)
   }
 }
 

@@ -82,6 +82,20 @@ std::uint32_t ClientEndpoint::send_input(InputFrame frame, std::uint64_t now_ms)
   return frame.seq;
 }
 
+std::uint32_t ClientEndpoint::hold_input(InputFrame frame, std::uint64_t now_ms) {
+  if (state_ != ClientState::connected) return 0;
+  fire_pending_ = fire_pending_ || frame.fire;
+  frame.fire = fire_pending_;
+  const bool changed = !last_held_ || frame.move_x != last_held_->move_x || frame.move_y != last_held_->move_y ||
+                       frame.fire;
+  const std::uint64_t since = now_ms - last_held_ms_;
+  if (last_held_ && since < (changed ? config_.input_min_interval_ms : config_.input_keepalive_ms)) return 0;
+  fire_pending_ = false;
+  last_held_ = frame;
+  last_held_ms_ = now_ms;
+  return send_input(frame, now_ms);
+}
+
 std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
   const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}});

@@ -1,6 +1,7 @@
 #include "fts/protocol/codec.hpp"
 
 #include "mapping.hpp"
+#include "tables.hpp"
 
 namespace fts::protocol {
 
@@ -82,7 +83,9 @@ class BoundedSax {
   bool over_bound_ = false;
 };
 
-Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload) {
+// The old path, kept for the benchmarks (old against new in one run): every message
+// through an nlohmann tree.
+Decoded<std::vector<Message>> decode_payload_tree(Encoding encoding, std::span<const std::uint8_t> payload) {
   if (payload.empty()) return Reject::truncated;
   json j;
   BoundedSax sax(j, payload.size());
@@ -108,25 +111,177 @@ Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const 
   return messages;
 }
 
+// Messages that have a field table are written by it; the others (converted last) still
+// go through their nlohmann mapping, spliced in as already-encoded bytes.
+void put_legacy(wire::MsgpackWriter& w, const Message& m) { w.raw(json::to_msgpack(message_to_json(m))); }
+void put_legacy(wire::MsgpackCounter& w, const Message& m) { w.raw(json::to_msgpack(message_to_json(m))); }
+void put_legacy(wire::JsonWriter& w, const Message& m) { w.raw(dump(message_to_json(m))); }
+
+template <class W>
+void write_message(W& w, const Message& m) {
+  if (const auto* snap = std::get_if<SnapshotMsg>(&m)) return wire::write_map(w, "snap", *snap, wire::kSnapFields);
+  if (const auto* input = std::get_if<Input>(&m)) return wire::write_map(w, "input", *input, wire::kInputFields);
+  put_legacy(w, m);
+}
+
+template <class W>
+void write_messages(W& w, const std::vector<Message>& messages) {
+  w.array(messages.size());
+  for (const auto& m : messages) write_message(w, m);
+}
+
+template <class M, class Table>
+Decoded<Message> read_table(wire::MsgpackReader& r, const Table& table) {
+  M m;
+  wire::read_map(r, m, table);
+  wire::check(r, m);
+  if (r.failed()) return r.reason();
+  return Message{std::move(m)};
+}
+
+// One message (a map) at the reader's position: its "t" first, then the table of that
+// type reads it from the start.
+Decoded<Message> read_message(wire::MsgpackReader& r) {
+  const std::size_t start = r.pos();
+  const std::size_t n = r.map(kMaxPayloadValues);
+  std::string_view type;
+  bool typed = false;
+  // Our writers put "t" first: then the type is known without a pass over the rest.
+  if (n > 0 && r.str(kMaxTextBytes) == "t" && !r.failed()) {
+    type = r.str(kMaxTextBytes);
+    if (!r.failed() && (type == "snap" || type == "input")) {
+      r.seek(start);
+      Decoded<Message> out = type == "snap" ? read_table<SnapshotMsg>(r, wire::kSnapFields)
+                                            : read_table<Input>(r, wire::kInputFields);
+      return out;
+    }
+  }
+  if (r.failed()) return Reject::garbage;
+  r.seek(start);
+  r.map(kMaxPayloadValues);
+  for (std::size_t i = 0; i < n && !r.failed(); ++i) {
+    const std::string_view key = r.str(kMaxTextBytes);
+    if (key == "t" && !r.failed()) {
+      type = r.str(kMaxTextBytes);
+      typed = !r.failed();
+    } else {
+      r.skip();
+    }
+  }
+  if (r.failed() || !typed) return Reject::garbage;
+  const std::size_t end = r.pos();
+  r.seek(start);
+  Decoded<Message> out = Reject::unknown_type;
+  if (type == "snap") out = read_table<SnapshotMsg>(r, wire::kSnapFields);
+  else if (type == "input") out = read_table<Input>(r, wire::kInputFields);
+  else {
+    try {
+      out = message_from_json(json::from_msgpack(r.bytes(start, end)));
+    } catch (const detail::DecodeFail& e) {
+      out = e.reason;
+    } catch (const json::exception&) {
+      out = Reject::garbage;
+    }
+  }
+  r.seek(end);
+  return out;
+}
+
+Decoded<std::vector<Message>> decode_msgpack(std::span<const std::uint8_t> payload) {
+  if (payload.empty()) return Reject::truncated;
+  wire::MsgpackReader r(payload);
+  r.validate_value();
+  if (r.failed()) return r.reason() == Reject::out_of_range ? Reject::out_of_range : Reject::garbage;
+  const std::size_t n = r.array(kMaxPayloadValues);
+  if (r.failed() || n == 0) return Reject::garbage;
+  if (n > kMaxMessagesPerDatagram) return Reject::out_of_range;
+  std::vector<Message> messages;
+  messages.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    auto m = read_message(r);
+    if (!m) return m.error();
+    messages.push_back(std::move(*m));
+  }
+  if (!r.at_end()) return Reject::garbage;  // bytes after the list
+  return messages;
+}
+
+// JSON text: nlohmann's bounded parser, then the same table readers over its MessagePack.
+Decoded<std::vector<Message>> decode_json(std::span<const std::uint8_t> payload) {
+  if (payload.empty()) return Reject::truncated;
+  json j;
+  BoundedSax sax(j, payload.size());
+  bool parsed = false;
+  try {
+    parsed = json::sax_parse(payload.begin(), payload.end(), &sax, json::input_format_t::json, /*strict=*/true);
+  } catch (const json::exception&) {
+    parsed = false;
+  }
+  if (sax.over_bound()) return Reject::out_of_range;
+  if (!parsed || !j.is_array() || j.empty()) return Reject::garbage;
+  if (j.size() > kMaxMessagesPerDatagram) return Reject::out_of_range;
+  return decode_msgpack(json::to_msgpack(j));
+}
+
 }  // namespace
 
+Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload) {
+  return encoding == Encoding::json ? decode_json(payload) : decode_msgpack(payload);
+}
+
+std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages) {
+  std::vector<std::uint8_t> out;
+  append_payload(encoding, messages, out);
+  return out;
+}
+
+void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out) {
+  if (encoding == Encoding::msgpack) {
+    wire::MsgpackWriter w(out);
+    write_messages(w, messages);
+    return;
+  }
+  std::string text;
+  wire::JsonWriter w(text);
+  write_messages(w, messages);
+  out.insert(out.end(), text.begin(), text.end());
+}
+
+std::size_t payload_bytes(Encoding encoding, const std::vector<Message>& messages) {
+  if (encoding == Encoding::msgpack) {
+    wire::MsgpackCounter c;
+    write_messages(c, messages);
+    return c.bytes;
+  }
+  return to_json_text(messages).size();
+}
+
+std::string to_json_text(const std::vector<Message>& messages) {
+  std::string text;
+  wire::JsonWriter w(text);
+  write_messages(w, messages);
+  return text;
+}
+
+std::vector<std::uint8_t> encode_datagram(const Header& header, const std::vector<Message>& messages) {
+  std::vector<std::uint8_t> out;
+  out.reserve(256);
+  write_header(header, out);
+  append_payload(header.encoding, messages, out);
+  return out;
+}
+
+namespace legacy {
 std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages) {
   const json j = messages_to_json(messages);
   if (encoding == Encoding::msgpack) return json::to_msgpack(j);
   const std::string text = dump(j);
   return {text.begin(), text.end()};
 }
-
-std::string to_json_text(const std::vector<Message>& messages) { return dump(messages_to_json(messages)); }
-
-std::vector<std::uint8_t> encode_datagram(const Header& header, const std::vector<Message>& messages) {
-  std::vector<std::uint8_t> out;
-  out.reserve(256);
-  write_header(header, out);
-  const auto payload = encode_payload(header.encoding, messages);
-  out.insert(out.end(), payload.begin(), payload.end());
-  return out;
+Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload) {
+  return decode_payload_tree(encoding, payload);
 }
+}  // namespace legacy
 
 Decoded<Datagram> decode_datagram(std::span<const std::uint8_t> bytes, std::uint16_t expected_version) {
   auto header = read_header(bytes, expected_version);

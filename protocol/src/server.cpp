@@ -144,7 +144,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.acks = AckWindow{};
   s.results = ReliableSender<Result>{};
   s.commands = ReliableReceiver<Command>{};
-  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks);
+  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz);
   by_session_id_[s.session_id] = s.player_id;
   by_address_[from] = s.player_id;
 }
@@ -323,10 +323,14 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
+  send_snapshot(player_id, std::make_shared<const Snapshot>(quantize(snapshot)), now_ms);
+}
+
+void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return;
   Session& s = it->second;
-  for (auto& part : s.snapshots.encode(snapshot, s.encoding)) send_packet(s, {std::move(part)}, false, now_ms);
+  for (auto& part : s.snapshots.encode(quantized, s.encoding)) send_packet(s, {std::move(part)}, false, now_ms);
 }
 
 void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,

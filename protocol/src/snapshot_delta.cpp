@@ -4,56 +4,21 @@
 #include <cmath>
 
 #include "fts/protocol/codec.hpp"
+#include "tables.hpp"
 
 namespace fts::protocol {
 namespace {
 
 std::int64_t qv(double v) { return static_cast<std::int64_t>(std::llround(v * kQuantaPerUnit)); }
+// qv of a value a client rebuilt from hostile deltas: kept far from int64's limits.
+std::int64_t qv_clamped(double v) {
+  constexpr double kLim = static_cast<double>(std::int64_t{1} << 50);
+  return static_cast<std::int64_t>(std::llround(std::clamp(v * kQuantaPerUnit, -kLim, kLim)));
+}
 double unq(std::int64_t v) { return static_cast<double>(v) / kQuantaPerUnit; }
 
 BallEntry full_entry(const BallState& b) {
   return {b.id, true, qv(b.x), qv(b.y), qv(b.vx), qv(b.vy), qv(b.radius), qv(b.mass), b.kind, b.owner};
-}
-
-PlayerEntry player_entry(const PlayerState& p, const PlayerState* base) {
-  PlayerEntry e;
-  e.id = p.id;
-  auto set = [base](auto& out, const auto& now, auto member) {
-    if (!base || !(base->*member == now)) out = now;
-  };
-  set(e.name, p.name, &PlayerState::name);
-  set(e.coins, p.coins, &PlayerState::coins);
-  set(e.lives, p.lives, &PlayerState::lives);
-  set(e.mass, p.mass, &PlayerState::mass);
-  set(e.vmax_u_per_s, p.vmax_u_per_s, &PlayerState::vmax_u_per_s);
-  set(e.accel_u_per_s2, p.accel_u_per_s2, &PlayerState::accel_u_per_s2);
-  set(e.multiplier, p.multiplier, &PlayerState::multiplier);
-  set(e.bank, p.bank, &PlayerState::bank);
-  set(e.weapon, p.weapon, &PlayerState::weapon);
-  set(e.prices, p.prices, &PlayerState::prices);
-  set(e.ready, p.ready, &PlayerState::ready);
-  set(e.alive, p.alive, &PlayerState::alive);
-  return e;
-}
-
-bool has_changes(const PlayerEntry& e) {
-  return e.name || e.coins || e.lives || e.mass || e.vmax_u_per_s || e.accel_u_per_s2 ||
-         e.multiplier || e.bank || e.weapon || e.prices || e.ready || e.alive;
-}
-
-void apply_player(PlayerState& p, const PlayerEntry& e) {
-  if (e.name) p.name = *e.name;
-  if (e.coins) p.coins = *e.coins;
-  if (e.lives) p.lives = *e.lives;
-  if (e.mass) p.mass = *e.mass;
-  if (e.vmax_u_per_s) p.vmax_u_per_s = *e.vmax_u_per_s;
-  if (e.accel_u_per_s2) p.accel_u_per_s2 = *e.accel_u_per_s2;
-  if (e.multiplier) p.multiplier = *e.multiplier;
-  if (e.bank) p.bank = *e.bank;
-  if (e.weapon) p.weapon = *e.weapon;
-  if (e.prices) p.prices = *e.prices;
-  if (e.ready) p.ready = *e.ready;
-  if (e.alive) p.alive = *e.alive;
 }
 
 template <class T>
@@ -63,24 +28,37 @@ const T* find_by_id(const std::vector<T>& items, std::uint32_t id) {
   return it != items.end() && it->id == id ? &*it : nullptr;
 }
 
-std::size_t payload_size(const SnapshotMsg& m, Encoding encoding) {
-  return encode_payload(encoding, {m}).size();
+// Bytes one list item adds to an encoded part, at most (its encoding and a separator).
+template <class K, class T>
+std::size_t item_bytes(Encoding encoding, const K& kind, const T& item, std::string& scratch) {
+  if (encoding == Encoding::msgpack) {
+    wire::MsgpackCounter c;
+    kind.put(c, item);
+    return c.bytes;
+  }
+  scratch.clear();
+  wire::JsonWriter w(scratch);
+  kind.put(w, item);
+  return scratch.size() + 1;  // the comma
 }
 
-}  // namespace
-
-SnapshotMsg make_snapshot_msg(const Snapshot& current_in, const Snapshot* base_in) {
-  const Snapshot current = quantize(current_in);
-  std::optional<Snapshot> base_q;
-  if (base_in) base_q = quantize(*base_in);
-  const Snapshot* base = base_q ? &*base_q : nullptr;
-
+// The delta of two quantized snapshots (the per-client part of the work).
+SnapshotMsg make_delta(const Snapshot& current, const Snapshot* base, std::uint32_t hz) {
   SnapshotMsg m;
   m.tick = current.tick;
   m.phase = current.phase;
   m.level = current.level;
   m.deadline_tick = current.deadline_tick;
-  if (base) m.base = base->tick;
+  if (base) {
+    m.base = base->tick;
+    // No prediction over more than 4 s: an entry stays within the wire's range.
+    if (hz > kMaxTickRateHz || current.tick - base->tick > 4 * static_cast<std::uint64_t>(hz)) hz = 0;
+    m.tick_rate_hz = hz;
+  }
+  const std::uint32_t ticks = base ? current.tick - base->tick : 0;
+  // Full entries first, then motion entries (the order the wire keeps them in).
+  std::vector<BallEntry> motions;
+  m.balls.reserve(current.balls.size());
   for (const auto& b : current.balls) {
     const BallState* old = base ? find_by_id(base->balls, b.id) : nullptr;
     BallEntry e = full_entry(b);
@@ -89,16 +67,23 @@ SnapshotMsg make_snapshot_msg(const Snapshot& current_in, const Snapshot* base_i
       if (o.radius == e.radius && o.mass == e.mass && o.kind == e.kind && o.owner == e.owner) {
         if (o == e) continue;  // unchanged: the client keeps the base's copy
         e.full = false;
-        e.x -= o.x, e.y -= o.y, e.vx -= o.vx, e.vy -= o.vy;
+        e.x -= o.x + predicted_step(o.vx, ticks, m.tick_rate_hz);
+        e.y -= o.y + predicted_step(o.vy, ticks, m.tick_rate_hz);
+        e.vx -= o.vx, e.vy -= o.vy;
         e.radius = e.mass = 0, e.kind = BallKind::enemy, e.owner = 0;
+        motions.push_back(e);
+        continue;
       }
     }
     m.balls.push_back(e);
   }
+  m.balls.insert(m.balls.end(), motions.begin(), motions.end());
   for (const auto& p : current.players) {
     const PlayerState* old = base ? find_by_id(base->players, p.id) : nullptr;
-    PlayerEntry e = player_entry(p, old);
-    if (!old || has_changes(e)) m.players.push_back(std::move(e));
+    PlayerEntry e;
+    e.id = p.id;
+    // The player table names every field once: a field added there is diffed here.
+    if (wire::diff(wire::kPlayerSynced, p, old, e) || !old) m.players.push_back(std::move(e));
   }
   if (base) {
     for (const auto& b : base->balls)
@@ -113,16 +98,40 @@ SnapshotMsg make_snapshot_msg(const Snapshot& current_in, const Snapshot* base_i
   return m;
 }
 
+}  // namespace
+
+std::int64_t predicted_step(std::int64_t v_q, std::uint32_t ticks, std::uint32_t tick_rate_hz) {
+  if (tick_rate_hz == 0 || ticks > kMaxPredictionTicks) return 0;
+  v_q = std::clamp(v_q, -2 * kMaxQuantized, 2 * kMaxQuantized);  // |v * ticks| < 2^62
+  const std::int64_t num = v_q * ticks, hz = tick_rate_hz;
+  return num >= 0 ? (num + hz / 2) / hz : -((-num + hz / 2) / hz);
+}
+
+SnapshotMsg make_snapshot_msg(const Snapshot& current, const Snapshot* base, std::uint32_t tick_rate_hz) {
+  std::optional<Snapshot> base_q;
+  if (base) base_q = quantize(*base);
+  return make_delta(quantize(current), base_q ? &*base_q : nullptr, tick_rate_hz);
+}
+
 std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, std::size_t budget) {
   if (message.balls.size() <= kMaxBallsPerMessage && message.players.size() <= kMaxPlayersPerMessage &&
-      message.events.size() <= kMaxEventsPerMessage && payload_size(message, encoding) <= budget)
+      message.events.size() <= kMaxEventsPerMessage && payload_bytes(encoding, {message}) <= budget)
     return {message};
   if (message.events.size() > kMaxEventsPerMessage)
     message.events.erase(message.events.begin(), message.events.end() - kMaxEventsPerMessage);
+  // Each entry is measured once; a part's size is bounded by its skeleton (measured with
+  // the widest part numbers and list headers) plus the sizes of the entries put in it.
+  std::string scratch;
+  const auto& player_kind = wire::kPlayerMap;
+  const wire::BallKindOfEntry ball_kind;
+  std::vector<std::size_t> player_bytes, ball_bytes;
+  for (const auto& p : message.players) player_bytes.push_back(item_bytes(encoding, player_kind, p, scratch));
+  for (const auto& b : message.balls) ball_bytes.push_back(item_bytes(encoding, ball_kind, b, scratch));
+  constexpr std::size_t kListHeaderSlack = 2 * 4;  // array16 headers of two lists
   for (;;) {
-    // Greedy: fill each part with players, then balls, while it fits. Sizes are measured
-    // with the widest part/parts numbers, so setting the real ones never grows a part.
+    // Greedy: fill each part with players, then balls, while it fits.
     std::vector<SnapshotMsg> out;
+    std::vector<std::size_t> used;
     auto start_part = [&] {
       SnapshotMsg part;
       part.tick = message.tick;
@@ -132,30 +141,31 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, 
       part.phase = message.phase;
       part.level = message.level;
       part.deadline_tick = message.deadline_tick;
+      part.tick_rate_hz = message.tick_rate_hz;
       if (out.empty()) {
         part.gone = message.gone;
         part.left = message.left;
         part.events = message.events;
       }
+      used.push_back(payload_bytes(encoding, {part}) + kListHeaderSlack);
       out.push_back(std::move(part));
     };
     start_part();
-    bool ok = payload_size(out.back(), encoding) <= budget;
-    auto add = [&](auto member, const auto& item, std::size_t max_items) {
-      auto& list = out.back().*member;
-      list.push_back(item);
-      const bool full = list.size() > max_items || payload_size(out.back(), encoding) > budget;
-      if (!full) return true;
-      list.pop_back();
-      if (out.size() >= kMaxSnapshotParts) return false;
-      start_part();
+    bool ok = used.back() <= budget;
+    auto add = [&](auto member, const auto& item, std::size_t bytes, std::size_t max_items) {
+      if ((out.back().*member).size() >= max_items || used.back() + bytes > budget) {
+        if (out.size() >= kMaxSnapshotParts) return false;
+        start_part();
+        if (used.back() + bytes > budget) return false;
+      }
       (out.back().*member).push_back(item);
-      return payload_size(out.back(), encoding) <= budget;
+      used.back() += bytes;
+      return true;
     };
     for (std::size_t i = 0; ok && i < message.players.size(); ++i)
-      ok = add(&SnapshotMsg::players, message.players[i], kMaxPlayersPerMessage);
+      ok = add(&SnapshotMsg::players, message.players[i], player_bytes[i], kMaxPlayersPerMessage);
     for (std::size_t i = 0; ok && i < message.balls.size(); ++i)
-      ok = add(&SnapshotMsg::balls, message.balls[i], kMaxBallsPerMessage);
+      ok = add(&SnapshotMsg::balls, message.balls[i], ball_bytes[i], kMaxBallsPerMessage);
     if (ok) {
       for (std::size_t k = 0; k < out.size(); ++k) {
         out[k].part = static_cast<std::uint32_t>(k);
@@ -188,7 +198,8 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   for (const auto& p : s.players) players[p.id] = p;
   for (const auto& part : parts) {
     if (part.tick != first.tick || part.base != first.base || part.parts != first.parts ||
-        part.phase != first.phase || part.level != first.level || part.deadline_tick != first.deadline_tick)
+        part.phase != first.phase || part.level != first.level || part.deadline_tick != first.deadline_tick ||
+        part.tick_rate_hz != first.tick_rate_hz)
       return Reject::garbage;
     for (auto id : part.gone) balls.erase(id);
     for (auto id : part.left) players.erase(id);
@@ -203,15 +214,16 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
       auto it = balls.find(e.id);
       if (it == balls.end()) return Reject::unknown_base;
       BallState& b = it->second;
-      b.x = unq(qv(b.x) + e.x);
-      b.y = unq(qv(b.y) + e.y);
-      b.vx = unq(qv(b.vx) + e.vx);
-      b.vy = unq(qv(b.vy) + e.vy);
+      const std::uint32_t ticks = first.base ? first.tick - *first.base : 0;  // decoded: always a delta
+      b.x = unq(qv_clamped(b.x) + predicted_step(qv_clamped(b.vx), ticks, first.tick_rate_hz) + e.x);
+      b.y = unq(qv_clamped(b.y) + predicted_step(qv_clamped(b.vy), ticks, first.tick_rate_hz) + e.y);
+      b.vx = unq(qv_clamped(b.vx) + e.vx);
+      b.vy = unq(qv_clamped(b.vy) + e.vy);
     }
     for (const auto& e : part.players) {
       auto [it, added] = players.try_emplace(e.id);
       if (added) it->second.id = e.id;
-      apply_player(it->second, e);
+      wire::apply(wire::kPlayerSynced, e, it->second);
     }
     s.events.insert(s.events.end(), part.events.begin(), part.events.end());
   }
@@ -222,17 +234,19 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   return s;
 }
 
-std::vector<SnapshotMsg> SnapshotSender::encode(const Snapshot& current_in, Encoding encoding,
-                                                std::size_t budget) {
-  Snapshot current = quantize(current_in);
+std::vector<SnapshotMsg> SnapshotSender::encode(const Snapshot& current, Encoding encoding, std::size_t budget) {
+  return encode(std::make_shared<const Snapshot>(quantize(current)), encoding, budget);
+}
+
+std::vector<SnapshotMsg> SnapshotSender::encode(SharedSnapshot current, Encoding encoding, std::size_t budget) {
   const Snapshot* base = nullptr;
   // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
-  if (acked_ && *acked_ + max_base_age_ticks_ >= current.tick) {
+  if (acked_ && *acked_ + max_base_age_ticks_ >= current->tick) {
     for (const auto& h : history_)
-      if (h.tick == *acked_ && h.tick < current.tick) base = &h;
+      if (h->tick == *acked_ && h->tick < current->tick) base = h.get();
   }
-  auto parts = split_snapshot(make_snapshot_msg(current, base), encoding, budget);
-  std::erase_if(history_, [&](const Snapshot& h) { return h.tick == current.tick; });
+  auto parts = split_snapshot(make_delta(*current, base, tick_rate_hz_), encoding, budget);
+  std::erase_if(history_, [&](const SharedSnapshot& h) { return h->tick == current->tick; });
   history_.push_back(std::move(current));
   if (history_.size() > kHistory) history_.pop_front();
   return parts;
@@ -241,7 +255,7 @@ std::vector<SnapshotMsg> SnapshotSender::encode(const Snapshot& current_in, Enco
 void SnapshotSender::on_ack(std::uint32_t tick) {
   if (acked_ && tick <= *acked_) return;
   for (const auto& h : history_)
-    if (h.tick == tick) acked_ = tick;
+    if (h->tick == tick) acked_ = tick;
 }
 
 Decoded<std::optional<Snapshot>> SnapshotReceiver::accept(const SnapshotMsg& part) {

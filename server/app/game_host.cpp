@@ -1,6 +1,7 @@
 #include "app/game_host.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "app/log.hpp"
 #include "app/snapshot_build.hpp"
@@ -283,7 +284,9 @@ void GameHost::tick(std::uint64_t now_ms) {
 void GameHost::send_snapshots(std::uint64_t now_ms) {
   const auto players = endpoint_.connected_players();
   if (players.empty()) return;
-  const protocol::Snapshot snap = build_snapshot(sim::make_view(match_), recent_);
+  // Quantized once per tick; each client gets only its delta against that.
+  const auto snap = std::make_shared<const protocol::Snapshot>(
+      protocol::quantize(build_snapshot(sim::make_view(match_), recent_)));
   for (auto id : players) endpoint_.send_snapshot(id, snap, now_ms);
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <optional>
+#include <vector>
 
 #include "app/log.hpp"
 #include "app/tick_clock.hpp"
@@ -71,18 +72,23 @@ class Loop {
   std::uint64_t now_ms() const { return static_cast<std::uint64_t>((now_ns() - epoch_ns_) / 1'000'000); }
 
   void receive() {
-    socket_.start_receiving([this](const udp::endpoint& from, std::span<const std::uint8_t> bytes) {
-      host_.receive(io::to_text(from), bytes, now_ms());
-      flush();
-    });
+    // A burst of datagrams (one wake-up, recvmmsg) is handled, then the answers go out
+    // together (sendmmsg).
+    socket_.start_receiving(
+        [this](const udp::endpoint& from, std::span<const std::uint8_t> bytes) {
+          host_.receive(io::to_text(from), bytes, now_ms());
+        },
+        [this] { flush(); });
   }
 
   // Addresses travel as text through the sans-I/O layers and are parsed back here, so
   // no table of senders can be filled (or flushed) by a flood of spoofed sources.
   void flush() {
-    for (auto& d : host_.take_datagrams()) {
-      if (const auto to = io::endpoint_from_text(d.to)) socket_.send(d.bytes, *to);
-    }
+    auto datagrams = host_.take_datagrams();
+    outgoing_.clear();
+    for (const auto& d : datagrams)
+      if (const auto to = io::endpoint_from_text(d.to)) outgoing_.push_back({*to, d.bytes});
+    socket_.send_batch(outgoing_);
   }
 
   void schedule_tick() {
@@ -145,6 +151,7 @@ class Loop {
   asio::steady_timer stats_timer_;
   asio::signal_set signals_;
   TickClock clock_;
+  std::vector<UdpSocket::Outgoing> outgoing_;  // reused by flush()
   std::int64_t epoch_ns_ = 0;
   std::int64_t last_skip_log_ns_ = 0;
   protocol::RejectCounters last_rejects_;

@@ -1,6 +1,12 @@
 #include "fts/io/udp.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
+
+#ifdef __linux__
+#include <sys/socket.h>
+#endif
 
 namespace fts::io {
 
@@ -51,20 +57,102 @@ boost::system::error_code UdpSocket::connect(const udp::endpoint& server) {
   return ec;
 }
 
-void UdpSocket::start_receiving(Handler on_datagram) {
+void UdpSocket::start_receiving(Handler on_datagram, std::function<void()> on_burst_end) {
   on_datagram_ = std::move(on_datagram);
+  on_burst_end_ = std::move(on_burst_end);
   receive_next(generation_);
 }
 
+// One wake-up when the socket is readable; the datagrams are then taken without waiting.
 void UdpSocket::receive_next(std::uint64_t generation) {
-  socket_.async_receive_from(asio::buffer(buffer_), sender_,
-                             [this, generation](const boost::system::error_code& ec, std::size_t n) {
-                               if (ec == asio::error::operation_aborted || generation != generation_) return;
-                               if (!ec && on_datagram_)
-                                 on_datagram_(sender_, std::span<const std::uint8_t>(buffer_.data(), n));
-                               if (generation == generation_ && socket_.is_open()) receive_next(generation);
-                             });
+  socket_.async_wait(udp::socket::wait_read, [this, generation](const boost::system::error_code& ec) {
+    if (ec == asio::error::operation_aborted || generation != generation_) return;
+    if (!ec) drain(generation);
+    if (generation == generation_ && socket_.is_open()) receive_next(generation);
+  });
 }
+
+#ifdef __linux__
+void UdpSocket::drain(std::uint64_t generation) {
+  std::array<mmsghdr, kBatch> msgs{};
+  std::array<iovec, kBatch> iov{};
+  std::array<sockaddr_storage, kBatch> from{};
+  for (std::size_t round = 0; round < kRoundsPerWakeup; ++round) {
+    for (std::size_t i = 0; i < kBatch; ++i) {
+      iov[i] = {buffers_[i].data(), buffers_[i].size()};
+      msgs[i] = {};
+      msgs[i].msg_hdr.msg_name = &from[i];
+      msgs[i].msg_hdr.msg_namelen = sizeof(sockaddr_storage);
+      msgs[i].msg_hdr.msg_iov = &iov[i];
+      msgs[i].msg_hdr.msg_iovlen = 1;
+    }
+    const int n = ::recvmmsg(socket_.native_handle(), msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
+    if (n <= 0) break;  // nothing more now (EAGAIN), or an ICMP error: skipped
+    ++receive_calls_;
+    datagrams_received_ += static_cast<std::uint64_t>(n);
+    for (int i = 0; i < n; ++i) {
+      udp::endpoint sender;
+      const std::size_t len = std::min<std::size_t>(msgs[i].msg_hdr.msg_namelen, sender.capacity());
+      std::memcpy(sender.data(), &from[i], len);
+      sender.resize(len);
+      const std::size_t bytes = std::min<std::size_t>(msgs[i].msg_len, buffers_[i].size());
+      if (on_datagram_) on_datagram_(sender, std::span<const std::uint8_t>(buffers_[i].data(), bytes));
+      if (generation != generation_) return;  // closed by the handler
+    }
+    if (static_cast<std::size_t>(n) < kBatch) break;
+  }
+  if (on_burst_end_) on_burst_end_();
+}
+
+std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
+  std::array<mmsghdr, kBatch> msgs{};
+  std::array<iovec, kBatch> iov{};
+  std::size_t failed = 0;
+  std::size_t done = 0;
+  while (done < batch.size()) {
+    const std::size_t n = std::min(kBatch, batch.size() - done);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Outgoing& o = batch[done + i];
+      iov[i] = {const_cast<std::uint8_t*>(o.bytes.data()), o.bytes.size()};
+      msgs[i] = {};
+      msgs[i].msg_hdr.msg_name = const_cast<sockaddr*>(o.to.data());
+      msgs[i].msg_hdr.msg_namelen = static_cast<socklen_t>(o.to.size());
+      msgs[i].msg_hdr.msg_iov = &iov[i];
+      msgs[i].msg_hdr.msg_iovlen = 1;
+    }
+    const int sent = ::sendmmsg(socket_.native_handle(), msgs.data(), static_cast<unsigned>(n), MSG_DONTWAIT);
+    // sendmmsg stops at the first datagram that fails: that one is counted and skipped.
+    const std::size_t ok = sent > 0 ? static_cast<std::size_t>(sent) : 0;
+    done += ok;
+    if (ok < n) {
+      ++failed;
+      ++send_errors_;
+      ++done;
+    }
+  }
+  return failed;
+}
+#else
+void UdpSocket::drain(std::uint64_t generation) {
+  for (std::size_t i = 0; i < kBatch * kRoundsPerWakeup; ++i) {
+    udp::endpoint sender;
+    boost::system::error_code ec;
+    const std::size_t n = socket_.receive_from(asio::buffer(buffers_[0]), sender, 0, ec);
+    if (ec) break;
+    ++receive_calls_;
+    ++datagrams_received_;
+    if (on_datagram_) on_datagram_(sender, std::span<const std::uint8_t>(buffers_[0].data(), n));
+    if (generation != generation_) return;
+  }
+  if (on_burst_end_) on_burst_end_();
+}
+
+std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
+  std::size_t failed = 0;
+  for (const auto& o : batch) failed += send(o.bytes, o.to) ? 0 : 1;
+  return failed;
+}
+#endif
 
 bool UdpSocket::send(std::span<const std::uint8_t> bytes, const std::optional<udp::endpoint>& to) {
   boost::system::error_code ec;

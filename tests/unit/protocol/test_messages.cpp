@@ -70,10 +70,10 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
     h.encoding = Encoding::msgpack;
     const auto bytes = encode_datagram(h, {Input{3, {{4, 1, -1, true}}}});
     const std::vector<std::uint8_t> payload(bytes.begin() + kHeaderBytes, bytes.end());
-    // [ {"ack":3, "f":[[4,1,-1,1]], "t":"input"} ]
-    const std::vector<std::uint8_t> golden = {0x91, 0x83, 0xA3, 'a', 'c', 'k', 0x03, 0xA1, 'f',
-                                              0x91, 0x94, 0x04, 0x01, 0xFF, 0x01, 0xA1, 't',
-                                              0xA5, 'i',  'n',  'p',  'u',  't'};
+    // [ {"t":"input", "ack":3, "f":[[4,1,-1,1]]} ]: "t" first, then the table's order
+    const std::vector<std::uint8_t> golden = {0x91, 0x83, 0xA1, 't',  0xA5, 'i',  'n',  'p',
+                                              'u',  't',  0xA3, 'a',  'c',  'k',  0x03, 0xA1,
+                                              'f',  0x91, 0x94, 0x04, 0x01, 0xFF, 0x01};
     CHECK(payload == golden);
   }
 }

@@ -30,7 +30,11 @@ struct ClientConfig {
   std::uint64_t connect_timeout_ms = 10000;
   std::uint64_t heartbeat_ms = 100;  // send at least this often once connected
   std::uint64_t resend_ms = 100;     // resend an unacknowledged command after this
-  std::size_t input_redundancy = 8;  // input frames per datagram (the welcome may raise it)
+  std::size_t input_redundancy = 3;  // input frames per datagram (the welcome may raise it)
+  // The lean uplink (hold_input): a changed input goes out at most this often, an
+  // unchanged one at least this often (the server's input expiry is 150 ms).
+  std::uint64_t input_min_interval_ms = 20;
+  std::uint64_t input_keepalive_ms = 50;
 };
 
 enum class ClientState { idle, connecting, connected, refused, timed_out, disconnected };
@@ -57,6 +61,11 @@ class ClientEndpoint {
   // Queues the input of one tick (its seq is assigned here and returned) and sends a
   // datagram with the latest few frames. Ignored unless connected (returns 0).
   std::uint32_t send_input(InputFrame frame, std::uint64_t now_ms);
+  // The lean uplink: the input the player holds now, passed every tick. A new frame is
+  // sent when the input changes or fires (at most every input_min_interval_ms; a change
+  // in between goes out at a later call, a fire is kept until then) and at least every
+  // input_keepalive_ms while it stays the same. Returns the seq sent now (0: none).
+  std::uint32_t hold_input(InputFrame frame, std::uint64_t now_ms);
   // Queues a reliable command and sends it; returns its rid (0 unless connected).
   std::uint32_t send_command(CommandOp op, char item, std::uint64_t now_ms);
   // Clean disconnect: sends bye (three times, it is not acknowledged).
@@ -104,6 +113,9 @@ class ClientEndpoint {
   SnapshotReceiver snapshots_;
   std::vector<Snapshot> new_snapshots_;
   std::deque<InputFrame> inputs_;
+  std::optional<InputFrame> last_held_;  // hold_input: the frame sent last
+  std::uint64_t last_held_ms_ = 0;
+  bool fire_pending_ = false;
   std::uint32_t next_input_seq_ = 1;
   std::vector<std::vector<std::uint8_t>> out_;
   RejectCounters rejects_;

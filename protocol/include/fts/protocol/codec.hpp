@@ -34,7 +34,20 @@ std::vector<std::uint8_t> encode_version_refusal(const Header& header, const Err
 
 // The payload alone, in one encoding (for size measurements and debugging).
 std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);
+// Appends the payload to `out` (a reused buffer: no allocation once it is large enough).
+void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out);
+// The payload's size without encoding it (MessagePack: counted by the same table code).
+std::size_t payload_bytes(Encoding encoding, const std::vector<Message>& messages);
+// Parses a payload alone (no header); never throws, never reads past `payload`.
+Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload);
 // JSON text of a message list, for logs and docs.
 std::string to_json_text(const std::vector<Message>& messages);
+
+// The codec before the field tables (every message through an nlohmann tree), kept only
+// so that tests/bench can time old against new in one run.
+namespace legacy {
+std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);
+Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload);
+}  // namespace legacy
 
 }  // namespace fts::protocol

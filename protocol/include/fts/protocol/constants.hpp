@@ -30,6 +30,10 @@ inline constexpr std::size_t kMaxEventsPerMessage = 64;
 inline constexpr std::uint32_t kMaxSnapshotParts = 16;
 inline constexpr std::int64_t kMaxCoins = 1'000'000'000'000'000;  // 10^15
 inline constexpr std::int64_t kMaxQuantized = std::int64_t{1} << 40;
+// Snapshot deltas predict motion entries from the base's velocity (PROTOCOL.md 8.2):
+// the tick rate a snap states, and the most ticks a prediction spans.
+inline constexpr std::uint32_t kMaxTickRateHz = 10000;
+inline constexpr std::uint32_t kMaxPredictionTicks = 1u << 20;
 // Payload shape, checked while parsing (both encodings): arrays and objects nested at
 // most this deep (a snapshot needs 5), and at most this many values in all (a value
 // takes at least one byte, so a datagram cannot hold more).

@@ -45,7 +45,7 @@ struct Welcome {
   std::uint32_t max_players = 8;
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
-  std::uint32_t input_redundancy = 8;  // send at least this many recent input frames
+  std::uint32_t input_redundancy = 3;  // send at least this many recent input frames
   std::uint32_t server_tick = 0;
   bool reconnected = false;
   sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
@@ -110,8 +110,9 @@ struct Bye {
 };
 
 // A ball in a snapshot message, in quantized units (1/16 u, 1/16 u/s). A full entry has
-// every field; a motion entry (full == false) holds only the differences of x, y, vx, vy
-// from the same ball in the base snapshot.
+// every field; a motion entry (full == false) holds only the differences of vx, vy from
+// the same ball in the base snapshot, and of x, y from where the base's velocity takes
+// it (PROTOCOL.md 8.2: with the snap's tick_rate_hz; plain differences when that is 0).
 struct BallEntry {
   std::uint32_t id = 0;
   bool full = true;
@@ -146,7 +147,8 @@ struct SnapshotMsg {
   Phase phase = Phase::lobby;
   std::uint32_t level = 0;
   std::uint32_t deadline_tick = 0;   // 0: no countdown (absent on the wire)
-  std::vector<BallEntry> balls;      // new or changed balls of this part
+  std::uint32_t tick_rate_hz = 0;    // delta: ticks per second, for the motion prediction (0: none)
+  std::vector<BallEntry> balls;      // new or changed balls of this part (full entries first)
   std::vector<std::uint32_t> gone;   // balls of the base that no longer exist
   std::vector<PlayerEntry> players;  // new or changed players of this part
   std::vector<std::uint32_t> left;   // players of the base that no longer exist

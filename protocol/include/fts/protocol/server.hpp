@@ -137,6 +137,8 @@ class ServerEndpoint {
 
   // Sends the snapshot to one connected player (delta against what it acknowledged).
   void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
+  // The same for a snapshot quantized once per tick for every client (quantize()).
+  void send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms);
   // Answers a command (reliably). code: "ok" or a refusal code; message for a person.
   // Queued: the next update() sends the session's due results together in one datagram.
   void send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -21,7 +22,12 @@ inline constexpr std::size_t kMaxPayloadBytes = kMaxDatagramBytes - kHeaderBytes
 
 // One message holding `current` as a delta against `base` (nullptr: full). Both are
 // quantized first (base normally is already).
-SnapshotMsg make_snapshot_msg(const Snapshot& current, const Snapshot* base);
+// `tick_rate_hz` drives the motion prediction of the delta (0: plain differences).
+SnapshotMsg make_snapshot_msg(const Snapshot& current, const Snapshot* base, std::uint32_t tick_rate_hz = 100);
+
+// Where a velocity of v_q (1/16 u/s) moves a ball in `ticks` ticks at `tick_rate_hz`, in
+// 1/16 u, rounded half away from zero; integers only, so both ends agree exactly.
+std::int64_t predicted_step(std::int64_t v_q, std::uint32_t ticks, std::uint32_t tick_rate_hz);
 
 // Splits a message into parts whose payloads (each encoded alone) fit `budget` bytes:
 // balls and players spread over the parts; gone, left and events in part 0 (the oldest
@@ -32,6 +38,10 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding,
 // Rebuilds a snapshot from all its parts and its base (nullptr for a full snapshot).
 Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Snapshot* base);
 
+// A snapshot already quantized (quantize()), built once per tick and shared by the
+// senders of every client: each keeps it as a possible base without a copy.
+using SharedSnapshot = std::shared_ptr<const Snapshot>;
+
 // Server side, one per client: remembers what was sent, and which tick was acknowledged.
 class SnapshotSender {
  public:
@@ -39,11 +49,15 @@ class SnapshotSender {
 
   // A delta is made only against a base at most this many ticks old (default: 1 s at
   // 100 Hz); a client whose acknowledgements lag further gets a full snapshot.
-  explicit SnapshotSender(std::uint32_t max_base_age_ticks = 100) : max_base_age_ticks_(max_base_age_ticks) {}
+  explicit SnapshotSender(std::uint32_t max_base_age_ticks = 100, std::uint32_t tick_rate_hz = 100)
+      : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {}
 
   // The parts to send for `current` (delta against the acknowledged snapshot if it is
   // still in the history, else full).
   std::vector<SnapshotMsg> encode(const Snapshot& current, Encoding encoding,
+                                  std::size_t budget = kMaxPayloadBytes);
+  // The same for a snapshot quantized once for all clients (no copy, no re-quantizing).
+  std::vector<SnapshotMsg> encode(SharedSnapshot quantized, Encoding encoding,
                                   std::size_t budget = kMaxPayloadBytes);
   // The client reports the latest complete snapshot it has.
   void on_ack(std::uint32_t tick);
@@ -52,7 +66,8 @@ class SnapshotSender {
 
  private:
   std::uint32_t max_base_age_ticks_;
-  std::deque<Snapshot> history_;
+  std::uint32_t tick_rate_hz_;
+  std::deque<SharedSnapshot> history_;
   std::optional<std::uint32_t> acked_;
 };
 

@@ -1,6 +1,8 @@
 // The one UDP socket of the edges (fts-server, fts-client, fts-bot): open, bind or
 // connect, a receive loop that hands every datagram to a callback, and sends whose
 // failures are counted, not thrown (a lost datagram is the protocol's business).
+// Batched on Linux: one wake-up drains up to kBatch datagrams per recvmmsg call, and
+// send_batch hands many datagrams to one sendmmsg call.
 #pragma once
 
 #include <array>
@@ -28,6 +30,14 @@ std::optional<udp::endpoint> resolve(asio::io_context& io, const std::string& ho
 class UdpSocket {
  public:
   using Handler = std::function<void(const udp::endpoint& from, std::span<const std::uint8_t> bytes)>;
+  // Datagrams taken per system call, and calls per wake-up at most (then other work,
+  // such as a due tick, gets its turn before the next wake-up drains more).
+  static constexpr std::size_t kBatch = 32;
+  static constexpr std::size_t kRoundsPerWakeup = 4;
+  struct Outgoing {
+    udp::endpoint to;
+    std::span<const std::uint8_t> bytes;
+  };
 
   explicit UdpSocket(asio::io_context& io) : socket_(io) {}
   UdpSocket(const UdpSocket&) = delete;
@@ -40,21 +50,32 @@ class UdpSocket {
   boost::system::error_code connect(const udp::endpoint& server);
   // Hands every datagram received from now on to `on_datagram`, until close() or the
   // next bind/connect; receive errors (an ICMP "port unreachable") are skipped.
-  void start_receiving(Handler on_datagram);
+  // `on_burst_end` runs once after every wake-up's datagrams (where a server sends its
+  // answers in one batch).
+  void start_receiving(Handler on_datagram, std::function<void()> on_burst_end = {});
   // Sends one datagram (to the connected peer when `to` is not given); false on error.
   bool send(std::span<const std::uint8_t> bytes, const std::optional<udp::endpoint>& to = std::nullopt);
+  // Sends every datagram of `batch` (sendmmsg: one system call per kBatch); returns how
+  // many failed (each also counted in send_errors).
+  std::size_t send_batch(std::span<const Outgoing> batch);
   void close();
 
   udp::endpoint local_endpoint() const;
   std::uint64_t send_errors() const { return send_errors_; }
+  // System calls that received at least one datagram, and the datagrams they carried.
+  std::uint64_t receive_calls() const { return receive_calls_; }
+  std::uint64_t datagrams_received() const { return datagrams_received_; }
 
  private:
   void receive_next(std::uint64_t generation);
+  void drain(std::uint64_t generation);
 
   udp::socket socket_;
-  std::array<std::uint8_t, 2048> buffer_{};
-  udp::endpoint sender_;
+  std::array<std::array<std::uint8_t, 2048>, kBatch> buffers_{};
   Handler on_datagram_;
+  std::function<void()> on_burst_end_;
+  std::uint64_t receive_calls_ = 0;
+  std::uint64_t datagrams_received_ = 0;
   std::uint64_t generation_ = 0;  // a callback of a closed socket's read ends there
   std::uint64_t send_errors_ = 0;
 };

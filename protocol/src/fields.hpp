@@ -1,0 +1,255 @@
+// The field-table machinery (internal), after ioquake3's netField_t: a message is a
+// struct plus one table of fields, each named once with its key, its type, its range and
+// whether it may be absent. From a table come the MessagePack and JSON writers (any
+// writer of wire_io.hpp: W is MsgpackWriter, MsgpackCounter or JsonWriter), the reader,
+// and for tables over two structs (state and delta entry) the changed-field delta.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "wire_io.hpp"
+
+namespace fts::protocol::wire {
+
+// ---- value kinds: how one value is written and read ----------------------------------
+
+// An integer in lo..hi, held in any integral or enum type.
+template <class T>
+struct Int {
+  std::int64_t lo, hi;
+  template <class W>
+  void put(W& w, const T& v) const { w.integer(static_cast<std::int64_t>(v)); }
+  void get(MsgpackReader& r, T& v) const { v = static_cast<T>(r.integer(lo, hi)); }
+};
+
+// A boolean carried as the integer 0 or 1 (input frames).
+struct Bit {
+  template <class W>
+  void put(W& w, bool v) const { w.uinteger(v ? 1 : 0); }
+  void get(MsgpackReader& r, bool& v) const { v = r.integer(0, 1) == 1; }
+};
+
+struct Bool {
+  template <class W>
+  void put(W& w, bool v) const { w.boolean(v); }
+  void get(MsgpackReader& r, bool& v) const { v = r.boolean(); }
+};
+
+// A number (integer or float on the wire), finite, in lo..hi.
+struct Num {
+  double lo, hi;
+  template <class W>
+  void put(W& w, double v) const { w.number(std::isfinite(v) ? v : 0.0); }
+  void get(MsgpackReader& r, double& v) const { v = r.number(lo, hi); }
+};
+
+// Printable ASCII text of min..max bytes.
+struct Text {
+  std::size_t min, max;
+  template <class W>
+  void put(W& w, const std::string& v) const { w.str(v); }
+  void get(MsgpackReader& r, std::string& v) const {
+    const std::string_view s = r.str(max);
+    if (r.failed()) return;
+    if (s.size() < min) return r.fail(Reject::out_of_range);
+    for (unsigned char c : s)
+      if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range);
+    v.assign(s);
+  }
+};
+
+// An enum carried by name: names[i] is the wire text of value i.
+template <class E, std::size_t N>
+struct Named {
+  std::array<const char*, N> names;
+  template <class W>
+  void put(W& w, E v) const { w.str(names[static_cast<std::size_t>(v) % N]); }
+  void get(MsgpackReader& r, E& v) const {
+    const std::string_view s = r.str(16);
+    for (std::size_t i = 0; i < N; ++i)
+      if (s == names[i]) return void(v = static_cast<E>(i));
+    if (!r.failed()) r.fail(Reject::out_of_range);
+  }
+};
+
+// A fixed-length array of one kind.
+template <class T, std::size_t N, class K>
+struct Fixed {
+  K kind;
+  template <class W>
+  void put(W& w, const std::array<T, N>& v) const {
+    w.array(N);
+    for (const auto& x : v) kind.put(w, x);
+  }
+  void get(MsgpackReader& r, std::array<T, N>& v) const {
+    if (r.array(kMaxPayloadValues) != N && !r.failed()) return r.fail(Reject::garbage);
+    for (auto& x : v) kind.get(r, x);
+  }
+};
+
+// A list of up to max items of one kind.
+template <class T, class K>
+struct List {
+  std::size_t max;
+  K kind;
+  template <class W>
+  void put(W& w, const std::vector<T>& v) const {
+    w.array(v.size());
+    for (const auto& x : v) kind.put(w, x);
+  }
+  void get(MsgpackReader& r, std::vector<T>& v) const {
+    const std::size_t n = r.array(max);
+    v.clear();
+    v.reserve(n);
+    for (std::size_t i = 0; i < n && !r.failed(); ++i) kind.get(r, v.emplace_back());
+  }
+};
+
+// ---- fields ------------------------------------------------------------------------
+
+enum class Presence : std::uint8_t {
+  required,  // always written, must be present
+  optional,  // a std::optional member: written when set
+  nonzero,   // written unless equal to the default value (0, empty); absent reads as default
+};
+
+template <class M, class T, class K>
+struct Field {
+  std::string_view key;
+  T M::*member;
+  K kind;
+  Presence presence = Presence::required;
+};
+
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+
+template <class M, class T, class K>
+bool present(const Field<M, T, K>& f, const M& m) {
+  const T& v = m.*f.member;
+  if constexpr (requires { f.kind.present(v); }) return f.kind.present(v);
+  else if constexpr (is_optional<T>::value) return v.has_value();
+  else if (f.presence == Presence::nonzero) return !(v == T{});
+  else return true;
+}
+
+template <class W, class M, class T, class K>
+void put_field(W& w, const Field<M, T, K>& f, const M& m) {
+  if (!present(f, m)) return;
+  w.key(f.key);
+  if constexpr (is_optional<T>::value) f.kind.put(w, *(m.*f.member));
+  else f.kind.put(w, m.*f.member);
+}
+
+template <class M, class T, class K>
+void get_field(MsgpackReader& r, const Field<M, T, K>& f, M& m) {
+  if constexpr (is_optional<T>::value) f.kind.get(r, (m.*f.member).emplace());
+  else f.kind.get(r, m.*f.member);
+}
+
+// ---- maps: a message or a record with named fields ---------------------------------
+
+// {"t": type (if not null), field: value, ...} in table order.
+template <class W, class M, class... F>
+void write_map(W& w, const char* type, const M& m, const std::tuple<F...>& table) {
+  std::size_t n = type ? 1 : 0;
+  std::apply([&](const auto&... f) { ((n += present(f, m) ? 1 : 0), ...); }, table);
+  w.map(n);
+  if (type) {
+    w.key("t");
+    w.str(type);
+  }
+  std::apply([&](const auto&... f) { (put_field(w, f, m), ...); }, table);
+}
+
+// Reads a map into m (which starts at its defaults): known keys by the table, any other
+// key (including "t") skipped. A required field missing is garbage.
+template <class M, class... F>
+void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
+  static_assert(sizeof...(F) <= 64);
+  const std::size_t n = r.map(kMaxPayloadValues);
+  std::uint64_t seen = 0;
+  for (std::size_t i = 0; i < n && !r.failed(); ++i) {
+    const std::string_view k = r.str(kMaxTextBytes);
+    if (r.failed()) return;
+    bool matched = false;
+    std::size_t index = 0;
+    std::apply(
+        [&](const auto&... f) {
+          ((matched || (k == f.key ? (get_field(r, f, m), seen |= std::uint64_t{1} << index, matched = true)
+                                   : (++index, false))),
+           ...);
+        },
+        table);
+    if (!matched) r.skip();
+  }
+  std::size_t index = 0;
+  std::apply(
+      [&](const auto&... f) {
+        ((f.presence == Presence::required && !(seen >> index & 1) ? r.fail(Reject::garbage) : void(), ++index), ...);
+      },
+      table);
+}
+
+// A record written as a positional array of the table's fields (no keys). `arity`
+// fields are written (a shorter form of the same record).
+template <class W, class M, class... F>
+void write_row(W& w, const M& m, const std::tuple<F...>& table, std::size_t arity = sizeof...(F)) {
+  w.array(arity);
+  std::size_t index = 0;
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.put(w, m.*f.member) : void()), ...); }, table);
+}
+
+// Reads a positional array of the first `arity` fields of the table.
+template <class M, class... F>
+void read_row(MsgpackReader& r, M& m, const std::tuple<F...>& table, std::size_t arity) {
+  std::size_t index = 0;
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.get(r, m.*f.member) : void()), ...); }, table);
+}
+
+// ---- synced fields: a state struct S and its delta entry E ---------------------------
+// One row per field: the entry's optional member and the state's member it mirrors.
+template <class S, class E, class T, class K>
+struct Synced {
+  std::string_view key;
+  std::optional<T> E::*entry;
+  T S::*state;
+  K kind;
+  Presence presence = Presence::optional;
+  // The Field view of this row, for write_map / read_map.
+  Field<E, std::optional<T>, K> field() const { return {key, entry, kind, presence}; }
+};
+
+// entry = the fields of `now` that differ from `base` (all of them without a base).
+template <class S, class E, class... R>
+bool diff(const std::tuple<R...>& table, const S& now, const S* base, E& entry) {
+  bool any = false;
+  std::apply(
+      [&](const auto&... f) {
+        ((!base || !(base->*f.state == now.*f.state) ? (entry.*f.entry = now.*f.state, any = true) : false), ...);
+      },
+      table);
+  return any;
+}
+
+template <class S, class E, class... R>
+void apply(const std::tuple<R...>& table, const E& entry, S& state) {
+  std::apply([&](const auto&... f) { ((entry.*f.entry ? void(state.*f.state = *(entry.*f.entry)) : void()), ...); },
+             table);
+}
+
+template <class... R>
+auto fields_of(const std::tuple<R...>& table) {
+  return std::apply([](const auto&... f) { return std::make_tuple(f.field()...); }, table);
+}
+
+}  // namespace fts::protocol::wire

@@ -1,0 +1,131 @@
+// fts-wire-bench: encode and decode of snapshot messages (full and delta; 1 player and
+// 1 enemy, 8 players and 48 enemies) in both encodings, the field-table codec against
+// the old nlohmann-tree codec in the same run, plus the server's per-client snapshot path.
+// Reports ns (Google Benchmark) and bytes (counter "bytes"); never pass/fail.
+//
+//   build/tests/bench/fts-wire-bench --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "../unit/protocol/samples.hpp"
+#include "fts/protocol/codec.hpp"
+#include "fts/protocol/snapshot_delta.hpp"
+
+using namespace fts::protocol;
+
+namespace {
+
+struct Scene {
+  const char* name;
+  int players, enemies;
+};
+constexpr Scene kScenes[] = {{"1p1e", 1, 1}, {"8p48e", 8, 48}};
+
+// The message a client gets: full, or the 20 Hz delta (5 ticks at 100 Hz).
+SnapshotMsg message_of(const Scene& scene, bool delta) {
+  const Snapshot s = test::sample_snapshot(scene.players, scene.enemies);
+  if (!delta) return make_snapshot_msg(s, nullptr);
+  return make_snapshot_msg(test::advance(s, 5, 0.05), &s);
+}
+
+const char* enc_name(Encoding e) { return e == Encoding::json ? "json" : "msgpack"; }
+
+void register_codec(const Scene& scene, bool delta, Encoding enc) {
+  const std::string tag = std::string(scene.name) + "/" + (delta ? "delta" : "full") + "/" + enc_name(enc);
+  const std::vector<Message> messages{message_of(scene, delta)};
+
+  benchmark::RegisterBenchmark(("encode/new/" + tag).c_str(), [messages, enc](benchmark::State& st) {
+    std::vector<std::uint8_t> out;
+    for (auto _ : st) {
+      out.clear();
+      append_payload(enc, messages, out);
+      benchmark::DoNotOptimize(out.data());
+    }
+    st.counters["bytes"] = static_cast<double>(out.size());
+  });
+  benchmark::RegisterBenchmark(("encode/old/" + tag).c_str(), [messages, enc](benchmark::State& st) {
+    std::size_t bytes = 0;
+    for (auto _ : st) {
+      auto out = legacy::encode_payload(enc, messages);
+      bytes = out.size();
+      benchmark::DoNotOptimize(out.data());
+    }
+    st.counters["bytes"] = static_cast<double>(bytes);
+  });
+  const auto bytes = encode_payload(enc, messages);
+  benchmark::RegisterBenchmark(("decode/new/" + tag).c_str(), [bytes, enc](benchmark::State& st) {
+    for (auto _ : st) {
+      auto d = decode_payload(enc, bytes);
+      if (!d.ok()) st.SkipWithError("decode failed");
+      benchmark::DoNotOptimize(d);
+    }
+    st.counters["bytes"] = static_cast<double>(bytes.size());
+  });
+  // The old codec decodes its own bytes (the old format: motion entries as rows).
+  const auto old_bytes = legacy::encode_payload(enc, messages);
+  benchmark::RegisterBenchmark(("decode/old/" + tag).c_str(), [old_bytes, enc](benchmark::State& st) {
+    for (auto _ : st) {
+      auto d = legacy::decode_payload(enc, old_bytes);
+      if (!d.ok()) st.SkipWithError("decode failed");
+      benchmark::DoNotOptimize(d);
+    }
+    st.counters["bytes"] = static_cast<double>(old_bytes.size());
+  });
+}
+
+// What the server does per client and snapshot: the delta against the acknowledged base
+// (built from a snapshot quantized once per tick), split, and encoded into a datagram.
+void register_sender(const Scene& scene, Encoding enc) {
+  const std::string tag = std::string(scene.name) + "/" + enc_name(enc);
+  benchmark::RegisterBenchmark(("per_client_delta/shared/" + tag).c_str(), [scene, enc](benchmark::State& st) {
+    const Snapshot s0 = test::sample_snapshot(scene.players, scene.enemies);
+    const auto q0 = std::make_shared<const Snapshot>(quantize(s0));
+    const auto q1 = std::make_shared<const Snapshot>(quantize(test::advance(s0, 5, 0.05)));
+    SnapshotSender tx;
+    (void)tx.encode(q0, enc);
+    tx.on_ack(q0->tick);
+    std::vector<std::uint8_t> out;
+    Header h;
+    h.encoding = enc;
+    for (auto _ : st) {
+      auto parts = tx.encode(q1, enc);  // the same tick again: replaces itself in the history
+      for (const auto& p : parts) {
+        out.clear();
+        write_header(h, out);
+        append_payload(enc, {p}, out);
+      }
+      benchmark::DoNotOptimize(out.data());
+    }
+    st.counters["bytes"] = static_cast<double>(out.size());
+  });
+  benchmark::RegisterBenchmark(("per_client_delta/copy+legacy/" + tag).c_str(), [scene, enc](benchmark::State& st) {
+    const Snapshot s0 = test::sample_snapshot(scene.players, scene.enemies);
+    const Snapshot s1 = test::advance(s0, 5, 0.05);
+    SnapshotSender tx;
+    (void)tx.encode(s0, enc);
+    tx.on_ack(s0.tick);
+    std::size_t bytes = 0;
+    for (auto _ : st) {
+      auto parts = tx.encode(s1, enc);  // quantizes its own copy, as every client did
+      for (const auto& p : parts) bytes = legacy::encode_payload(enc, {p}).size();
+      benchmark::DoNotOptimize(bytes);
+    }
+    st.counters["bytes"] = static_cast<double>(bytes + kHeaderBytes);
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (const auto& scene : kScenes)
+    for (bool delta : {false, true})
+      for (auto enc : {Encoding::msgpack, Encoding::json}) register_codec(scene, delta, enc);
+  for (const auto& scene : kScenes)
+    for (auto enc : {Encoding::msgpack, Encoding::json}) register_sender(scene, enc);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
