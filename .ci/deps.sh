@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(build-essential cmake ninja-build ccache pkg-config
           libboost-dev nlohmann-json3-dev libspdlog-dev catch2 libsodium-dev libcli11-dev
-          clang libclang-rt-14-dev tmux gnuplot-nox python3)
+          clang libclang-rt-14-dev tmux gnuplot-nox python3
+          prometheus-cpp-dev libcpp-httplib-dev prometheus python3-yaml)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
