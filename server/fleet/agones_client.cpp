@@ -33,9 +33,9 @@ const char* op_name(SdkOp op) {
 }
 
 Outcome send(httplib::Client& http, const SdkCall& c) {
-  httplib::Result r = c.method == "PATCH" ? http.Patch(c.path.c_str(), c.body, "application/json")
-                      : c.method == "PUT" ? http.Put(c.path.c_str(), c.body, "application/json")
-                                          : http.Post(c.path.c_str(), c.body, "application/json");
+  httplib::Result r = c.method == "PATCH" ? http.Patch(c.path, c.body, "application/json")
+                      : c.method == "PUT" ? http.Put(c.path, c.body, "application/json")
+                                          : http.Post(c.path, c.body, "application/json");
   Outcome o;
   if (!r) {
     o.error = httplib::to_string(r.error());

@@ -8,19 +8,15 @@
 #include <memory>
 #include <string>
 
+#include <prometheus/counter.h>
+#include <prometheus/exposer.h>
+#include <prometheus/gauge.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
 #include "app/stats.hpp"
 #include "fleet/fleet_state.hpp"
 #include "fts/protocol/reject.hpp"
-
-namespace prometheus {
-class Registry;
-class Exposer;
-class Counter;
-class Gauge;
-class Histogram;
-template <typename T>
-class Family;
-}  // namespace prometheus
 
 namespace fts::server {
 
