@@ -31,7 +31,7 @@ void Fleet::bound() {
 }
 
 void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std::uint64_t now_ms) {
-  if (!metrics_ && !agones_) return;
+  if (!metrics_ && !agones_ && !drain_.active()) return;  // nothing to do: no per-tick cost
   const FleetState state = observe(host);
   if (drain_.over(now_ms, state.rooms) && !over_logged_) {
     over_logged_ = true;
