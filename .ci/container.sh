@@ -73,12 +73,17 @@ if ! podman image exists debian:bookworm; then
   rm -rf "$rootfs"
   debootstrap --variant=minbase bookworm "$rootfs" "$mirror" >"$dir/debootstrap.log" 2>&1 ||
     { tail -20 "$dir/debootstrap.log"; fail "debootstrap from $mirror"; }
-  # The mirror apt uses here, for apt-get inside the image too.
+  # The mirror apt uses here, for apt-get inside the image too; no downloaded packages
+  # or package lists left behind (debootstrap keeps them: ~80 MB).
   echo "deb $mirror bookworm main" >"$rootfs/etc/apt/sources.list"
+  rm -rf "$rootfs"/var/cache/apt/archives/*.deb "$rootfs"/var/cache/apt/*.bin "$rootfs"/var/lib/apt/lists/*
   tar -C "$rootfs" -c . | podman import - debian:bookworm >/dev/null
+  # -slim, like Docker Hub's: without documentation, manual pages and translations.
+  tar -C "$rootfs" --exclude=./usr/share/doc --exclude=./usr/share/man --exclude=./usr/share/info \
+    --exclude=./usr/share/locale -c . | podman import - debian:bookworm-slim >/dev/null
   rm -rf "$rootfs"
 fi
-podman tag debian:bookworm debian:bookworm-slim
+podman image exists debian:bookworm-slim || podman tag debian:bookworm debian:bookworm-slim
 
 step "build $image"
 t0=$SECONDS
