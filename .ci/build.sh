@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # The one build command: README, CI and docker/Dockerfile all call this script.
 # usage: .ci/build.sh BUILD_DIR [extra cmake arguments...]
+# FTS_TARGETS="fts-server fts-bot" builds only those targets (the image does).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
 jobs=${FTS_JOBS:-$(nproc)}
+targets=()
+for t in ${FTS_TARGETS:-}; do targets+=(--target "$t"); done
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"
-cmake --build "$build" -j "$jobs"
+cmake --build "$build" -j "$jobs" "${targets[@]}"

@@ -14,11 +14,11 @@ jobs=${FTS_JOBS:-$(nproc)}
 bash .ci/build.sh build -DFTS_WERROR=ON
 # The process-level tests (integration, e2e, hosting) run once, in the sanitized build
 # below, where they also check the server, bots and client for memory errors and UB.
-ctest --test-dir build -LE 'soak|integration|e2e|hosting' -j "$jobs" --output-on-failure --timeout 600
+ctest --test-dir build -LE 'soak|integration|e2e|hosting|container' -j "$jobs" --output-on-failure --timeout 600
 
 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan -LE soak -j "$jobs" --output-on-failure --timeout 900
+  ctest --test-dir build-asan -LE 'soak|container' -j "$jobs" --output-on-failure --timeout 900
 
 if [[ -f .ci/fuzz.sh ]]; then
   FUZZ_JOBS="$jobs" bash .ci/fuzz.sh

@@ -122,6 +122,8 @@ void GameHost::watch_journal() {
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   ++stats_.datagrams_in;
   stats_.bytes_in += bytes.size();
+  ++stats_.totals.datagrams_in;
+  stats_.totals.bytes_in += bytes.size();
   endpoint_.receive(from, bytes, now_ms);
 }
 
@@ -130,6 +132,8 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
   for (const auto& d : out) {
     ++stats_.datagrams_out;
     stats_.bytes_out += d.bytes.size();
+    ++stats_.totals.datagrams_out;
+    stats_.totals.bytes_out += d.bytes.size();
   }
   return out;
 }
@@ -144,6 +148,11 @@ sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
     journal_session(e);
     switch (e.kind) {
       case K::connected:
+        if (draining_) {  // a draining server takes nobody new (fleet: SIGTERM or drain)
+          endpoint_.kick(e.player_id, "draining", "this server is shutting down; join another", now_ms);
+          log_record(spdlog::level::info, "join_refused", {{"player", e.player_id}, {"reason", "draining"}});
+          break;
+        }
         in.joins.push_back({e.player_id, e.name});
         log_record(spdlog::level::info, "connect", {{"player", e.player_id}, {"name", e.name}});
         break;
@@ -230,6 +239,7 @@ void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t n
             },
             [&](const sim::LevelComplete& e) { log_record(spdlog::level::info, "level_complete", {{"level", e.level}}); },
             [&](const sim::Purchased& e) {
+              ++(e.ok ? stats_.totals.purchases : stats_.totals.purchases_refused);
               log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
                          {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
                           {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}, {"tick", match_.tick}});

@@ -50,6 +50,9 @@ class GameHost {
   const sim::MatchState& match() const { return match_; }
   const protocol::ServerEndpoint& endpoint() const { return endpoint_; }
   Stats& stats() { return stats_; }
+  // While draining, a new player is refused (error "draining"); reconnects still resume.
+  void set_draining(bool draining) { draining_ = draining; }
+  bool draining() const { return draining_; }
 
  private:
   struct Held {
@@ -81,6 +84,7 @@ class GameHost {
   std::uint32_t ticks_per_snapshot_ = 5;
   sim::Phase last_phase_ = sim::Phase::lobby;
   Stats stats_;
+  bool draining_ = false;
   RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
 };
 

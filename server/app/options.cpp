@@ -11,6 +11,8 @@
 namespace fts::server {
 namespace {
 
+constexpr std::uint16_t kAgonesDefaultPort = 9358;  // the SDK server's REST default
+
 template <class T>
 bool parse_uint(const std::string& s, T& out, T lo, T hi) {
   std::uint64_t v = 0;
@@ -88,6 +90,30 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     char* end = nullptr;
     o.time_scale = std::strtod(value.c_str(), &end);
     if (value.empty() || *end || !(o.time_scale >= 0.1 && o.time_scale <= 100.0)) return bad("must be 0.1..100");
+  } else if (key == "agones") {
+    // "on": the sidecar's documented default port, unless AGONES_SDK_HTTP_PORT names one.
+    if (value == "off") {
+      o.agones_port = 0;
+    } else if (value == "on") {
+      if (o.agones_port == 0) o.agones_port = kAgonesDefaultPort;
+    } else if (!parse_uint<std::uint16_t>(value, o.agones_port, 1, 65535)) {
+      return bad("must be on, off or the SDK's HTTP port 1..65535");
+    }
+  } else if (key == "agones-health-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.agones_health_ms, 100, 60000)) return bad("must be 100..60000 ms");
+  } else if (key == "drain-grace-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.drain_grace_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
+  } else if (key == "metrics") {
+    // Checked here so a typo is a usage error; never the game port (checked after parsing).
+    const auto colon = value.rfind(':');
+    std::uint16_t port = 0;
+    if (value.empty()) {
+      o.metrics_address.clear();
+    } else if (colon == std::string::npos || !io::is_ip_address(value.substr(0, colon)) ||
+        !parse_uint<std::uint16_t>(value.substr(colon + 1), port, 1, 65535))
+      return bad("must be ADDR:PORT with an IPv4 address and a port 1..65535 (\"\": off)");
+    else
+      o.metrics_address = value;
   } else {
     return OptionError{"unknown setting " + source};
   }
@@ -127,6 +153,10 @@ const std::vector<OptionDoc>& option_docs() {
       {"--journal-dir", "FTS_JOURNAL_DIR", "", "keep each room's crash-safe journal under this directory"},
       {"--journal-sync-ms", "FTS_JOURNAL_SYNC_MS", "100", "make the journal durable (fdatasync) at most this often (ms)"},
       {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "10", "write a journal checkpoint (new segment) this often (s)"},
+      {"--agones", "FTS_AGONES", "off", "Agones SDK sidecar: on, off or its REST port (on when AGONES_SDK_HTTP_PORT is set)"},
+      {"--agones-health-ms", "FTS_AGONES_HEALTH_MS", "2000", "period of the Agones health ping, sent from the tick loop (ms)"},
+      {"--drain-grace-ms", "FTS_DRAIN_GRACE_MS", "25000", "with Agones, SIGTERM drains: the longest wait for the last match (ms)"},
+      {"--metrics", "FTS_METRICS", "", "serve Prometheus /metrics on ADDR:PORT (off when empty)"},
   };
   return docs;
 }
@@ -174,6 +204,12 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   o.version = version->count() > 0;
   if (auto v = env("FTS_RESUME")) o.resume = *v == "1";
   if (resume->count() > 0) o.resume = true;
+  // Agones sets AGONES_SDK_HTTP_PORT for the game server: its presence turns the SDK on
+  // (FTS_AGONES / --agones off still win, being applied after it).
+  if (auto port = env("AGONES_SDK_HTTP_PORT")) {
+    if (auto err = apply(o, "agones", *port, "AGONES_SDK_HTTP_PORT")) return *err;
+    o.given.erase("agones");
+  }
   for (std::size_t i = 0; i < flags.size(); ++i) {
     const std::string key = option_docs()[i].flag.substr(2);
     if (auto v = env(env_name(key))) {
@@ -186,6 +222,10 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
     if (auto err = apply(o, flag.substr(2), flags[i]->results().back(), flag)) return *err;
   }
   if (o.resume && o.journal_dir.empty()) return OptionError{"--resume: needs --journal-dir DIR (where the journals are)"};
+  if (!o.metrics_address.empty() &&
+      o.metrics_address.substr(o.metrics_address.rfind(':') + 1) == std::to_string(o.port))
+    return OptionError{"--metrics: must not be the game port " + std::to_string(o.port) + ", got \"" +
+                       o.metrics_address + "\""};
   return o;
 }
 

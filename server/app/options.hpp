@@ -32,12 +32,19 @@ struct Options {
   std::uint32_t max_per_address = 4;      // seated players from one host (address without port)
   std::uint32_t idle_timeout_ms = 120000;  // no real input this long while playing: dropped (0: never)
   std::uint32_t stats_interval_ms = 10000;
-  double time_scale = 1.0;
+  double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
   // Crash-safe rooms (server/host/journal.hpp): "" : no journal.
   std::string journal_dir;
   std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
   std::uint32_t journal_checkpoint_s = 10;   // a checkpoint (new segment) this often
-  bool resume = false;                       // rebuild the rooms of --journal-dir first  // ticks run this many times faster than real time (tests)
+  bool resume = false;                       // rebuild the rooms of --journal-dir first
+  // Fleet (server/fleet/): the Agones SDK sidecar's REST port (0: Agones off; --agones
+  // on, or AGONES_SDK_HTTP_PORT set, turns it on), the health ping period, how long a
+  // drain waits for the last match, and the Prometheus endpoint ("": off).
+  std::uint16_t agones_port = 0;
+  std::uint32_t agones_health_ms = 2000;
+  std::uint32_t drain_grace_ms = 25000;
+  std::string metrics_address;  // "ADDR:PORT"
   bool help = false;
   bool version = false;
   // The settings given by a flag or an FTS_* variable, by flag name without dashes

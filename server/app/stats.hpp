@@ -21,6 +21,11 @@ struct Stats {
   std::uint64_t skipped_ticks = 0;
   std::map<std::string, std::uint64_t> drops;  // by reason, ordered for stable output
   std::vector<double> tick_us;
+  // Since the start, never reset: the counters /metrics reports (server/fleet/metrics).
+  struct Totals {
+    std::uint64_t datagrams_in = 0, datagrams_out = 0, bytes_in = 0, bytes_out = 0;
+    std::uint64_t purchases = 0, purchases_refused = 0;
+  } totals;
   void reset_interval() {
     datagrams_in = datagrams_out = bytes_in = bytes_out = 0;
     drops.clear();

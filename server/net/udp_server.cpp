@@ -8,6 +8,7 @@
 
 #include "app/log.hpp"
 #include "app/tick_clock.hpp"
+#include "fleet/fleet.hpp"
 #include "fts/io/udp.hpp"
 
 namespace fts::server {
@@ -46,29 +47,55 @@ class Loop {
       return 1;
     }
     epoch_ns_ = now_ns();
+    try {
+      fleet_ = std::make_unique<Fleet>(options_);
+    } catch (const std::exception& e) {
+      log_record(spdlog::level::err, "bind_failed", {{"metrics", options_.metrics_address}, {"error", e.what()}});
+      return 1;
+    }
     const auto bound = socket_.local_endpoint();
     log_record(spdlog::level::info, "ready",
                {{"address", bound.address().to_string()}, {"port", bound.port()},
                 {"tick_rate_hz", options_.tick_rate_hz}, {"snapshot_rate_hz", options_.snapshot_rate_hz},
                 {"max_players", options_.max_players}, {"model", options_.model}, {"seed", options_.seed},
                 {"time_scale", options_.time_scale}, {"record", options_.record_path}, {"version", FTS_VERSION}});
+    fleet_->bound();
     receive();
     clock_.start(now_ns());
     schedule_tick();
     schedule_stats();
-    signals_.async_wait([this](const boost::system::error_code& e, int sig) {
-      if (e) return;
-      log_record(spdlog::level::info, "shutdown", {{"signal", sig}});
-      host_.shutdown(now_ms());
-      flush();
-      if (record_) record_->flush();
-      io_.stop();
-    });
+    wait_signal();
     io_.run();
     return 0;
   }
 
+  // Stop taking players and rooms; the server stops once the last match ends or
+  // --drain-grace-ms runs out (after Agones took the Shutdown). SIGTERM under Agones.
+  void drain() { fleet_->drain(host_, now_ms()); }
+
  private:
+  // Under Agones the first SIGTERM drains (Kubernetes' stop); any other signal, or a
+  // second one, stops at once.
+  void wait_signal() {
+    signals_.async_wait([this](const boost::system::error_code& e, int sig) {
+      if (e) return;
+      if (sig == SIGTERM && fleet_->agones() && !fleet_->draining()) {
+        drain();
+        wait_signal();
+        return;
+      }
+      stop({{"signal", sig}});
+    });
+  }
+
+  void stop(std::initializer_list<LogField> why) {
+    log_record(spdlog::level::info, "shutdown", why);
+    host_.shutdown(now_ms());
+    flush();
+    if (record_) record_->flush();
+    io_.stop();
+  }
+
   std::uint64_t now_ms() const { return static_cast<std::uint64_t>((now_ns() - epoch_ns_) / 1'000'000); }
 
   void receive() {
@@ -102,7 +129,9 @@ class Loop {
         const auto start = Clock::now();
         host_.tick(now_ms());
         flush();
-        host_.stats().tick_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+        const std::chrono::duration<double> took = Clock::now() - start;
+        host_.stats().tick_us.push_back(took.count() * 1e6);
+        fleet_->observe_tick(took.count());
       }
       if (clock_.skipped() != skipped_before) {
         host_.stats().skipped_ticks += clock_.skipped() - skipped_before;
@@ -110,6 +139,11 @@ class Loop {
           log_record(spdlog::level::warn, "ticks_skipped", {{"total", clock_.skipped()}});
           last_skip_log_ns_ = now_ns();
         }
+      }
+      fleet_->tick(host_, clock_.ticks_run(), clock_.skipped(), now_ms());
+      if (fleet_->finished(now_ms())) {
+        stop({{"drained", true}});
+        return;
       }
       schedule_tick();
     });
@@ -155,6 +189,7 @@ class Loop {
   std::int64_t epoch_ns_ = 0;
   std::int64_t last_skip_log_ns_ = 0;
   protocol::RejectCounters last_rejects_;
+  std::unique_ptr<Fleet> fleet_;
 };
 
 }  // namespace

@@ -1,0 +1,60 @@
+// The Agones SDK REST client on its own thread: the tick loop hands it the wanted state
+// (want(), never blocks beyond a mutex), the thread makes the calls AgonesSync says are
+// owed, retrying with backoff while the sidecar starts late or answers 5xx (never fatal),
+// and polls GET /gameserver to learn the server's Agones state (Allocated, ...).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "fleet/agones_sync.hpp"
+
+namespace fts::server {
+
+struct AgonesClientConfig {
+  std::string host = "127.0.0.1";  // the sidecar listens on localhost
+  std::uint16_t port = 9358;
+  std::uint32_t retry_min_ms = 100;   // first wait after a failed call; doubles per failure
+  std::uint32_t retry_max_ms = 2000;  // cap of that wait
+  std::uint32_t poll_ms = 1000;       // GET /gameserver period
+  std::uint32_t timeout_ms = 2000;    // connect/read/write limit of one call
+};
+
+class AgonesClient {
+ public:
+  explicit AgonesClient(AgonesClientConfig config);
+  ~AgonesClient();  // stops the thread (an in-flight call ends within timeout_ms)
+  AgonesClient(const AgonesClient&) = delete;
+  AgonesClient& operator=(const AgonesClient&) = delete;
+
+  // The state to bring the sidecar to; the latest replaces any earlier one.
+  void want(const AgonesWanted& wanted);
+  bool shutdown_sent() const { return shutdown_sent_.load(); }
+  bool ready_sent() const { return ready_sent_.load(); }
+  std::uint64_t failures() const { return failures_.load(); }
+  // status.state of the last GET /gameserver ("" before the first answer).
+  std::string gameserver_state() const;
+
+ private:
+  void run();
+  void poll_gameserver();
+
+  AgonesClientConfig config_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_cv_;
+  AgonesWanted wanted_;       // guarded by mutex_
+  bool changed_ = false;      // guarded by mutex_
+  bool stop_ = false;         // guarded by mutex_
+  std::string gs_state_;      // guarded by mutex_
+  AgonesSync sync_;           // the thread's own
+  std::atomic<bool> shutdown_sent_{false};
+  std::atomic<bool> ready_sent_{false};
+  std::atomic<std::uint64_t> failures_{0};
+  std::thread thread_;
+};
+
+}  // namespace fts::server

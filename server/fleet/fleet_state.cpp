@@ -1,0 +1,17 @@
+#include "fleet/fleet_state.hpp"
+
+#include "app/game_host.hpp"
+
+namespace fts::server {
+
+FleetState observe(const GameHost& host) {
+  FleetState s;
+  for (const auto& session : host.endpoint().sessions())
+    if (session.connected) s.players.insert(session.name);
+  s.rooms = s.players.empty() ? 0 : 1;
+  s.draining = host.draining();
+  s.phase = s.draining ? "draining" : std::string(sim::to_string(host.match().phase));
+  return s;
+}
+
+}  // namespace fts::server

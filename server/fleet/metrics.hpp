@@ -1,0 +1,58 @@
+// Prometheus /metrics (prometheus-cpp's exposer, its own threads, on --metrics
+// ADDR:PORT, never the game port). The tick loop hands over a sample once per tick;
+// cumulative figures become counters (incremented by what is new since the last sample).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <prometheus/counter.h>
+#include <prometheus/exposer.h>
+#include <prometheus/gauge.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
+#include "app/stats.hpp"
+#include "fleet/fleet_state.hpp"
+#include "fts/protocol/reject.hpp"
+
+namespace fts::server {
+
+struct MetricsSample {
+  FleetState fleet;
+  std::uint64_t ticks = 0, skipped_ticks = 0;
+  Stats::Totals totals;
+  protocol::RejectCounters drops;
+  std::uint32_t sessions_connected = 0, sessions_away = 0;
+};
+
+class Metrics {
+ public:
+  // Listens on "ADDR:PORT"; throws std::runtime_error naming the address when it cannot.
+  explicit Metrics(const std::string& address);
+  ~Metrics();
+  Metrics(const Metrics&) = delete;
+  Metrics& operator=(const Metrics&) = delete;
+
+  void update(const MetricsSample& sample);
+  void observe_tick(double seconds);
+  // Journal fsync latency (issue 15's journal calls this when journaling).
+  void observe_journal_sync(double seconds);
+
+ private:
+  struct Cumulative;  // a counter and the value it was last brought to
+  std::shared_ptr<prometheus::Registry> registry_;
+  std::unique_ptr<prometheus::Exposer> exposer_;
+  prometheus::Gauge* players_ = nullptr;
+  prometheus::Gauge* rooms_ = nullptr;
+  prometheus::Gauge* draining_ = nullptr;
+  prometheus::Gauge* sessions_connected_ = nullptr;
+  prometheus::Gauge* sessions_away_ = nullptr;
+  prometheus::Histogram* tick_seconds_ = nullptr;
+  prometheus::Histogram* journal_sync_seconds_ = nullptr;
+  std::unique_ptr<std::array<Cumulative, 8 + protocol::kRejectCount>> counters_;
+};
+
+}  // namespace fts::server
