@@ -89,6 +89,15 @@ std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_
   return rid;
 }
 
+std::uint32_t ClientEndpoint::send_chat(const std::string& text, std::uint64_t now_ms) {
+  if (state_ != ClientState::connected) return 0;
+  Command c{0, CommandOp::chat, 0};
+  c.text = text.substr(0, kMaxTextBytes);
+  const std::uint32_t rid = commands_.push(std::move(c));
+  send_packet(now_ms);
+  return rid;
+}
+
 void ClientEndpoint::disconnect(std::uint64_t now_ms, const std::string& reason) {
   if (state_ == ClientState::connected) {
     for (int i = 0; i < 3; ++i) {
@@ -187,6 +196,8 @@ void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {
       }
     } else if (const auto* res = std::get_if<Result>(&m)) {
       if (auto why = results_.accept(*res)) reject(*why);
+    } else if (const auto* chat = std::get_if<Chat>(&m)) {
+      if (auto why = chats_.accept(*chat)) reject(*why);
     } else if (std::holds_alternative<Ping>(m)) {
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       error_ = Error{"bye", bye->reason};

@@ -123,10 +123,13 @@ inline std::vector<Message> all_messages() {
       Command{1, CommandOp::buy, 'm'},
       Command{2, CommandOp::ready, 0},
       Command{3, CommandOp::play_again, 0},
+      Command{4, CommandOp::chat, 0, "gg, well played"},
       Result{1, 1, true, "ok", "bought mass"},
       Result{2, 4, false, "coins", "needs 35 coins, you have 12"},
       Ping{},
       Bye{"quit"},
+      Chat{1, 2, "bob", "nice knock!"},
+      Chat{2, 0, "host", "the server restarts in 5 minutes"},
       full,
       delta,
   };
