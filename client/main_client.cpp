@@ -17,6 +17,7 @@
 #include "fts/io/address.hpp"
 #include "fts/io/udp.hpp"
 #include "fts/protocol/connection.hpp"
+#include "replay/replay_loop.hpp"
 #include "term/io.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
@@ -37,6 +38,7 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: fts-client --connect HOST:PORT --name NAME [options]\n"
+    "       fts-client --replay FILE\n"
     "\n"
     "Plays Fear The Sphere in this terminal against an fts-server.\n"
     "\n"
@@ -48,6 +50,9 @@ constexpr const char* kUsage =
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
     "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
+    "  --replay FILE           play back a server record (fts-server --record FILE):\n"
+    "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
+    "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"
     "                          last session on this server, kept in $XDG_STATE_HOME)\n"
     "  --help                  this text\n"
@@ -66,6 +71,7 @@ struct Options {
   bool kitty = true;
   bool mouse = true;  // --no-mouse: no mouse reporting, keys only
   bool fresh = false;  // --new: ignore the saved session token
+  std::string replay;  // --replay FILE: play a record back, no server
 };
 
 int usage_error(const std::string& msg) {
@@ -83,7 +89,7 @@ int parse(int argc, char** argv, Options& o) {
   const CLI::Option* no_kitty = app.add_flag("--no-kitty");
   const CLI::Option* no_mouse = app.add_flag("--no-mouse");
   const CLI::Option* fresh = app.add_flag("--new");
-  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps"}) app.add_option(flag);
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay"}) app.add_option(flag);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ArgumentMismatch&) {
@@ -125,6 +131,11 @@ int parse(int argc, char** argv, Options& o) {
     if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
       return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
     (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
+  }
+  if (const auto v = value("--replay")) {
+    if (v->empty()) return usage_error("--replay needs a record file");
+    o.replay = *v;
+    return -1;
   }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
@@ -500,6 +511,12 @@ class Game {
 int main(int argc, char** argv) {
   Options opts;
   if (const int code = parse(argc, argv, opts); code >= 0) return code;
+  if (!opts.replay.empty()) {
+    std::string message;
+    const int code = run_replay(opts.replay, opts.kitty, message);
+    if (!message.empty()) std::cerr << "fts-client: " << message << "\n";
+    return code;
+  }
   asio::io_context io;
   std::string why;
   const auto server = fts::io::resolve(io, opts.host, opts.port, why);

@@ -130,11 +130,13 @@ std::string item_name(std::uint32_t key) {
 }  // namespace
 
 std::string refusal_text(const std::string& code, const std::string& server_message, char item, const PlayerState* me) {
-  const auto def = item != 0 ? sim::item_by_key(item) : std::nullopt;
-  const std::string what = def ? std::string(sim::item_def(*def).name) : std::string("that");
+  const sim::ItemDef* def = nullptr;
+  for (const sim::ItemDef& d : sim::item_table())
+    if (item != 0 && d.key == item) def = &d;
+  const std::string what = def != nullptr ? std::string(def->name) : std::string("that");
   if (code == "coins") {
-    if (me != nullptr && def)
-      return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(*def)]) +
+    if (me != nullptr && def != nullptr)
+      return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(def->item)]) +
              ", you have " + sim::with_thousands(me->coins);
     return "not enough coins";
   }

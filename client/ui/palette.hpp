@@ -19,7 +19,7 @@ inline Color player_color(std::uint32_t player_id) {
 }
 
 inline Style player_style(std::uint32_t player_id, bool bold = true) {
-  return Style{player_color(player_id), Color::none, bold, false};
+  return Style{player_color(player_id), Color::none, bold, false, false};
 }
 
 }  // namespace fts::client

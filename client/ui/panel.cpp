@@ -16,9 +16,10 @@ using protocol::Snapshot;
 
 namespace {
 
-constexpr Style kDim{Color::gray, Color::none, false, false};
+constexpr Style kDim{Color::gray, Color::none, false, false, false};
 constexpr int kLegendTopMaxRows = 3;
 constexpr int kTopLogRows = 3;
+constexpr int kShopMinCols = 58;  // the widest line of the shop's slide, with its margin
 
 std::string fit_name(const std::string& name, int width) {
   const std::string clean = sanitize(name, 16);
@@ -175,7 +176,7 @@ std::vector<StyledLine> log_lines(const ViewState& view, int cols, int rows) {
       const std::string& part = parts[k];
       // The sender's name (the first prefix_chars of the text) in the sender's colour.
       const std::size_t coloured = consumed < m.prefix_chars ? std::min(part.size(), m.prefix_chars - consumed) : 0;
-      Style body = m.host ? Style{Color::yellow, Color::none, true, false} : Style{};
+      Style body = m.host ? Style{Color::yellow, Color::none, true, false, false} : Style{};
       if (coloured > 0) line.push_back({part.substr(0, coloured), player_style(m.from)});
       line.push_back({part.substr(coloured), body});
       consumed += part.size() + 1;
@@ -291,17 +292,22 @@ FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapsho
     L.too_small = true;
     return L;
   }
-  // Top layout: HUD, the wrapped legend, the arena, three log rows, the footer.
+  // Top layout: HUD, the wrapped legend, the arena, three log rows (one in the shop,
+  // whose slide needs the rows), the footer.
+  const bool shop = snap.phase == Phase::shop;
+  const int log_rows = shop ? 1 : kTopLogRows;
   const int legend_rows =
       std::max<int>(1, static_cast<int>(legend_lines(snap, view, cols, false, kLegendTopMaxRows).size()));
-  const int top_area_rows = rows - 1 - legend_rows - kTopLogRows - 1;
+  const int top_area_rows = rows - 1 - legend_rows - log_rows - 1;
   const Viewport top =
       fit_arena(1, 1 + legend_rows + 1, cols - 2, top_area_rows - 2, view.arena_width_u, view.arena_height_u);
   // Side layout: HUD, the arena on the left, the panel (legend, then log) on the right.
   const int panel_cols = std::clamp(cols / 4, 32, 44);
   const int side_cols = cols - panel_cols - 1;
   const Viewport side = fit_arena(1, 2, side_cols - 2, rows - 4, view.arena_width_u, view.arena_height_u);
-  L.side = side.cols * 10 >= top.cols * 9;
+  // The panel when it costs the platform at most a fifth of its width (and leaves the
+  // shop's slide its width).
+  L.side = side.cols * 5 >= top.cols * 4 && (!shop || side_cols >= kShopMinCols);
   if (L.side) {
     L.panel_col0 = cols - panel_cols;
     L.panel_cols = panel_cols;
@@ -325,7 +331,7 @@ FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapsho
     L.area_rows = top_area_rows;
     L.arena = top;
     L.log_row0 = L.area_row0 + top_area_rows;
-    L.log_rows = kTopLogRows;
+    L.log_rows = log_rows;
     L.log_col0 = 0;
     L.log_cols = cols;
   }

@@ -18,11 +18,11 @@ using protocol::Phase;
 
 namespace {
 
-constexpr Style kHudStyle{Color::none, Color::none, true, false};
-constexpr Style kDimStyle{Color::gray, Color::none, false, false};
-constexpr Style kStatusStyle{Color::red, Color::none, true, false};
-constexpr Style kMessageStyle{Color::cyan, Color::none, false, false};
-constexpr Style kTitleStyle{Color::yellow, Color::none, true, false};
+constexpr Style kHudStyle{Color::none, Color::none, true, false, false};
+constexpr Style kDimStyle{Color::gray, Color::none, false, false, false};
+constexpr Style kStatusStyle{Color::red, Color::none, true, false, false};
+constexpr Style kMessageStyle{Color::cyan, Color::none, false, false, false};
+constexpr Style kTitleStyle{Color::yellow, Color::none, true, false, false};
 
 struct BallLook {
   char fill;
@@ -32,7 +32,7 @@ struct BallLook {
 
 BallLook look_of(const BallState& b, std::uint32_t me) {
   switch (b.kind) {
-    case BallKind::enemy: return {kEnemyBallChar, {Color::red, Color::none, true, false}, 0};
+    case BallKind::enemy: return {kEnemyBallChar, {Color::red, Color::none, true, false, false}, 0};
     case BallKind::rocket: return {kRocketChar, player_style(b.owner), 2};
     case BallKind::player:
       if (b.owner == me) return {kMyBallChar, player_style(b.owner), 3};
@@ -156,9 +156,9 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
     s.put(2, first, "Level " + std::to_string(snap.level) + " Complete", kTitleStyle);
     s.put(2, first + 2, me == nullptr ? "You are watching: the players are shopping."
                                       : "You are out: watching the others shop.");
-    int row = first + 4;
-    for (const auto& line : board)
-      if (row <= last) s.put(2, row++, line.substr(0, static_cast<std::size_t>(width)), row == first + 5 ? kTitleStyle : Style{});
+    for (std::size_t i = 0; i < board.size() && first + 4 + static_cast<int>(i) <= last; ++i)
+      s.put(2, first + 4 + static_cast<int>(i), board[i].substr(0, static_cast<std::size_t>(width)),
+            i == 0 ? kTitleStyle : Style{});
   } else {
     std::vector<std::string> raw = shop_screen_lines(*me, snap.level, view.shop_terms);
     std::vector<std::string> lines;
@@ -183,10 +183,19 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
       else if (line.rfind("To ", 0) == 0 || line.rfind("Press ", 0) == 0) style.bold = true;
       s.put(2, row++, line, style);
     }
-    // The standings after the level, under the offers when they fit.
-    if (last - row >= static_cast<int>(board.size()))
+    // The standings after the level: beside the offers when the terminal is wide enough,
+    // else under them when they fit.
+    std::size_t text_w = 0;
+    for (const auto& line : spaced) text_w = std::max(text_w, line.size());
+    const int beside = L.area_col0 + 2 + static_cast<int>(text_w) + 4;
+    const int board_w = static_cast<int>(board[1].size());
+    if (beside + board_w <= L.area_col0 + L.area_cols) {
+      for (std::size_t i = 0; i < board.size() && first + static_cast<int>(i) <= last; ++i)
+        s.put(beside, first + static_cast<int>(i), board[i], i == 0 ? kTitleStyle : Style{});
+    } else if (last - row >= static_cast<int>(board.size())) {
       for (std::size_t i = 0; i < board.size(); ++i)
         s.put(2, ++row, board[i].substr(0, static_cast<std::size_t>(width)), i == 0 ? kTitleStyle : Style{});
+    }
   }
   const int cut = std::max(L.area_cols - 2, 1);
   if (!view.shop_result.empty()) s.put(2, last + 1, view.shop_result.substr(0, static_cast<std::size_t>(cut)), kMessageStyle);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fts/sim/items.hpp"
@@ -14,6 +15,10 @@ namespace fts::client {
 // One line of the message log. `from` colours the first `prefix_chars` characters (the
 // sender's name of a chat line) in that player's colour; 0: no sender.
 struct LogLine {
+  LogLine() = default;
+  LogLine(std::string text_, std::uint64_t at_ms_, std::uint32_t from_ = 0, std::size_t prefix_chars_ = 0,
+          bool host_ = false)
+      : text(std::move(text_)), at_ms(at_ms_), from(from_), prefix_chars(prefix_chars_), host(host_) {}
   std::string text;  // already sanitised
   std::uint64_t at_ms = 0;
   std::uint32_t from = 0;

@@ -84,14 +84,14 @@ std::uint32_t ClientEndpoint::send_input(InputFrame frame, std::uint64_t now_ms)
 
 std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
-  const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}});
+  const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}, {}});
   send_packet(now_ms);
   return rid;
 }
 
 std::uint32_t ClientEndpoint::send_chat(const std::string& text, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
-  Command c{0, CommandOp::chat, 0};
+  Command c{0, CommandOp::chat, 0, {}};
   c.text = text.substr(0, kMaxTextBytes);
   const std::uint32_t rid = commands_.push(std::move(c));
   send_packet(now_ms);

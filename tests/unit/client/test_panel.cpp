@@ -5,7 +5,9 @@
 #include <cmath>
 
 #include "seed_situation.hpp"
+#include "fts/sim/shop_text.hpp"
 #include "ui/hud.hpp"
+#include "ui/palette.hpp"
 #include "ui/panel.hpp"
 #include "ui/render.hpp"
 
