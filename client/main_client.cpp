@@ -274,7 +274,7 @@ class Game {
     // Quitting asks first: q (or Ctrl-C) once asks, q or y again quits, any other key stays.
     const bool yes = e.key == Key::character && e.ch == 'y';
     if (quit_asked_ && (a.kind == ActionKind::quit || yes)) return finish(0, "");
-    if (quit_asked_ && e.action != KeyAction::release) {
+    if (quit_asked_ && e.action != KeyAction::release && e.key != Key::mouse) {  // a moved pointer is no answer
       quit_asked_ = false;
       view_.status.clear();
       note("Staying.");

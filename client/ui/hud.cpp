@@ -98,7 +98,7 @@ std::string ready_line(const Snapshot& s) {
     if (p.lives <= 0 && !p.alive) continue;
     out += first ? " " : ", ";
     first = false;
-    out += sanitize(p.name, 16) + (p.ready ? " (ready)" : " (shopping)");
+    out += sanitize(p.name, 16) + (p.ready ? " (ready)" : s.phase == Phase::shop ? " (shopping)" : " (not ready)");
   }
   return out;
 }

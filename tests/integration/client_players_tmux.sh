@@ -4,7 +4,8 @@
 # sees the other's name in the legend, in the same colour on both screens; a chat line
 # typed by ann arrives on bob's screen with her name; ann steers with the mouse (SGR
 # reports typed into the pane) and her ball moves toward the pointer; a pane shrunk
-# below 60x20 shows the warning. Every wait polls a pane against a deadline.
+# below 60x20 shows the warning; and `fts-client --replay` of the server's record ends on
+# the level and coins ann saw live. Every wait polls a pane against a deadline.
 #
 # usage: client_players_tmux.sh FTS_SERVER FTS_CLIENT FTS_BOT
 set -euo pipefail
@@ -31,7 +32,7 @@ trap cleanup EXIT
 
 fail() {
   echo "FAIL: $*" >&2
-  for s in ann bob; do
+  for s in ann bob replay; do
     echo "--- pane $s ---" >&2
     tm capture-pane -p -t "$s" >&2 2>/dev/null || true
   done
@@ -63,7 +64,8 @@ ball_at() {
 cat >"$WORK/config.json" <<'JSON'
 {"shop_timeout_s": 600}
 JSON
-"$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --log-level info >"$WORK/server.log" 2>&1 &
+"$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --record "$WORK/match.record" --log-level info \
+  >"$WORK/server.log" 2>&1 &
 SERVER_PID=$!
 PORT=""
 deadline=$((SECONDS + 10))
@@ -136,6 +138,26 @@ wait_for bob 5 'terminal too small: 50x15, need at least 60x20'
 tm resize-window -t bob -x 120 -y 40
 wait_for bob 5 '^Level: '
 echo "the small pane showed the warning"
+
+# The replay: stop the server (its record is complete), note what ann saw last, and play
+# the record back to its end.
+kill -TERM "$SERVER_PID"
+wait "$SERVER_PID" 2>/dev/null || true
+SERVER_PID=""
+live=$(pane ann | head -n 1 | sed -nE 's/^Level: ([0-9]+)   Coins: ([0-9,]+) .*/\1 \2/p' | tr -d ,)
+[[ -n "$live" ]] || fail "no HUD on ann's screen"
+read -r live_level live_coins <<<"$live"
+tm new-session -d -s replay -x 120 -y 40 "TERM=xterm-256color '$CLIENT' --replay '$WORK/match.record'; echo CLIENT_EXIT=\$?; sleep 600"
+wait_for replay 10 'Replay: tick'
+tm send-keys -t replay e
+wait_for replay 30 '\(end\)'
+wait_for replay 5 "^Level: $live_level "
+coins=$(pane replay | grep -oE '[@O] ann +[0-9,]+c' | head -n 1 | sed -E 's/.* ([0-9,]+)c/\1/' | tr -d ,)
+[[ "$coins" == "$live_coins" ]] || fail "the replay ends with ann at $coins coins, live she had $live_coins"
+pane replay | grep -q 'differs from this build' && fail "the replay's hashes differ from the record's"
+echo "the replay ends on level $live_level with ann at $coins coins, as live"
+tm send-keys -t replay q
+wait_for replay 5 '^CLIENT_EXIT=0'
 
 for name in ann bob; do
   tm send-keys -t "$name" q
