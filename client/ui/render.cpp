@@ -202,8 +202,24 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
   std::string ready;
   if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
     ready = "Next level in " + std::to_string(left) + " s.   ";
-  if (me != nullptr && me->ready) ready += "You are ready: waiting for the others.";
-  else ready += ready_line(snap);
+  if (me != nullptr && me->ready) {
+    ready += "You are ready: waiting for the others.";
+  } else {
+    std::string line = ready_line(snap);
+    if (static_cast<int>(ready.size() + line.size()) > cut) {
+      // Too long for the width: how many are ready, and who is still shopping.
+      int total = 0, done = 0;
+      std::string waiting;
+      for (const auto& p : snap.players) {
+        if (p.lives <= 0 && !p.alive) continue;
+        ++total;
+        if (p.ready) ++done;
+        else waiting += (waiting.empty() ? "" : ", ") + sanitize(p.name, 16);
+      }
+      line = "Ready: " + std::to_string(done) + " of " + std::to_string(total) + "; shopping: " + waiting;
+    }
+    ready += line;
+  }
   s.put(2, last + 2, ready.substr(0, static_cast<std::size_t>(cut)));
 }
 

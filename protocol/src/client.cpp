@@ -92,7 +92,9 @@ std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_
 std::uint32_t ClientEndpoint::send_chat(const std::string& text, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
   Command c{0, CommandOp::chat, 0, {}};
-  c.text = text.substr(0, kMaxTextBytes);
+  // Text on the wire is printable ASCII (a datagram with anything else is refused whole,
+  // and a refused reliable command would block the ones after it): the rest becomes '?'.
+  for (char ch : text.substr(0, kMaxTextBytes)) c.text += (ch >= 0x20 && ch < 0x7f) ? ch : '?';
   const std::uint32_t rid = commands_.push(std::move(c));
   send_packet(now_ms);
   return rid;

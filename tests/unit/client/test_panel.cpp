@@ -207,6 +207,10 @@ TEST_CASE("the shop shows its countdown, the standings and a watcher's note", "[
   std::string text = all_text(render(s, s, 0, {120, 40}, view));
   CHECK(text.find("Next level in 15 s.") != std::string::npos);
   CHECK(text.find("Standings after level 3") != std::string::npos);
+  // Eight names do not fit on the ready line at 80 columns: a count and who is shopping.
+  for (auto& p : s.players) p.ready = p.id != 1;
+  text = all_text(render(s, s, 0, {80, 24}, view));
+  CHECK(text.find("Ready: 7 of 8; shopping: ann") != std::string::npos);
   s.players[0].lives = 0;
   s.players[0].alive = false;
   text = all_text(render(s, s, 0, {120, 40}, view));

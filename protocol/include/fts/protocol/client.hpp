@@ -60,6 +60,7 @@ class ClientEndpoint {
   // Queues a reliable command and sends it; returns its rid (0 unless connected).
   std::uint32_t send_command(CommandOp op, char item, std::uint64_t now_ms);
   // Queues a chat line (a reliable command "chat"); returns its rid (0 unless connected).
+  // Bytes outside printable ASCII are sent as '?'.
   std::uint32_t send_chat(const std::string& text, std::uint64_t now_ms);
   // Clean disconnect: sends bye (three times, it is not acknowledged).
   void disconnect(std::uint64_t now_ms, const std::string& reason = "quit");
