@@ -51,9 +51,10 @@ wait_for() {
   done
   fail "no '$3' on $1's screen within $2 s"
 }
-# The SGR colour (30-37, 90-97) the pane draws NAME in, first place it is written.
+# The SGR colour (30-37, 90-97) the pane draws NAME in (the legend's "@ name" or "O name"
+# entry or the label on the field, whichever comes first).
 colour_of() {
-  tm capture-pane -e -p -t "$1" | grep -aoE "("$'\x1b'"\\[[0-9;]*m)+$2[^a-z0-9_]" | head -n 1 |
+  tm capture-pane -e -p -t "$1" | grep -aoE "("$'\x1b'"\\[[0-9;]*m)+([@O] )?$2[^a-z0-9_]" | head -n 1 |
     grep -oE '[[;](3[0-7]|9[0-7])[;m]' | tail -n 1 | tr -d '[;m'
 }
 # "ROW COL" of the centre of ann's ball ('@' next to '@' or its mass), 1-based, or "".
@@ -139,14 +140,20 @@ tm resize-window -t bob -x 120 -y 40
 wait_for bob 5 '^Level: '
 echo "the small pane showed the warning"
 
-# The replay: stop the server (its record is complete), note what ann saw last, and play
-# the record back to its end.
-kill -TERM "$SERVER_PID"
-wait "$SERVER_PID" 2>/dev/null || true
-SERVER_PID=""
+# The replay: note what ann sees last, quit both clients, stop the server (its record
+# is complete) and play the record back to its end.
 live=$(pane ann | head -n 1 | sed -nE 's/^Level: ([0-9]+)   Coins: ([0-9,]+) .*/\1 \2/p' | tr -d ,)
 [[ -n "$live" ]] || fail "no HUD on ann's screen"
 read -r live_level live_coins <<<"$live"
+for name in ann bob; do
+  tm send-keys -t "$name" q
+  wait_for "$name" 5 'Quit\?'
+  tm send-keys -t "$name" y
+  wait_for "$name" 5 '^CLIENT_EXIT=0'
+done
+kill -TERM "$SERVER_PID"
+wait "$SERVER_PID" 2>/dev/null || true
+SERVER_PID=""
 tm new-session -d -s replay -x 120 -y 40 "TERM=xterm-256color '$CLIENT' --replay '$WORK/match.record'; echo CLIENT_EXIT=\$?; sleep 600"
 wait_for replay 10 'Replay: tick'
 tm send-keys -t replay e
@@ -158,11 +165,4 @@ pane replay | grep -q 'differs from this build' && fail "the replay's hashes dif
 echo "the replay ends on level $live_level with ann at $coins coins, as live"
 tm send-keys -t replay q
 wait_for replay 5 '^CLIENT_EXIT=0'
-
-for name in ann bob; do
-  tm send-keys -t "$name" q
-  wait_for "$name" 5 'Quit\?'
-  tm send-keys -t "$name" y
-  wait_for "$name" 5 '^CLIENT_EXIT=0'
-done
 echo "PASS"
