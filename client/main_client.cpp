@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -16,12 +17,14 @@
 #include "fts/io/address.hpp"
 #include "fts/io/udp.hpp"
 #include "fts/protocol/connection.hpp"
+#include "replay/replay_loop.hpp"
 #include "term/io.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/link_meters.hpp"
+#include "ui/panel.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 #include "ui/session_store.hpp"
@@ -35,6 +38,7 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: fts-client --connect HOST:PORT --name NAME [options]\n"
+    "       fts-client --replay FILE\n"
     "\n"
     "Plays Fear The Sphere in this terminal against an fts-server.\n"
     "\n"
@@ -45,12 +49,19 @@ constexpr const char* kUsage =
     "  --interp-delay-ms N     draw this far behind the newest snapshot (default 100)\n"
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
+    "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
+    "  --replay FILE           play back a server record (fts-server --record FILE):\n"
+    "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
+    "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"
     "                          last session on this server, kept in $XDG_STATE_HOME)\n"
     "  --help                  this text\n"
     "\n"
-    "Controls: arrows or WASD thrust, space fires rockets, m s a r l x b buy in the shop,\n"
-    "Enter is ready (and play again), q twice quits. NO_COLOR=1 turns colours off.\n";
+    "Controls: arrows, WASD or hjkl thrust (a tap is a short push, holding keeps pushing),\n"
+    "the mouse pointer steers (the ball thrusts toward it; a click fires), space fires\n"
+    "rockets, m s a r l x b buy in the shop, Enter is ready (and play again), t opens a\n"
+    "chat line (Enter sends, Esc cancels), Tab follows another player while you watch,\n"
+    "q twice quits. NO_COLOR=1 turns colours off.\n";
 
 struct Options {
   std::string host, port, name;
@@ -58,7 +69,9 @@ struct Options {
   int interp_delay_ms = 100;
   int fps = 60;
   bool kitty = true;
+  bool mouse = true;  // --no-mouse: no mouse reporting, keys only
   bool fresh = false;  // --new: ignore the saved session token
+  std::string replay;  // --replay FILE: play a record back, no server
 };
 
 int usage_error(const std::string& msg) {
@@ -74,8 +87,9 @@ int parse(int argc, char** argv, Options& o) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   const CLI::Option* help = app.add_flag("-h,--help");
   const CLI::Option* no_kitty = app.add_flag("--no-kitty");
+  const CLI::Option* no_mouse = app.add_flag("--no-mouse");
   const CLI::Option* fresh = app.add_flag("--new");
-  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps"}) app.add_option(flag);
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay"}) app.add_option(flag);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ArgumentMismatch&) {
@@ -94,6 +108,7 @@ int parse(int argc, char** argv, Options& o) {
     return opt->results().back();
   };
   o.kitty = no_kitty->count() == 0;
+  o.mouse = no_mouse->count() == 0;
   o.fresh = fresh->count() > 0;
   if (const auto v = value("--connect")) {
     const auto hp = fts::io::parse_host_port(*v);
@@ -116,6 +131,11 @@ int parse(int argc, char** argv, Options& o) {
     if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
       return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
     (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
+  }
+  if (const auto v = value("--replay")) {
+    if (v->empty()) return usage_error("--replay needs a record file");
+    o.replay = *v;
+    return -1;
   }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
@@ -227,13 +247,34 @@ class Game {
     for (const KeyEvent& e : keys_.read(now)) handle_key(e, now);
   }
 
+  // The chat line being typed takes every key: Enter sends, Esc cancels.
+  void chat_key(const KeyEvent& e, std::uint64_t now) {
+    if (e.action == KeyAction::release || e.key == Key::mouse) return;
+    if (e.key == Key::escape || e.key == Key::ctrl_c) {
+      view_.chat_open = false;
+      view_.chat_draft.clear();
+    } else if (e.key == Key::enter) {
+      const std::string line = sanitize(view_.chat_draft, kChatMaxChars);
+      view_.chat_open = false;
+      view_.chat_draft.clear();
+      if (!line.empty() && conn_.state() == proto::ClientState::connected)
+        pending_chats_.insert(conn_.endpoint().send_chat(line, now));
+    } else if (e.key == Key::backspace) {
+      if (!view_.chat_draft.empty()) view_.chat_draft.pop_back();
+    } else if (view_.chat_draft.size() < kChatMaxChars) {
+      if (e.key == Key::space) view_.chat_draft += ' ';
+      else if (e.key == Key::character && e.text != 0) view_.chat_draft += e.text;
+    }
+  }
+
   void handle_key(const KeyEvent& e, std::uint64_t now) {
+    if (view_.chat_open) return chat_key(e, now);
     const Action a = action_of(e, phase());
     const bool connected = conn_.state() == proto::ClientState::connected;
     // Quitting asks first: q (or Ctrl-C) once asks, q or y again quits, any other key stays.
     const bool yes = e.key == Key::character && e.ch == 'y';
     if (quit_asked_ && (a.kind == ActionKind::quit || yes)) return finish(0, "");
-    if (quit_asked_ && e.action != KeyAction::release) {
+    if (quit_asked_ && e.action != KeyAction::release && e.key != Key::mouse) {  // a moved pointer is no answer
       quit_asked_ = false;
       view_.status.clear();
       note("Staying.");
@@ -247,6 +288,23 @@ class Game {
         return;
       case ActionKind::move:
         if (auto d = direction_of(e)) hold_.on_key(*d, e, now);
+        view_.mouse_steering = false;  // the keys take over until the pointer moves again
+        break;
+      case ActionKind::pointer:
+        if (!opts_.mouse) break;
+        pointer_col_ = e.col;
+        pointer_row_ = e.row;
+        if (e.action == KeyAction::press) view_.mouse_steering = true;
+        if (!e.motion && e.action == KeyAction::press && e.button == 0 && phase() == proto::Phase::play) fire_ = true;
+        break;
+      case ActionKind::chat:
+        view_.chat_open = true;
+        view_.chat_draft.clear();
+        hold_.release_all();
+        break;
+      case ActionKind::follow:
+        if (const proto::Snapshot* s = buffer_.newest())
+          view_.follow_id = next_follow(*s, followed(*s, view_), view_.my_player_id);
         break;
       case ActionKind::fire: fire_ = true; break;
       case ActionKind::buy:
@@ -271,7 +329,11 @@ class Game {
   void send_input(std::uint64_t now) {
     if (conn_.state() != proto::ClientState::connected) return;
     proto::InputFrame f;
-    if (phase() == proto::Phase::play) {
+    if (phase() == proto::Phase::play && view_.mouse_steering) {
+      const Steer st = mouse_steer();
+      f.move_x = static_cast<std::int8_t>(st.x);
+      f.move_y = static_cast<std::int8_t>(st.y);
+    } else if (phase() == proto::Phase::play) {
       f.move_x = static_cast<std::int8_t>(hold_.move_x(now));
       f.move_y = static_cast<std::int8_t>(hold_.move_y(now));
     } else {
@@ -282,6 +344,19 @@ class Game {
       conn_.endpoint().send_input(*send, now);
       fire_ = false;
     }
+  }
+
+  // Toward the pointer, per axis, from where our ball is drawn; within a cell of it: still.
+  Steer mouse_steer() const {
+    const proto::Snapshot* s = buffer_.newest();
+    if (s == nullptr) return {};
+    for (const auto& b : s->balls) {
+      if (b.kind != proto::BallKind::player || b.owner != view_.my_player_id) continue;
+      const Viewport v = arena_viewport(last_size_, view_, *s);
+      const double px = v.x_of(pointer_col_), py = v.y_of(pointer_row_);
+      return {steer_toward(b.x, 0, px, 0, v.units_per_col()).x, steer_toward(0, b.y, 0, py, v.units_per_row()).y};
+    }
+    return {};
   }
 
   void absorb(std::uint64_t now) {
@@ -302,6 +377,8 @@ class Game {
     }
     for (auto& s : endpoint.take_snapshots()) {
       if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
+      for (const auto& p : s.players)
+        if (view_.names.size() < kMaxNames || view_.names.count(p.id) > 0) view_.names[p.id] = p.name;
       clock_.observe(s.tick, now);
       if (const auto& w = endpoint.welcome(); w && w->snapshot_rate_hz > 0)
         loss_.on_snapshot(s.tick, static_cast<double>(w->tick_rate_hz) / w->snapshot_rate_hz);
@@ -309,12 +386,23 @@ class Game {
       buffer_.push(std::move(s));
     }
     for (const auto& r : endpoint.take_results()) {
+      const proto::Snapshot* newest = buffer_.newest();
+      const PlayerState* me = newest != nullptr ? find_player(*newest, view_.my_player_id) : nullptr;
+      if (pending_chats_.erase(r.command_rid) > 0) {
+        if (!r.ok) note("Chat not sent: " + refusal_text(r.code, r.message, 0, me) + ".");
+        continue;
+      }
       auto it = pending_buys_.find(r.command_rid);
       if (it == pending_buys_.end()) continue;
       const std::string msg = sanitize(r.message, 120);
       view_.shop_result = r.ok ? (msg.empty() ? std::string("Bought ") + it->second + "." : msg)
-                               : "Cannot buy '" + std::string(1, it->second) + "': " + (msg.empty() ? sanitize(r.code) : msg);
+                               : "Cannot buy: " + refusal_text(r.code, r.message, it->second, me) + ".";
       pending_buys_.erase(it);
+    }
+    for (const auto& c : endpoint.take_chats()) {
+      const std::string name = c.from == 0 ? std::string("host") : sanitize(c.name, 16);
+      LogLine line{name + ": " + sanitize(c.text, kChatMaxChars), now, c.from, name.size() + 1, c.from == 0};
+      push_log(std::move(line));
     }
     // Connection trouble: show it after 2 s of silence; the connection resumes with the
     // token by itself (ClientConnection) until the reconnect window has passed.
@@ -337,14 +425,17 @@ class Game {
     view_.loss_percent = loss_.percent();
   }
 
-  void note(std::string line) {
+  void note(std::string line) { push_log(LogLine{std::move(line), now_ms()}); }
+
+  void push_log(LogLine line) {
     view_.messages.push_back(std::move(line));
-    if (view_.messages.size() > 8) view_.messages.erase(view_.messages.begin());
+    if (view_.messages.size() > kLogKeep) view_.messages.erase(view_.messages.begin());
   }
 
   void read_events(const proto::Snapshot& s) {
     for (const auto& e : events_.fresh(s)) {
-      const std::string line = describe_event(e, s, view_.my_player_id);
+      tally_event(view_.scores, e);
+      const std::string line = describe_event(e, s, view_.my_player_id, &view_.names);
       if (!line.empty()) note(line);
       if (e.kind == proto::EventKind::purchase && e.a == view_.my_player_id) view_.shop_result = line;
       if (e.kind == proto::EventKind::level_started) view_.shop_result.clear();
@@ -353,6 +444,8 @@ class Game {
 
   void draw(std::uint64_t now) {
     const TerminalSize size = painter_.size();
+    last_size_ = size;
+    view_.now_ms = now;
     Screen screen(size);
     if (const proto::Snapshot* newest = buffer_.newest()) {
       if (newest->phase == proto::Phase::play) {
@@ -399,6 +492,11 @@ class Game {
   EventFeed events_;
   ViewState view_;
   std::map<std::uint32_t, char> pending_buys_;
+  std::set<std::uint32_t> pending_chats_;  // rids of chat lines awaiting their result
+  int pointer_col_ = 0, pointer_row_ = 0;  // the mouse pointer's cell
+  TerminalSize last_size_{80, 24};
+  static constexpr std::size_t kChatMaxChars = 120;
+  static constexpr std::size_t kMaxNames = 256;
   std::uint64_t last_rx_ms_ = 0;
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
@@ -413,6 +511,12 @@ class Game {
 int main(int argc, char** argv) {
   Options opts;
   if (const int code = parse(argc, argv, opts); code >= 0) return code;
+  if (!opts.replay.empty()) {
+    std::string message;
+    const int code = run_replay(opts.replay, opts.kitty, message);
+    if (!message.empty()) std::cerr << "fts-client: " << message << "\n";
+    return code;
+  }
   asio::io_context io;
   std::string why;
   const auto server = fts::io::resolve(io, opts.host, opts.port, why);
@@ -420,7 +524,7 @@ int main(int argc, char** argv) {
     std::cerr << "fts-client: cannot resolve " << opts.host << ":" << opts.port << ": " << why << "\n";
     return 1;
   }
-  if (!term::enter(opts.kitty)) {
+  if (!term::enter(opts.kitty, opts.mouse)) {
     std::cerr << "fts-client: needs a terminal (stdin and stdout must be a tty)\n";
     return 1;
   }

@@ -1,5 +1,6 @@
 #include "term/keys.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <limits>
 
@@ -15,9 +16,12 @@ KeyEvent from_char(unsigned char c) {
   else if (c == '\r' || c == '\n') e.key = Key::enter;
   else if (c == ' ') e.key = Key::space;
   else if (c == 0x1b) e.key = Key::escape;
+  else if (c == '\t') e.key = Key::tab;
+  else if (c == 0x7f || c == 0x08) e.key = Key::backspace;
   else if (c >= 0x21 && c < 0x7f) {
     e.key = Key::character;
     e.ch = static_cast<char>(std::tolower(c));
+    e.text = static_cast<char>(c);
   }
   return e;
 }
@@ -47,6 +51,22 @@ long param(const std::vector<std::vector<long>>& f, std::size_t i, std::size_t j
 
 // One complete CSI sequence: parameters (without a leading private marker) and final byte.
 std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, bool& kitty_answer) {
+  if (!params.empty() && params[0] == '<') {
+    // SGR mouse: CSI < button ; column ; row M (press, motion) or m (release), 1-based.
+    if (final_byte != 'M' && final_byte != 'm') return std::nullopt;
+    const auto f = parse_params(params.substr(1));
+    if (f.size() != 3) return std::nullopt;
+    const long b = param(f, 0, 0, -1), col = param(f, 1, 0, -1), row = param(f, 2, 0, -1);
+    if (b < 0 || col < 1 || row < 1) return std::nullopt;
+    KeyEvent e;
+    e.key = Key::mouse;
+    e.button = static_cast<int>(b & ~(4 | 8 | 16 | 32));  // without shift/alt/ctrl/motion
+    e.motion = (b & 32) != 0;
+    e.action = final_byte == 'm' ? KeyAction::release : KeyAction::press;
+    e.col = static_cast<int>(col - 1);
+    e.row = static_cast<int>(row - 1);
+    return e;
+  }
   if (!params.empty() && params[0] == '?') {
     // CSI ? flags u: the query's answer; releases come only with "report event types".
     if (final_byte == 'u') kitty_answer = (param(parse_params(params.substr(1)), 0, 0, 0) & 2) != 0;
@@ -69,6 +89,8 @@ std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, boo
       if (code == 13 || code == 57414) e.key = Key::enter;
       else if (code == 32) e.key = Key::space;
       else if (code == 27) e.key = Key::escape;
+      else if (code == 9) e.key = Key::tab;
+      else if (code == 127 || code == 8) e.key = Key::backspace;
       else if (code == 'c' && (mods & 4) != 0) e.key = Key::ctrl_c;
       else if (code == 57417) e.key = Key::left;  // keypad arrows
       else if (code == 57418) e.key = Key::right;
@@ -77,6 +99,7 @@ std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, boo
       else if (code > 0x20 && code < 0x7f) {
         e.key = Key::character;
         e.ch = static_cast<char>(std::tolower(static_cast<int>(code)));
+        e.text = (mods & 1) != 0 ? static_cast<char>(std::toupper(static_cast<int>(code))) : e.ch;
       } else {
         return std::nullopt;  // modifiers alone, function keys: not ours
       }
@@ -167,6 +190,10 @@ std::optional<Direction> direction_of(const KeyEvent& e) {
       if (e.ch == 's') return Direction::down;
       if (e.ch == 'a') return Direction::left;
       if (e.ch == 'd') return Direction::right;
+      if (e.ch == 'k') return Direction::up;  // vi keys
+      if (e.ch == 'j') return Direction::down;
+      if (e.ch == 'h') return Direction::left;
+      if (e.ch == 'l') return Direction::right;
       return std::nullopt;
     default: return std::nullopt;
   }
@@ -193,13 +220,25 @@ void HoldTracker::on_key(Direction d, const KeyEvent& e, std::uint64_t now_ms) {
     return;
   }
   until_ms_[idx(opposite(d))] = 0;
+  const bool repeating = e.action == KeyAction::repeat || held(d, now_ms) ||
+                         (seen_[idx(d)] && now_ms - last_ms_[idx(d)] <= config_.repeat_gap_ms);
+  seen_[idx(d)] = true;
+  last_ms_[idx(d)] = now_ms;
   if (e.kitty) {
     until = kForever;  // a real release will come
-  } else if (e.action == KeyAction::repeat || held(d, now_ms)) {
-    until = now_ms + config_.repeat_hold_ms;
+  } else if (repeating) {
+    until = std::max(until, now_ms + config_.repeat_hold_ms);
   } else {
-    until = now_ms + config_.first_hold_ms;
+    until = now_ms + config_.tap_ms;
   }
+}
+
+Steer steer_toward(double ball_x_u, double ball_y_u, double pointer_x_u, double pointer_y_u, double dead_u) {
+  const auto axis = [dead_u](double from, double to) {
+    if (!(to - from > dead_u) && !(from - to > dead_u)) return 0;  // NaN: no thrust
+    return to > from ? 1 : -1;
+  };
+  return {axis(ball_x_u, pointer_x_u), axis(ball_y_u, pointer_y_u)};
 }
 
 bool HoldTracker::held(Direction d, std::uint64_t now_ms) const { return now_ms < until_ms_[idx(d)]; }
@@ -214,6 +253,9 @@ int HoldTracker::move_y(std::uint64_t now_ms) const {
 
 Action action_of(const KeyEvent& e, protocol::Phase phase) {
   if (e.key == Key::ctrl_c) return {ActionKind::quit};
+  if (e.key == Key::mouse) return {ActionKind::pointer};
+  if (e.key == Key::tab && e.action != KeyAction::release) return {ActionKind::follow};
+  if (e.key == Key::character && e.ch == 't' && e.action == KeyAction::press) return {ActionKind::chat};
   if (e.action == KeyAction::release) {
     return direction_of(e) && phase == protocol::Phase::play ? Action{ActionKind::move} : Action{};
   }

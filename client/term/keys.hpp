@@ -15,7 +15,7 @@
 
 namespace fts::client {
 
-enum class Key : std::uint8_t { none, up, down, left, right, space, enter, escape, ctrl_c, character };
+enum class Key : std::uint8_t { none, up, down, left, right, space, enter, escape, ctrl_c, character, tab, backspace, mouse };
 enum class KeyAction : std::uint8_t { press, repeat, release };
 
 struct KeyEvent {
@@ -23,7 +23,15 @@ struct KeyEvent {
   char ch = 0;  // Key::character: the lower-case ASCII letter or symbol
   KeyAction action = KeyAction::press;
   bool kitty = false;  // came in the kitty protocol's form: releases will be reported
-  bool operator==(const KeyEvent&) const = default;
+  // Key::mouse (xterm SGR reporting): the cell under the pointer (0-based), the button
+  // (0 left, 1 middle, 2 right, 3 none, 64/65 wheel) and whether it is a motion report.
+  int col = 0, row = 0, button = 3;
+  bool motion = false;
+  char text = 0;  // Key::character: the character as typed (case kept), for the chat line
+  bool operator==(const KeyEvent& o) const {
+    return key == o.key && ch == o.ch && action == o.action && kitty == o.kitty && col == o.col && row == o.row &&
+           button == o.button && motion == o.motion;
+  }
 };
 
 // The kitty keyboard protocol: push flags disambiguate (1) | report event types (2) |
@@ -33,6 +41,9 @@ inline constexpr int kKittyFlags = 1 | 2 | 8;
 std::string kitty_push();
 inline constexpr std::string_view kKittyPop = "\x1b[<u";
 inline constexpr std::string_view kKittyQuery = "\x1b[?u";
+// xterm mouse reporting: any-motion tracking (1003) in the SGR form (1006), and off again.
+inline constexpr std::string_view kMouseOn = "\x1b[?1003h\x1b[?1006h";
+inline constexpr std::string_view kMouseOff = "\x1b[?1006l\x1b[?1003l";
 
 class KeyDecoder {
  public:
@@ -52,9 +63,12 @@ class KeyDecoder {
 enum class Direction : std::uint8_t { up, down, left, right };
 std::optional<Direction> direction_of(const KeyEvent& e);
 
+// A tap is a short impulse; a key the terminal repeats is a hold. Without release events
+// a repeat is told from a new tap by its distance to the previous event of that key.
 struct HoldConfig {
-  std::uint64_t first_hold_ms = 550;  // a first press: until the terminal's auto-repeat starts
+  std::uint64_t tap_ms = 130;          // a first press: a short impulse
   std::uint64_t repeat_hold_ms = 120;  // after a repeat: a little more than the repeat interval
+  std::uint64_t repeat_gap_ms = 650;   // a press this soon after the last one is the key's auto-repeat
 };
 
 class HoldTracker {
@@ -71,10 +85,21 @@ class HoldTracker {
  private:
   HoldConfig config_;
   std::array<std::uint64_t, 4> until_ms_{};  // held while now < until; max: until released
+  std::array<std::uint64_t, 4> last_ms_{};   // the last press or repeat of each direction
+  std::array<bool, 4> seen_{};
 };
 
+// Mouse steering, agar.io's way with the game's per-axis thrust: toward the pointer on
+// each axis where it is farther than dead_u from the ball's centre. Returns {x, y} in
+// -1..1 (x right, y up).
+struct Steer {
+  int x = 0, y = 0;
+  bool operator==(const Steer&) const = default;
+};
+Steer steer_toward(double ball_x_u, double ball_y_u, double pointer_x_u, double pointer_y_u, double dead_u);
+
 // What a key means in a phase of the game.
-enum class ActionKind : std::uint8_t { none, move, fire, buy, ready, quit };
+enum class ActionKind : std::uint8_t { none, move, fire, buy, ready, quit, chat, follow, pointer };
 struct Action {
   ActionKind kind = ActionKind::none;
   char item = 0;  // buy: m s a r l x b

@@ -18,6 +18,7 @@ namespace {
 termios g_saved{};
 volatile sig_atomic_t g_active = 0;
 volatile sig_atomic_t g_kitty = 0;
+volatile sig_atomic_t g_mouse = 0;
 volatile sig_atomic_t g_resized = 0;
 volatile sig_atomic_t g_stop = 0;
 bool g_atexit_registered = false;
@@ -25,6 +26,7 @@ bool g_atexit_registered = false;
 // Leave the alternate screen, show the cursor, reset colours, pop the kitty flags.
 constexpr char kRestore[] = "\x1b[0m\x1b[?25h\x1b[?1049l";
 constexpr char kKittyPopBytes[] = "\x1b[<u";
+constexpr char kMouseOffBytes[] = "\x1b[?1006l\x1b[?1003l";
 
 void raw_write(const char* data, std::size_t n) {
   while (n > 0) {
@@ -57,7 +59,7 @@ void install(int sig, void (*handler)(int), int flags) {
 
 }  // namespace
 
-bool enter(bool kitty_keys) {
+bool enter(bool kitty_keys, bool mouse) {
   if (g_active) return true;
   if (!::isatty(STDIN_FILENO) || !::isatty(STDOUT_FILENO)) return false;
   if (::tcgetattr(STDIN_FILENO, &g_saved) != 0) return false;
@@ -91,6 +93,10 @@ bool enter(bool kitty_keys) {
     init += kKittyQuery;
     g_kitty = 1;
   }
+  if (mouse) {
+    init += kMouseOn;
+    g_mouse = 1;
+  }
   write_all(init);
   return true;
 }
@@ -99,6 +105,7 @@ void leave() {
   if (!g_active) return;
   g_active = 0;
   if (g_kitty) raw_write(kKittyPopBytes, sizeof kKittyPopBytes - 1);
+  if (g_mouse) raw_write(kMouseOffBytes, sizeof kMouseOffBytes - 1);
   raw_write(kRestore, sizeof kRestore - 1);
   ::tcsetattr(STDIN_FILENO, TCSAFLUSH, &g_saved);
 }

@@ -12,7 +12,7 @@ namespace fts::client::term {
 
 // Enters game mode on stdin/stdout. Returns false (and changes nothing) when stdin or
 // stdout is not a terminal.
-bool enter(bool kitty_keys);
+bool enter(bool kitty_keys, bool mouse = false);
 // Restores the terminal; safe to call more than once and from a signal handler.
 void leave();
 // The terminal's size now (80x24 when unknown).

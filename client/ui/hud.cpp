@@ -43,9 +43,12 @@ std::string plural(std::int64_t n, const char* one, const char* many) {
   return sim::with_thousands(n) + " " + (n == 1 ? one : many);
 }
 
-std::string name_of(const Snapshot& s, std::uint32_t id) {
+std::string name_of(const Snapshot& s, std::uint32_t id, const std::map<std::uint32_t, std::string>* names) {
   const PlayerState* p = find_player(s, id);
-  return p != nullptr ? sanitize(p->name, 16) : "player " + std::to_string(id);
+  if (p != nullptr) return sanitize(p->name, 16);
+  if (names != nullptr)
+    if (const auto it = names->find(id); it != names->end()) return sanitize(it->second, 16);
+  return "player " + std::to_string(id);
 }
 
 }  // namespace
@@ -95,7 +98,7 @@ std::string ready_line(const Snapshot& s) {
     if (p.lives <= 0 && !p.alive) continue;
     out += first ? " " : ", ";
     first = false;
-    out += sanitize(p.name, 16) + (p.ready ? " (ready)" : " (shopping)");
+    out += sanitize(p.name, 16) + (p.ready ? " (ready)" : s.phase == Phase::shop ? " (shopping)" : " (not ready)");
   }
   return out;
 }
@@ -103,16 +106,16 @@ std::string ready_line(const Snapshot& s) {
 std::string help_line(Phase phase) {
   switch (phase) {
     case Phase::play:
-      return "Move: arrows/WASD   Fire rockets: space   Quit: q";
+      return "Move: arrows/WASD/hjkl/mouse   Fire rockets: space   Chat: t   Quit: q";
     case Phase::shop: {
       std::string line = "Buy:";
       for (const sim::ItemDef& d : sim::item_table()) (line += ' ') += d.key;
-      return line + "   Ready: Enter   Quit: q";
+      return line + "   Ready: Enter   Chat: t   Quit: q";
     }
     case Phase::over:
-      return "Game over   Play again: Enter   Quit: q";
+      return "Game over   Play again: Enter   Chat: t   Quit: q";
     case Phase::lobby:
-      return "Waiting for the match   Ready: Enter   Quit: q";
+      return "Waiting for the match   Ready: Enter   Chat: t   Quit: q";
   }
   return "Quit: q";
 }
@@ -126,8 +129,31 @@ std::string item_name(std::uint32_t key) {
 
 }  // namespace
 
-std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id) {
-  const auto who = [&](std::uint32_t id) { return id == my_id ? std::string("You") : name_of(s, id); };
+std::string refusal_text(const std::string& code, const std::string& server_message, char item, const PlayerState* me) {
+  const sim::ItemDef* def = nullptr;
+  for (const sim::ItemDef& d : sim::item_table())
+    if (item != 0 && d.key == item) def = &d;
+  const std::string what = def != nullptr ? std::string(def->name) : std::string("that");
+  if (code == "coins") {
+    if (me != nullptr && def != nullptr)
+      return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(def->item)]) +
+             ", you have " + sim::with_thousands(me->coins);
+    return "not enough coins";
+  }
+  if (code == "owned") return "you already have " + what + ": it is bought once";
+  if (code == "phase") return "not now: the shop is closed";
+  if (code == "dead") return "you are out of the match: watching";
+  if (code == "item") return "there is no such item in the shop";
+  if (code == "op") return "this server does not know that command";
+  if (code == "rate") return "too many chat lines: wait a moment";
+  if (code == "empty") return "nothing to say";
+  const std::string msg = sanitize(server_message, 120);
+  return msg.empty() ? "refused (" + sanitize(code, 32) + ")" : msg;
+}
+
+std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id,
+                           const std::map<std::uint32_t, std::string>* names) {
+  const auto who = [&](std::uint32_t id) { return id == my_id ? std::string("You") : name_of(s, id, names); };
   switch (e.kind) {
     case EventKind::enemy_fell:
       if (e.b == 0) return "An enemy fell off.";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,13 @@ int countdown_s(const protocol::Snapshot& s, double tick_rate_hz);
 std::string ready_line(const Snapshot& s);
 // Controls for the phase.
 std::string help_line(protocol::Phase phase);
-// "Bought mass for 35 coins." for a purchase event.
-std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id);
+// "Bought mass for 35 coins." for a purchase event. `names` gives the names of players no
+// longer in the snapshot (one who left).
+std::string describe_event(const protocol::Event& e, const Snapshot& s, std::uint32_t my_id,
+                           const std::map<std::uint32_t, std::string>* names = nullptr);
+// A refused command in words: "not enough coins: mass costs 35, you have 12" for code
+// "coins"; `me` (may be null) gives the price and the coins; `item` is the buy's key.
+std::string refusal_text(const std::string& code, const std::string& server_message, char item,
+                         const PlayerState* me);
 
 }  // namespace fts::client

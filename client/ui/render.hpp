@@ -17,12 +17,11 @@ inline constexpr char kEnemyBallChar = '#';
 inline constexpr char kRocketChar = '*';
 inline constexpr char kPlatformChar = '.';
 
-// Rows above the arena (HUD, players, messages) and below it (help line).
-inline constexpr int kTopRows = 3;
-inline constexpr int kBottomRows = 1;
+// A name written on the field is cut to this many characters.
+inline constexpr int kNameOnFieldChars = 10;
 
-// The platform's place for a terminal size (inside a one-cell frame).
-Viewport arena_viewport(TerminalSize size, const ViewState& view);
+// The platform's place for a terminal size (inside a one-cell frame; see panel.hpp).
+Viewport arena_viewport(TerminalSize size, const ViewState& view, const protocol::Snapshot& snap = {});
 
 Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double alpha,
               TerminalSize size, const ViewState& view);

@@ -50,6 +50,11 @@ int color_code(Color c) {
     case Color::cyan: return 6;
     case Color::white: return 7;
     case Color::gray: return 60;  // bright black: 90 / 100
+    case Color::bright_green: return 62;
+    case Color::bright_blue: return 64;
+    case Color::bright_magenta: return 65;
+    case Color::bright_cyan: return 66;
+    case Color::bright_yellow: return 63;
   }
   return -1;
 }
@@ -58,6 +63,7 @@ std::string sgr(const Style& s) {
   std::string out = "\x1b[0";
   if (s.bold) out += ";1";
   if (s.dim) out += ";2";
+  if (s.underline) out += ";4";
   if (const int f = color_code(s.fg); f >= 0) out += ";" + std::to_string(30 + f);
   if (const int b = color_code(s.bg); b >= 0) out += ";" + std::to_string(40 + b);
   return out + "m";

@@ -14,13 +14,17 @@ struct TerminalSize {
   int rows = 24;
 };
 
-enum class Color : std::uint8_t { none, black, red, green, yellow, blue, magenta, cyan, white, gray };
+enum class Color : std::uint8_t {
+  none, black, red, green, yellow, blue, magenta, cyan, white, gray,
+  bright_green, bright_blue, bright_magenta, bright_cyan, bright_yellow
+};
 
 struct Style {
   Color fg = Color::none;
   Color bg = Color::none;
   bool bold = false;
   bool dim = false;
+  bool underline = false;
   bool operator==(const Style&) const = default;
 };
 

@@ -1,13 +1,37 @@
-// What the renderer needs besides the snapshots: who we are and the connection's health.
+// What the renderer needs besides the snapshots: who we are, the connection's health, the
+// message log, the chat line being typed, who is being watched and the score book.
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fts/sim/items.hpp"
 
 namespace fts::client {
+
+// One line of the message log. `from` colours the first `prefix_chars` characters (the
+// sender's name of a chat line) in that player's colour; 0: no sender.
+struct LogLine {
+  LogLine() = default;
+  LogLine(std::string text_, std::uint64_t at_ms_, std::uint32_t from_ = 0, std::size_t prefix_chars_ = 0,
+          bool host_ = false)
+      : text(std::move(text_)), at_ms(at_ms_), from(from_), prefix_chars(prefix_chars_), host(host_) {}
+  std::string text;  // already sanitised
+  std::uint64_t at_ms = 0;
+  std::uint32_t from = 0;
+  std::size_t prefix_chars = 0;
+  bool host = false;  // from the host (console announce): shown in the title style
+};
+
+// One player's tally as the client counts it from the events it sees.
+struct Score {
+  std::int64_t coins_level = 0;  // coins from enemies knocked off this level
+  std::int64_t coins_total = 0;  // the same, over the whole match
+  std::int64_t knocks_level = 0, knocks_total = 0;
+};
 
 struct ViewState {
   std::uint32_t my_player_id = 0;
@@ -15,11 +39,19 @@ struct ViewState {
   double ping_ms = -1;       // < 0: unknown
   double loss_percent = -1;  // snapshots lost, < 0: unknown
   std::string status;        // e.g. "connection lost, reconnecting..." (shown in red)
-  std::vector<std::string> messages;  // recent happenings, newest last (already sanitised)
+  std::vector<LogLine> messages;  // the message log, newest last (bounded by the client)
+  std::uint64_t now_ms = 0;       // for the ages of the log lines
   std::string shop_result;   // the outcome of the last purchase (already sanitised)
   bool color = true;
   sim::ShopTerms shop_terms;  // the server's, from its welcome
   double tick_rate_hz = 100;  // the server's, from its welcome (countdowns)
+  std::map<std::uint32_t, std::string> names;  // every player seen (names of those who left)
+  std::map<std::uint32_t, Score> scores;       // by player id
+  std::uint32_t follow_id = 0;  // the player watched (Tab), 0: none
+  bool chat_open = false;       // `t` was pressed: the chat line is being typed
+  std::string chat_draft;
+  bool mouse_steering = false;  // the pointer steers (shown in the footer)
+  std::string replay_footer;    // --replay: the footer text (speed, pause, keys)
 };
 
 }  // namespace fts::client

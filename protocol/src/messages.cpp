@@ -19,6 +19,7 @@ const char* op_name(CommandOp op) {
     case CommandOp::ready: return "ready";
     case CommandOp::play_again: return "again";
     case CommandOp::unknown: return "unknown";
+    case CommandOp::chat: return "chat";
   }
   return "?";
 }
@@ -111,6 +112,7 @@ void from_json(const json& j, Input& m) {
 void to_json(json& j, const Command& m) {
   j = json{{"rid", m.rid}, {"op", op_name(m.op)}};
   if (m.op == CommandOp::buy && m.item != 0) j["item"] = std::string(1, m.item);
+  if (m.op == CommandOp::chat) j["text"] = m.text;
 }
 // Lenient on purpose: a command the server cannot apply (unknown op, unknown or missing
 // item) still decodes, so that it is consumed and answered with its result code instead
@@ -129,6 +131,9 @@ void from_json(const json& j, Command& m) {
     m.op = CommandOp::ready;
   } else if (op == "again") {
     m.op = CommandOp::play_again;
+  } else if (op == "chat") {
+    m.op = CommandOp::chat;
+    if (const json* text = optional_field(j, "text")) m.text = as_text(*text, kMaxTextBytes);
   } else {
     m.op = CommandOp::unknown;
   }
@@ -144,6 +149,17 @@ void from_json(const json& j, Result& m) {
   m.ok = as_bool(field(j, "ok"));
   m.code = as_text(field(j, "code"), 32);
   m.message = as_text(field(j, "msg"), kMaxTextBytes);
+}
+
+void to_json(json& j, const Chat& m) {
+  j = json{{"rid", m.rid}, {"from", m.from}, {"name", m.name}, {"text", m.text}};
+}
+void from_json(const json& j, Chat& m) {
+  m.rid = as_u32(field(j, "rid"));
+  if (m.rid == 0) fail(Reject::out_of_range);
+  m.from = as_u32(field(j, "from"));
+  m.name = as_text(field(j, "name"), kMaxNameBytes);
+  m.text = as_text(field(j, "text"), kMaxTextBytes);
 }
 
 void to_json(json& j, const Ping&) { j = json::object(); }
@@ -166,6 +182,7 @@ struct TypeName {
   const char* operator()(const Ping&) const { return "ping"; }
   const char* operator()(const Bye&) const { return "bye"; }
   const char* operator()(const SnapshotMsg&) const { return "snap"; }
+  const char* operator()(const Chat&) const { return "chat"; }
 };
 
 template <class T>
@@ -209,6 +226,7 @@ Message message_from_json(const json& j) {
   if (type == "ping") return parse_as<Ping>(j);
   if (type == "bye") return parse_as<Bye>(j);
   if (type == "snap") return parse_as<SnapshotMsg>(j);
+  if (type == "chat") return parse_as<Chat>(j);
   fail(Reject::unknown_type);
 }
 

@@ -143,6 +143,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.datagrams = TokenBucket(config_.session_datagrams_per_s, config_.session_datagram_burst, now_ms);
   s.acks = AckWindow{};
   s.results = ReliableSender<Result>{};
+  s.chats = ReliableSender<Chat>{};
   s.commands = ReliableReceiver<Command>{};
   s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz);
   by_session_id_[s.session_id] = s.player_id;
@@ -261,7 +262,10 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
   std::vector<std::uint16_t> acked;
   if (!s.acks.on_receive(d.header, now_ms, acked)) return rejects_.add(Reject::stale);
   s.last_receive_ms = now_ms;
-  for (auto seq : acked) s.results.on_acked(seq);
+  for (auto seq : acked) {
+    s.results.on_acked(seq);
+    s.chats.on_acked(seq);
+  }
   for (const auto& m : d.messages) {
     if (const auto* in = std::get_if<Input>(&m)) {
       s.snapshots.on_ack(in->snapshot_ack);
@@ -315,8 +319,10 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
   h.encoding = s.encoding;
   h.session = s.session_id;
   s.acks.stamp(h, now_ms);
-  if (with_results)
+  if (with_results) {
     for (auto& r : s.results.collect(h.sequence, now_ms, config_.resend_ms, 3)) messages.push_back(std::move(r));
+    for (auto& c : s.chats.collect(h.sequence, now_ms, config_.resend_ms, 2)) messages.push_back(std::move(c));
+  }
   if (messages.empty()) messages.push_back(Ping{});
   s.last_send_ms = now_ms;
   emit(s.address, encode_datagram(h, messages));
@@ -446,7 +452,8 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
       if (now_ms - s.disconnected_ms >= config_.reconnect_window_ms) expired.push_back(id);
       continue;
     }
-    if (s.results.due(now_ms, config_.resend_ms) || now_ms - s.last_send_ms >= config_.heartbeat_ms)
+    if (s.results.due(now_ms, config_.resend_ms) || s.chats.due(now_ms, config_.resend_ms) ||
+        now_ms - s.last_send_ms >= config_.heartbeat_ms)
       send_packet(s, {}, true, now_ms);
   }
   for (auto id : expired) release(id, "reconnect window over");
@@ -468,6 +475,17 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
 std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }
 std::vector<ServerEvent> ServerEndpoint::take_events() { return std::exchange(events_, {}); }
 std::vector<PlayerInput> ServerEndpoint::take_inputs() { return std::exchange(inputs_, {}); }
+bool ServerEndpoint::send_chat(std::uint32_t player_id, const Chat& chat, std::uint64_t) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end() || !it->second.connected) return false;
+  if (it->second.chats.pending() >= config_.max_pending_chats) {
+    ++chat_dropped_;
+    return false;
+  }
+  it->second.chats.push(chat);  // sent by the next update(), with the session's results
+  return true;
+}
+
 std::vector<PlayerCommand> ServerEndpoint::take_commands() { return std::exchange(commands_, {}); }
 
 std::vector<SessionInfo> ServerEndpoint::sessions() const {

@@ -206,6 +206,7 @@ sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
       case protocol::CommandOp::play_again:
         t.commands.push_back({sim::CommandKind::play_again, {}, pc.command.rid});
         break;
+      case protocol::CommandOp::chat: relay_chat(pc, now_ms); break;
       case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
         endpoint_.send_result(pc.player_id, pc.command.rid, false, "op",
                               "unknown command; this server knows buy, ready and again", now_ms);
@@ -219,6 +220,23 @@ sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
     if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
   }
   return in;
+}
+
+void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
+  const ChatVerdict v = chat_.accept(pc.player_id, pc.command.text, now_ms);
+  if (!v.ok) {
+    endpoint_.send_result(pc.player_id, pc.command.rid, false, v.code,
+                          v.code == "rate" ? "too many chat lines: wait a moment" : "nothing to say", now_ms);
+    return;
+  }
+  endpoint_.send_result(pc.player_id, pc.command.rid, true, "ok", "", now_ms);
+  const sim::Player* p = sim::find_player(match_, sim::PlayerId{pc.player_id});
+  protocol::Chat line;
+  line.from = pc.player_id;
+  line.name = p != nullptr ? p->name : "player " + std::to_string(pc.player_id);
+  line.text = v.text;
+  for (const std::uint32_t to : endpoint_.connected_players()) endpoint_.send_chat(to, line, now_ms);
+  log_record(spdlog::level::info, "chat", {{"player", pc.player_id}, {"chars", v.text.size()}});
 }
 
 void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms) {

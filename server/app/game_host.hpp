@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/chat_relay.hpp"
 #include "app/log.hpp"
 #include "app/options.hpp"
 #include "app/stats.hpp"
@@ -65,11 +66,14 @@ class GameHost {
   void answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms);
   void log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms);
   void send_snapshots(std::uint64_t now_ms);
+  // A chat command: refused, or relayed to every connected player (chat_relay.hpp).
+  void relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
 
   Options options_;
   sim::MatchState match_;
   protocol::ServerEndpoint endpoint_;
   std::map<std::uint32_t, Held> held_;
+  ChatRelay chat_;
   std::vector<sim::JoinRequest> joins_;
   std::vector<sim::PlayerId> leaves_;
   std::deque<protocol::Event> recent_;

@@ -52,7 +52,8 @@ wait_for() {
 }
 
 # The column of the left edge of our ball ('@'), or -1.
-ball_col() { pane | awk '{ i = index($0, "@"); if (i > 0) { print i; found = 1; exit } } END { if (!found) print -1 }'; }
+# (The legend's "@ name" marker is not a ball: a ball is '@' next to '@' or its mass.)
+ball_col() { pane | awk '{ if (match($0, /@[@0-9]/)) { print RSTART; found = 1; exit } } END { if (!found) print -1 }'; }
 # Steering from the screen alone: the key that moves our ball ('@' around its mass label)
 # toward the nearest enemy ('#'); rows count double (a cell is twice as tall as wide).
 hunt_key() {
@@ -103,7 +104,7 @@ fi
 CLIENT_CMD="NO_COLOR=1 XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
 tm new-session -d -s "$SESSION" -x 120 -y 40 "$CLIENT_CMD"
 
-wait_for 10 'Players:.*e2e \(you\)'
+wait_for 10 '@ e2e '
 echo "connected"
 tm send-keys -t "$SESSION" Enter  # ready: the match starts
 wait_for 15 '^Level: 1 '

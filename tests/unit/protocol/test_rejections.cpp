@@ -246,7 +246,7 @@ TEST_CASE("client rejections", "[protocol][reject]") {
     Header h;
     h.session = read_header(c.valid)->session;
     h.sequence = 999;
-    client.receive(encode_datagram(h, {Command{1, CommandOp::ready, 0}}), c.h.now);
+    client.receive(encode_datagram(h, {Command{1, CommandOp::ready, 0, {}}}), c.h.now);
     CHECK(client.rejects()[Reject::unexpected] == 1);
   }
   SECTION("garbage") {

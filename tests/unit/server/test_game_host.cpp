@@ -134,3 +134,33 @@ TEST_CASE("Replay: a damaged record is refused with the line, not simulated for 
   bad << "not json\n";
   CHECK(std::holds_alternative<std::string>(host::replay_record(bad)));
 }
+
+TEST_CASE("Game host: a chat line is relayed to every player with its sender, cleaned and rate-limited",
+          "[server][host][chat]") {
+  Rig rig;
+  auto& a = rig.add("ann");
+  auto& b = rig.add("bob");
+  for (int i = 0; i < 50 && (a.state() != protocol::ClientState::connected || b.state() != protocol::ClientState::connected); ++i)
+    rig.tick();
+  REQUIRE(b.state() == protocol::ClientState::connected);
+  rig.tick();
+  const std::uint32_t rid = a.send_chat("  hello \x1b[2J   bob ", rig.now);
+  for (int i = 0; i < 20; ++i) rig.tick();
+  const auto got = b.take_chats();
+  REQUIRE(got.size() == 1);
+  CHECK(got[0].from == a.welcome()->player_id);
+  CHECK(got[0].name == "ann");
+  CHECK(got[0].text == "hello ?[2J bob");  // no escape byte on the wire; spaces collapsed
+  CHECK(a.take_chats().size() == 1);      // the sender sees its own line too
+  const auto results = a.take_results();
+  REQUIRE(results.size() == 1);
+  CHECK(results[0].command_rid == rid);
+  CHECK(results[0].ok);
+  // A burst over the limit is refused with code "rate"; nothing more is relayed.
+  for (int i = 0; i < 8; ++i) a.send_chat("spam", rig.now);
+  for (int i = 0; i < 30; ++i) rig.tick();
+  int refused = 0;
+  for (const auto& r : a.take_results()) refused += (!r.ok && r.code == "rate") ? 1 : 0;
+  CHECK(refused == 4);  // 5 lines per burst, one already said
+  CHECK(b.take_chats().size() == 4);
+}

@@ -75,9 +75,9 @@ TEST_CASE("Host sessions: a command that cannot be applied is answered, and the 
   REQUIRE(real.size() == 1);
   auto d = protocol::decode_datagram(real[0]);
   REQUIRE(d);
-  d->messages.push_back(protocol::Command{1, protocol::CommandOp::unknown, 0});
-  d->messages.push_back(protocol::Command{2, protocol::CommandOp::buy, 'z'});
-  d->messages.push_back(protocol::Command{3, protocol::CommandOp::buy, 0});
+  d->messages.push_back(protocol::Command{1, protocol::CommandOp::unknown, 0, {}});
+  d->messages.push_back(protocol::Command{2, protocol::CommandOp::buy, 'z', {}});
+  d->messages.push_back(protocol::Command{3, protocol::CommandOp::buy, 0, {}});
   rig.host->receive(rig.address, protocol::encode_datagram(d->header, d->messages), rig.now);
   rig.ticks(20);
   auto results = rig.client.take_results();

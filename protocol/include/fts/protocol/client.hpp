@@ -68,6 +68,9 @@ class ClientEndpoint {
   std::uint32_t hold_input(InputFrame frame, std::uint64_t now_ms);
   // Queues a reliable command and sends it; returns its rid (0 unless connected).
   std::uint32_t send_command(CommandOp op, char item, std::uint64_t now_ms);
+  // Queues a chat line (a reliable command "chat"); returns its rid (0 unless connected).
+  // Bytes outside printable ASCII are sent as '?'.
+  std::uint32_t send_chat(const std::string& text, std::uint64_t now_ms);
   // Clean disconnect: sends bye (three times, it is not acknowledged).
   void disconnect(std::uint64_t now_ms, const std::string& reason = "quit");
 
@@ -75,6 +78,8 @@ class ClientEndpoint {
   std::vector<std::vector<std::uint8_t>> take_datagrams();
   // Command results, in order, each exactly once.
   std::vector<Result> take_results();
+  // Chat lines and host announcements, in order, each exactly once.
+  std::vector<Chat> take_chats() { return chats_.take(); }
   // Complete snapshots, newest last (older ones that arrive late are dropped).
   std::vector<Snapshot> take_snapshots();
   // The match's events, each exactly once, in seq order (however often snapshots repeat
@@ -110,6 +115,7 @@ class ClientEndpoint {
   AckWindow acks_;
   ReliableSender<Command> commands_;
   ReliableReceiver<Result> results_;
+  ReliableReceiver<Chat> chats_;
   SnapshotReceiver snapshots_;
   std::vector<Snapshot> new_snapshots_;
   std::deque<InputFrame> inputs_;

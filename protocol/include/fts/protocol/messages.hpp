@@ -78,14 +78,26 @@ struct Input {
 };
 
 // unknown: an op this server does not know (answered with code "op", never applied).
-enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3 };
+enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3, chat = 4 };
 
 // client -> server, reliable: applied exactly once, in rid order, answered by a Result.
 struct Command {
   std::uint32_t rid = 0;  // reliable id, 1, 2, 3, ... per session
   CommandOp op = CommandOp::ready;
   char item = 0;  // buy only: an item's shop key (m s a r l x b); 0 when missing or not one character
+  std::string text;  // chat only: the line said (<= kMaxTextBytes; the server cuts and cleans it)
   bool operator==(const Command&) const = default;
+};
+
+// server -> client, reliable (its own rid sequence): a chat line, or an announcement of
+// the host (from == 0, name "host"). The text is sanitised by the server and again by
+// the client.
+struct Chat {
+  std::uint32_t rid = 0;   // 1, 2, 3, ... per session
+  std::uint32_t from = 0;  // the sender's player id; 0: the host
+  std::string name;        // the sender's name ("host" for an announcement)
+  std::string text;
+  bool operator==(const Chat&) const = default;
 };
 
 // server -> client, reliable: the outcome of one Command.
@@ -157,7 +169,7 @@ struct SnapshotMsg {
 };
 
 using Message = std::variant<Hello, Challenge, Welcome, Error, Input, Command, Result, Ping,
-                             Bye, SnapshotMsg>;
+                             Bye, SnapshotMsg, Chat>;
 
 // Why a player name is refused ("" if it is fine): 1..16 printable ASCII characters.
 std::string name_problem(const std::string& name);

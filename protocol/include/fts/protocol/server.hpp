@@ -51,6 +51,9 @@ struct ServerConfig {
   std::size_t max_pending_results = 64;
   // Commands buffered out of order plus commands handed to the game and not yet answered.
   std::size_t max_pending_commands = 64;
+  // Chat lines sent to one session and not yet acknowledged; a line over it is not sent
+  // to that session (counted in chat_dropped()).
+  std::size_t max_pending_chats = 32;
   // Datagram rates (token buckets); a datagram over a rate is dropped (rate_limited).
   // An honest client sends one input per tick (100/s) plus heartbeats and commands.
   std::uint32_t session_datagrams_per_s = 250;
@@ -164,6 +167,10 @@ class ServerEndpoint {
   std::vector<ServerEvent> take_events();
   std::vector<PlayerInput> take_inputs();
   std::vector<PlayerCommand> take_commands();
+  // Sends a chat line (or a host announcement) to one connected player, reliably; false
+  // when the player is not connected or its chat queue is full (the line is dropped).
+  bool send_chat(std::uint32_t player_id, const Chat& chat, std::uint64_t now_ms);
+  std::uint64_t chat_dropped() const { return chat_dropped_; }
 
   const RejectCounters& rejects() const { return rejects_; }
   std::vector<SessionInfo> sessions() const;
@@ -195,6 +202,7 @@ class ServerEndpoint {
     TokenBucket datagrams;
     AckWindow acks;
     ReliableSender<Result> results;
+    ReliableSender<Chat> chats;
     ReliableReceiver<Command> commands;
     SnapshotSender snapshots;
   };
@@ -240,6 +248,7 @@ class ServerEndpoint {
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;
+  std::uint64_t chat_dropped_ = 0;
   RejectCounters rejects_;
 };
 

@@ -1,0 +1,87 @@
+// fts-client --replay: a server record (fts-server --record) played back in the terminal.
+// The client runs common/'s deterministic match on the record's seed and inputs, the same
+// code the server ran, so what it shows is exact; the record's hash lines are checked on
+// the way. This is the one place the client simulates. Pure: time and keys are passed in.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <istream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fts/protocol/snapshot.hpp"
+#include "fts/sim/match.hpp"
+
+namespace fts::client {
+
+struct TapeLine {
+  std::int64_t tick = 0;
+  sim::TickInputs inputs;
+};
+
+struct Tape {
+  std::uint64_t seed = 0;
+  sim::MatchConfig config;
+  std::vector<TapeLine> lines;  // in tick order
+  std::vector<std::pair<std::int64_t, std::string>> hashes;  // (tick, hex) to check
+  std::int64_t last_tick = 0;   // the last tick the record names
+};
+
+// Reads a whole record; an error names the line. Bounded: at most max_lines lines.
+std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_lines = 5'000'000);
+
+// Playback speeds (x), from a table: - and + step through it.
+inline constexpr std::array<double, 5> kReplaySpeeds = {0.5, 1, 2, 4, 8};
+
+class Replay {
+ public:
+  explicit Replay(Tape tape);
+
+  // Steps the match up to `tick` (never back; at most to the record's end).
+  void run_to(std::int64_t tick);
+  // To the start of level `level` (from the beginning when it lies behind), or to the
+  // end of the record when the match never reaches it.
+  void seek_level(std::int64_t level);
+  // Plays `elapsed_ms` of wall time at the current speed unless paused.
+  void advance(std::uint64_t elapsed_ms);
+
+  void toggle_pause() { paused_ = !paused_; }
+  void faster() { speed_ = std::min<std::size_t>(speed_ + 1, kReplaySpeeds.size() - 1); }
+  void slower() { speed_ = speed_ > 0 ? speed_ - 1 : 0; }
+  double speed() const { return kReplaySpeeds[speed_]; }
+  bool paused() const { return paused_; }
+  bool at_end() const { return state_.tick >= tape_.last_tick; }
+
+  const sim::MatchState& state() const { return state_; }
+  const Tape& tape() const { return tape_; }
+  // What a client would have been sent now, with the recent events.
+  protocol::Snapshot snapshot() const;
+  // Events since the last call (for the message log and the scoreboard), oldest first.
+  std::vector<protocol::Event> take_events();
+  // "" or the first hash that differed ("tick 300: recorded ..., replayed ...").
+  const std::string& mismatch() const { return mismatch_; }
+
+ private:
+  void restart();
+  void step_once();
+
+  Tape tape_;
+  sim::MatchState state_;
+  std::size_t next_line_ = 0;
+  std::size_t next_hash_ = 0;
+  std::size_t speed_ = 1;  // x1
+  bool paused_ = false;
+  double carry_ticks_ = 0;
+  std::deque<protocol::Event> recent_;
+  std::vector<protocol::Event> fresh_;
+  std::uint32_t event_seq_ = 0;
+  std::string mismatch_;
+};
+
+// The footer of the replay screen: position, speed and the keys.
+std::string replay_footer(const Replay& r, int cols);
+
+}  // namespace fts::client

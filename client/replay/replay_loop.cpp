@@ -1,0 +1,104 @@
+#include "replay/replay_loop.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "replay/replay.hpp"
+#include "term/io.hpp"
+#include "term/terminal.hpp"
+#include "ui/hud.hpp"
+#include "ui/panel.hpp"
+#include "ui/render.hpp"
+#include "ui/sanitize.hpp"
+
+namespace fts::client {
+
+namespace {
+
+std::uint64_t now_ms() {
+  using namespace std::chrono;
+  return static_cast<std::uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
+}
+
+void note(ViewState& view, std::string text, std::uint64_t now) {
+  view.messages.push_back(LogLine{std::move(text), now});
+  if (view.messages.size() > kLogKeep) view.messages.erase(view.messages.begin());
+}
+
+}  // namespace
+
+int run_replay(const std::string& path, bool kitty, std::string& message) {
+  std::ifstream in(path);
+  if (!in) {
+    message = "cannot open the record " + path;
+    return 1;
+  }
+  auto loaded = load_tape(in);
+  if (auto* err = std::get_if<std::string>(&loaded)) {
+    message = path + ": " + *err;
+    return 1;
+  }
+  Replay replay(std::move(std::get<Tape>(loaded)));
+  if (!term::enter(kitty, false)) {
+    message = "needs a terminal (stdin and stdout must be a tty)";
+    return 1;
+  }
+  ViewState view;
+  view.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
+  view.arena_width_u = replay.tape().config.arena_width_u;
+  view.arena_height_u = replay.tape().config.arena_height_u;
+  view.tick_rate_hz = replay.tape().config.tick_rate_hz;
+  term::KeyReader keys;
+  term::Painter painter;
+  std::uint64_t last = now_ms();
+  note(view, "Replaying " + sanitize(path, 60) + " (seed " + std::to_string(replay.tape().seed) + ").", last);
+  bool mismatch_told = false;
+  for (;;) {
+    if (term::stop_signal() != 0) break;
+    const std::uint64_t now = now_ms();
+    bool quit = false;
+    for (const KeyEvent& e : keys.read(now)) {
+      if (e.action == KeyAction::release || e.key == Key::mouse) continue;
+      const char c = e.key == Key::character ? e.text : 0;
+      if (e.key == Key::ctrl_c || c == 'q' || c == 'Q') quit = true;
+      else if (e.key == Key::space) replay.toggle_pause();
+      else if (c == '+' || c == '=') replay.faster();
+      else if (c == '-' || c == '_') replay.slower();
+      else if (c == 'n') replay.seek_level(replay.state().level + 1);
+      else if (c == 'p') replay.seek_level(replay.state().level - 1);
+      else if (c >= '1' && c <= '9') replay.seek_level(c - '0');
+      else if (c == 'e') replay.run_to(replay.tape().last_tick);
+      else if (e.key == Key::tab) {
+        const protocol::Snapshot s = replay.snapshot();
+        view.follow_id = next_follow(s, view.follow_id, 0);
+      }
+    }
+    if (quit) break;
+    replay.advance(now - last);
+    last = now;
+    protocol::Snapshot snap = replay.snapshot();
+    for (const auto& e : replay.take_events()) {
+      tally_event(view.scores, e);
+      const std::string line = describe_event(e, snap, 0, &view.names);
+      if (!line.empty()) note(view, line, now);
+    }
+    for (const auto& p : snap.players) view.names[p.id] = p.name;
+    if (!replay.mismatch().empty() && !mismatch_told) {
+      note(view, "The record differs from this build's match: " + replay.mismatch(), now);
+      mismatch_told = true;
+    }
+    // The followed player's view: its coins in the HUD, its ball as '@'.
+    view.follow_id = followed(snap, view);
+    view.my_player_id = view.follow_id;
+    view.now_ms = now;
+    const TerminalSize size = painter.size();
+    view.replay_footer = replay_footer(replay, size.cols);
+    painter.paint(render(snap, snap, 0, size, view), view.color);
+    std::this_thread::sleep_for(std::chrono::milliseconds(16));
+  }
+  term::leave();
+  return 0;
+}
+
+}  // namespace fts::client

@@ -1,0 +1,12 @@
+// fts-client --replay FILE: the terminal loop around a Replay (keys, frames, time).
+#pragma once
+
+#include <string>
+
+namespace fts::client {
+
+// Plays the record at `path` in this terminal until q. Returns the exit code; `message`
+// says why on failure (an unreadable or damaged record).
+int run_replay(const std::string& path, bool kitty, std::string& message);
+
+}  // namespace fts::client

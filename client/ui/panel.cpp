@@ -1,0 +1,341 @@
+#include "ui/panel.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "fts/sim/shop_text.hpp"
+#include "ui/hud.hpp"
+#include "ui/palette.hpp"
+#include "ui/render.hpp"
+#include "ui/sanitize.hpp"
+
+namespace fts::client {
+
+using protocol::Phase;
+using protocol::Snapshot;
+
+namespace {
+
+constexpr Style kDim{Color::gray, Color::none, false, false, false};
+constexpr int kLegendTopMaxRows = 3;
+constexpr int kTopLogRows = 3;
+constexpr int kShopMinCols = 58;  // the widest line of the shop's slide, with its margin
+
+std::string fit_name(const std::string& name, int width) {
+  const std::string clean = sanitize(name, 16);
+  if (width <= 0) return {};
+  if (static_cast<int>(clean.size()) <= width) return clean;
+  return clean.substr(0, static_cast<std::size_t>(width));
+}
+
+char marker_of(const PlayerState& p, const ViewState& view) {
+  return p.id == view.my_player_id ? kMyBallChar : kPlayerBallChar;
+}
+
+std::string flag_of(const PlayerState& p, Phase phase) {
+  if (p.lives <= 0 && !p.alive) return " out";
+  if ((phase == Phase::shop || phase == Phase::lobby) && p.ready) return " rdy";
+  return "";
+}
+
+// " 1,286c 3L out": what follows the name.
+std::string stats_of(const PlayerState& p, Phase phase) {
+  return " " + sim::with_thousands(p.coins) + "c " + std::to_string(p.lives) + "L" + flag_of(p, phase);
+}
+
+Style line_style(const PlayerState& p, const ViewState& view) {
+  Style st = player_style(p.id, p.id == view.my_player_id);
+  if (p.id == view.follow_id) st.underline = true;
+  return st;
+}
+
+int total_width(const StyledLine& l) {
+  int n = 0;
+  for (const auto& s : l) n += static_cast<int>(s.text.size());
+  return n;
+}
+
+}  // namespace
+
+std::string too_small_text(TerminalSize size) {
+  return "terminal too small: " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + ", need at least " +
+         std::to_string(kMinCols) + "x" + std::to_string(kMinRows);
+}
+
+std::vector<std::string> wrap(const std::string& text, int cols) {
+  std::vector<std::string> out;
+  if (cols <= 0) return out;
+  std::string rest = text;
+  while (static_cast<int>(rest.size()) > cols) {
+    std::size_t cut = rest.rfind(' ', static_cast<std::size_t>(cols));
+    if (cut == std::string::npos || cut == 0) {
+      out.push_back(rest.substr(0, static_cast<std::size_t>(cols)));
+      rest.erase(0, static_cast<std::size_t>(cols));
+    } else {
+      out.push_back(rest.substr(0, cut));
+      rest.erase(0, cut + 1);
+    }
+  }
+  out.push_back(rest);
+  return out;
+}
+
+std::string hud_fit(const Snapshot& s, const ViewState& view, int cols) {
+  std::string full = hud_line(s, view);
+  if (static_cast<int>(full.size()) <= cols) return full;
+  const PlayerState* me = find_player(s, view.my_player_id);
+  std::string mid = "Level " + std::to_string(s.level);
+  std::string small = "L" + std::to_string(s.level);
+  if (me != nullptr) {
+    mid += "  Coins " + sim::with_thousands(me->coins) + "  Lives " + std::to_string(me->lives);
+    small += " " + sim::with_thousands(me->coins) + "c " + std::to_string(me->lives) + "L";
+  }
+  char buf[48];
+  if (view.ping_ms >= 0) {
+    std::snprintf(buf, sizeof buf, "%.0f ms", view.ping_ms);
+    mid += std::string("  ") + buf;
+    small += std::string(" ") + buf;
+  }
+  if (view.loss_percent >= 0) {
+    std::snprintf(buf, sizeof buf, "%.1f%% loss", view.loss_percent);
+    mid += std::string("  ") + buf;
+    std::snprintf(buf, sizeof buf, "%.0f%%", view.loss_percent);
+    small += std::string(" ") + buf;
+  }
+  if (static_cast<int>(mid.size()) <= cols) return mid;
+  return small.substr(0, static_cast<std::size_t>(std::max(cols, 0)));
+}
+
+std::vector<StyledLine> legend_lines(const Snapshot& s, const ViewState& view, int cols, bool one_per_row,
+                                     int max_rows) {
+  std::vector<StyledLine> out;
+  if (cols <= 0 || max_rows <= 0) return out;
+  if (one_per_row) {
+    for (const auto& p : s.players) {
+      if (static_cast<int>(out.size()) >= max_rows) break;
+      const std::string stats = stats_of(p, s.phase);
+      const int name_w = std::max(cols - 2 - static_cast<int>(stats.size()), 3);
+      std::string name = fit_name(p.name, name_w);
+      name.resize(static_cast<std::size_t>(name_w), ' ');
+      const Style st = line_style(p, view);
+      StyledLine line{{std::string(1, marker_of(p, view)) + " ", player_style(p.id)}, {name, st}, {stats, Style{}}};
+      while (total_width(line) > cols && !line.back().text.empty()) line.back().text.pop_back();
+      out.push_back(std::move(line));
+    }
+    return out;
+  }
+  for (const int name_w : {16, 10, 6, 3}) {
+    out.clear();
+    StyledLine row;
+    int used = 0;
+    for (const auto& p : s.players) {
+      const std::string name = fit_name(p.name, name_w);
+      const std::string stats = stats_of(p, s.phase);
+      const int w = 2 + static_cast<int>(name.size() + stats.size());
+      const int gap = row.empty() ? 0 : 2;
+      if (!row.empty() && used + gap + w > cols) {
+        out.push_back(std::move(row));
+        row.clear();
+        used = 0;
+      }
+      if (!row.empty()) row.push_back({"  ", Style{}});
+      row.push_back({std::string(1, marker_of(p, view)) + " ", player_style(p.id)});
+      row.push_back({name, line_style(p, view)});
+      row.push_back({stats, Style{}});
+      used += (row.size() > 3 ? 2 : 0) + w;
+    }
+    if (!row.empty()) out.push_back(std::move(row));
+    if (static_cast<int>(out.size()) <= max_rows) return out;
+  }
+  out.resize(static_cast<std::size_t>(max_rows));
+  return out;
+}
+
+std::string age_text(std::uint64_t at_ms, std::uint64_t now_ms) {
+  const std::uint64_t s = now_ms > at_ms ? (now_ms - at_ms) / 1000 : 0;
+  if (s < 60) return std::to_string(s) + "s";
+  if (s < 3600) return std::to_string(s / 60) + "m";
+  return std::to_string(std::min<std::uint64_t>(s / 3600, 99)) + "h";
+}
+
+std::vector<StyledLine> log_lines(const ViewState& view, int cols, int rows) {
+  std::vector<StyledLine> out;
+  if (cols <= 4 || rows <= 0) return out;
+  const std::size_t n = view.messages.size();
+  const std::size_t first = n > static_cast<std::size_t>(kLogShown) ? n - kLogShown : 0;
+  for (std::size_t i = first; i < n; ++i) {
+    const LogLine& m = view.messages[i];
+    std::string age = age_text(m.at_ms, view.now_ms);
+    age.insert(0, 3 - std::min<std::size_t>(age.size(), 3), ' ');
+    const int indent = static_cast<int>(age.size()) + 1;
+    const auto parts = wrap(m.text, cols - indent);
+    std::size_t consumed = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      StyledLine line;
+      line.push_back({k == 0 ? age + " " : std::string(static_cast<std::size_t>(indent), ' '), kDim});
+      const std::string& part = parts[k];
+      // The sender's name (the first prefix_chars of the text) in the sender's colour.
+      const std::size_t coloured = consumed < m.prefix_chars ? std::min(part.size(), m.prefix_chars - consumed) : 0;
+      Style body = m.host ? Style{Color::yellow, Color::none, true, false, false} : Style{};
+      if (coloured > 0) line.push_back({part.substr(0, coloured), player_style(m.from)});
+      line.push_back({part.substr(coloured), body});
+      consumed += part.size() + 1;
+      out.push_back(std::move(line));
+    }
+  }
+  if (static_cast<int>(out.size()) > rows) out.erase(out.begin(), out.end() - rows);
+  return out;
+}
+
+std::vector<std::string> scoreboard_lines(const Snapshot& s, const ViewState& view, bool final_standings) {
+  std::vector<const PlayerState*> order;
+  for (const auto& p : s.players) order.push_back(&p);
+  const auto score = [&](std::uint32_t id) {
+    const auto it = view.scores.find(id);
+    return it == view.scores.end() ? Score{} : it->second;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const PlayerState* a, const PlayerState* b) {
+    if (a->coins != b->coins) return a->coins > b->coins;
+    if (score(a->id).coins_total != score(b->id).coins_total) return score(a->id).coins_total > score(b->id).coins_total;
+    return a->lives > b->lives;
+  });
+  std::vector<std::string> out;
+  out.push_back(final_standings ? "Final standings, game over at level " + std::to_string(s.level)
+                                : "Standings after level " + std::to_string(s.level));
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%2s %-16s %6s %7s %6s %5s %9s", "#", "Player", "Level", "Earned", "Knocks", "Lives",
+                "Coins");
+  out.emplace_back(buf);
+  int rank = 0;
+  for (const PlayerState* p : order) {
+    const Score sc = score(p->id);
+    const std::string name = sanitize(p->name, 16) + (p->id == view.my_player_id ? "*" : "");
+    std::snprintf(buf, sizeof buf, "%2d %-16s %6s %7s %6lld %5d %9s", ++rank, name.substr(0, 16).c_str(),
+                  sim::with_thousands(sc.coins_level).c_str(), sim::with_thousands(sc.coins_total).c_str(),
+                  static_cast<long long>(sc.knocks_total), p->lives, sim::with_thousands(p->coins).c_str());
+    out.emplace_back(buf);
+  }
+  return out;
+}
+
+void tally_event(std::map<std::uint32_t, Score>& scores, const protocol::Event& e) {
+  using protocol::EventKind;
+  if (e.kind == EventKind::level_started && e.value <= 1) {
+    scores.clear();  // a new match (play again)
+  } else if (e.kind == EventKind::level_started || e.kind == EventKind::level_restarted) {
+    for (auto& [id, sc] : scores) sc.coins_level = sc.knocks_level = 0;
+  } else if (e.kind == EventKind::enemy_fell && e.b != 0) {
+    if (scores.size() >= 256 && scores.count(e.b) == 0) return;  // bounded: ids come from the network
+    Score& sc = scores[e.b];
+    sc.coins_level += e.value;
+    sc.coins_total += e.value;
+    ++sc.knocks_level;
+    ++sc.knocks_total;
+  }
+}
+
+bool watching(const Snapshot& s, const ViewState& view) {
+  const PlayerState* me = find_player(s, view.my_player_id);
+  return me == nullptr || (me->lives <= 0 && !me->alive);
+}
+
+std::uint32_t followed(const Snapshot& s, const ViewState& view) {
+  if (view.follow_id != 0 && find_player(s, view.follow_id) != nullptr) return view.follow_id;
+  for (const auto& p : s.players)
+    if (p.alive && p.id != view.my_player_id) return p.id;
+  return 0;
+}
+
+std::uint32_t next_follow(const Snapshot& s, std::uint32_t current, std::uint32_t me) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& p : s.players)
+    if (p.id != me) ids.push_back(p.id);
+  std::sort(ids.begin(), ids.end());
+  if (ids.empty()) return 0;
+  const auto it = std::upper_bound(ids.begin(), ids.end(), current);
+  return it == ids.end() ? ids.front() : *it;
+}
+
+std::string footer_text(const Snapshot& s, const ViewState& view, int cols) {
+  if (view.chat_open) {
+    const std::string keys = "_   Enter: send   Esc: cancel";
+    std::string draft = view.chat_draft;
+    const int room = cols - 5 - static_cast<int>(keys.size());
+    if (room > 0 && static_cast<int>(draft.size()) > room) draft = draft.substr(draft.size() - static_cast<std::size_t>(room));
+    return "Say: " + draft + keys;
+  }
+  if (!view.replay_footer.empty()) return view.replay_footer;
+  std::string text;
+  if (s.phase == Phase::play && watching(s, view)) {
+    const PlayerState* f = find_player(s, followed(s, view));
+    text = std::string("Watching ") + (f != nullptr ? sanitize(f->name, 16) : "the match") +
+           "   Tab: next player   Chat: t   Quit: q";
+  } else {
+    text = help_line(s.phase);
+    if (s.phase == Phase::play && view.mouse_steering) text += "   (mouse steering)";
+  }
+  if (static_cast<int>(text.size()) > cols) {
+    // Shorter: single spaces between the key groups.
+    std::string shorter;
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (!(text[i] == ' ' && i > 0 && text[i - 1] == ' ')) shorter += text[i];
+    text = shorter;
+  }
+  return text;
+}
+
+FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapshot& snap) {
+  FrameLayout L;
+  const int cols = size.cols, rows = size.rows;
+  L.footer_row = std::max(rows - 1, 0);
+  if (cols < kMinCols || rows < kMinRows) {
+    L.too_small = true;
+    return L;
+  }
+  // Top layout: HUD, the wrapped legend, the arena, three log rows (one in the shop,
+  // whose slide needs the rows), the footer.
+  const bool shop = snap.phase == Phase::shop;
+  const int log_rows = shop ? 1 : kTopLogRows;
+  const int legend_rows =
+      std::max<int>(1, static_cast<int>(legend_lines(snap, view, cols, false, kLegendTopMaxRows).size()));
+  const int top_area_rows = rows - 1 - legend_rows - log_rows - 1;
+  const Viewport top =
+      fit_arena(1, 1 + legend_rows + 1, cols - 2, top_area_rows - 2, view.arena_width_u, view.arena_height_u);
+  // Side layout: HUD, the arena on the left, the panel (legend, then log) on the right.
+  const int panel_cols = std::clamp(cols / 4, 32, 44);
+  const int side_cols = cols - panel_cols - 1;
+  const Viewport side = fit_arena(1, 2, side_cols - 2, rows - 4, view.arena_width_u, view.arena_height_u);
+  // The panel when it costs the platform at most a fifth of its width (and leaves the
+  // shop's slide its width).
+  L.side = side.cols * 5 >= top.cols * 4 && (!shop || side_cols >= kShopMinCols);
+  if (L.side) {
+    L.panel_col0 = cols - panel_cols;
+    L.panel_cols = panel_cols;
+    L.area_col0 = 0;
+    L.area_row0 = 1;
+    L.area_cols = side_cols;
+    L.area_rows = rows - 2;
+    L.arena = side;
+    L.legend_row0 = 1;
+    L.legend_rows = std::min<int>(static_cast<int>(snap.players.size()) + 1, rows / 2);
+    L.log_row0 = L.legend_row0 + L.legend_rows + 1;
+    L.log_rows = rows - 1 - L.log_row0;
+    L.log_col0 = L.panel_col0;
+    L.log_cols = panel_cols;
+  } else {
+    L.legend_row0 = 1;
+    L.legend_rows = legend_rows;
+    L.area_col0 = 0;
+    L.area_row0 = 1 + legend_rows;
+    L.area_cols = cols;
+    L.area_rows = top_area_rows;
+    L.arena = top;
+    L.log_row0 = L.area_row0 + top_area_rows;
+    L.log_rows = log_rows;
+    L.log_col0 = 0;
+    L.log_cols = cols;
+  }
+  return L;
+}
+
+}  // namespace fts::client
