@@ -1,6 +1,8 @@
-// fts-server: hosts one match over UDP. Settings come from flags and FTS_* variables
+// fts-server: hosts rooms (each a match) over UDP; `fts-server --console SOCKET CMD`
+// talks to a running server's console. Settings come from flags and FTS_* variables
 // (see --help); every bad setting is reported before anything binds.
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -10,6 +12,7 @@
 #include "app/options.hpp"
 #include "host/record.hpp"
 #include "host/text.hpp"
+#include "net/console.hpp"
 #include "net/udp_server.hpp"
 
 namespace {
@@ -30,6 +33,13 @@ int fail(const std::string& message) {
 int main(int argc, char** argv) {
   using namespace fts;
   const std::vector<std::string> args(argv + 1, argv + argc);
+  // The console's front end: fts-server --console SOCKET CMD [ARGS...]
+  if (!args.empty() && (args[0] == "--console" || args[0].rfind("--console=", 0) == 0)) {
+    const bool inline_path = args[0] != "--console";
+    if (!inline_path && args.size() < 2) return fail("--console: needs the socket path and a command");
+    const std::string path = inline_path ? args[0].substr(10) : args[1];
+    return server::run_console_client(path, {args.begin() + (inline_path ? 1 : 2), args.end()});
+  }
   auto parsed = server::parse_options(args, getenv_opt);
   if (auto* err = std::get_if<server::OptionError>(&parsed)) return fail(err->message);
   auto options = std::get<server::Options>(parsed);
@@ -67,8 +77,16 @@ int main(int argc, char** argv) {
     if (!record) return fail("--record: cannot write " + options.record_path);
   }
 
+  if (!options.record_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.record_dir, ec);
+    if (ec || !std::filesystem::is_directory(options.record_dir))
+      return fail("--record-dir: cannot make directory " + options.record_dir + (ec ? ": " + ec.message() : ""));
+  }
+
   server::init_logging(options.log_level, options.log_format);
   server::GameHost host(options, config, protocol::random_key());
   if (record.is_open()) host.record_to(record, FTS_VERSION);
+  if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
   return server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
 }

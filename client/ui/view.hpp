@@ -20,6 +20,7 @@ struct ViewState {
   bool color = true;
   sim::ShopTerms shop_terms;  // the server's, from its welcome
   double tick_rate_hz = 100;  // the server's, from its welcome (countdowns)
+  std::string room;           // "Room ABCDE" / "Watching ABCDE" (ui/start_screen.hpp), "" : none
 };
 
 }  // namespace fts::client

@@ -77,6 +77,16 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.idle_timeout_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
   } else if (key == "stats-interval-ms") {
     if (!parse_uint<std::uint32_t>(value, o.stats_interval_ms, 100, 3600000)) return bad("must be 100..3600000 ms");
+  } else if (key == "max-rooms") {
+    if (!parse_uint<std::uint32_t>(value, o.max_rooms, 1, 1024)) return bad("must be 1..1024");
+  } else if (key == "room-idle-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.room_idle_ms, 0, 86400000)) return bad("must be 0..86400000 ms");
+  } else if (key == "max-spectators") {
+    if (!parse_uint<std::uint32_t>(value, o.max_spectators, 0, 64)) return bad("must be 0..64");
+  } else if (key == "record-dir") {
+    o.record_dir = value;
+  } else if (key == "console-socket") {
+    o.console_path = value;
   } else if (key == "time-scale") {
     char* end = nullptr;
     o.time_scale = std::strtod(value.c_str(), &end);
@@ -102,11 +112,11 @@ const std::vector<OptionDoc>& option_docs() {
       {"--bind", "FTS_BIND", "0.0.0.0", "address to bind"},
       {"--tick-rate", "FTS_TICK_RATE", "100", "simulation ticks per second (Hz)"},
       {"--snapshot-rate", "FTS_SNAPSHOT_RATE", "20", "snapshots per second to each client (Hz)"},
-      {"--max-players", "FTS_MAX_PLAYERS", "8", "players in the match at once"},
+      {"--max-players", "FTS_MAX_PLAYERS", "8", "players in one room's match at once"},
       {"--model", "FTS_MODEL", "continuous", "physics model: seed, discrete or continuous"},
       {"--seed", "FTS_SEED", "1", "seed of the match's random generator"},
       {"--config", "FTS_CONFIG", "", "match configuration JSON (docker/server-config.example.json)"},
-      {"--record", "FTS_RECORD", "", "write the input log of the match to this file"},
+      {"--record", "FTS_RECORD", "", "write the input log of the first room (id 1) to this file"},
       {"--replay", "FTS_REPLAY", "", "re-run a recorded input log, check every hash, exit"},
       {"--log-level", "FTS_LOG_LEVEL", "info", "trace, debug, info, warn, error or off"},
       {"--log-format", "FTS_LOG_FORMAT", "text", "text or json (one JSON record per line)"},
@@ -117,6 +127,11 @@ const std::vector<OptionDoc>& option_docs() {
       {"--idle-timeout-ms", "FTS_IDLE_TIMEOUT_MS", "120000", "a player without input this long in a round is dropped (ms, 0: never)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
+      {"--max-rooms", "FTS_MAX_ROOMS", "64", "rooms at once, each a match of --max-players (1..1024)"},
+      {"--room-idle-ms", "FTS_ROOM_IDLE_MS", "60000", "a room with nobody connected this long is closed (ms)"},
+      {"--max-spectators", "FTS_MAX_SPECTATORS", "8", "spectators per room (0..64)"},
+      {"--record-dir", "FTS_RECORD_DIR", "", "write each room's input log to DIR/room-<id>.jsonl"},
+      {"--console-socket", "FTS_CONSOLE_SOCKET", "", "serve the host's console on this UNIX socket (mode 0600)"},
   };
   return docs;
 }
