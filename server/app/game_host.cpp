@@ -51,6 +51,8 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.idle_timeout_ms = o.idle_timeout_ms;
   // A host may send what its sessions may send together.
   c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * o.max_per_address;
+  // ... and may shake hands as often as it may seat players (never under the default 10/s).
+  c.hellos_per_s = c.hello_burst = std::max<std::uint32_t>(c.hellos_per_s, o.max_per_address);
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
@@ -411,9 +413,11 @@ nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_
   }();
   const std::string request_text = req.dump();
   const bool ok = reply.value("ok", false);
-  log_record(ok ? spdlog::level::info : spdlog::level::warn, "console",
-             {{"request", std::string_view(request_text)}, {"ok", ok},
-              {"error", ok ? std::string_view() : std::string_view(reply["error"].get_ref<const std::string&>())}});
+  if (ok) log_record(spdlog::level::info, "console", {{"request", std::string_view(request_text)}, {"ok", ok}});
+  else
+    log_record(spdlog::level::warn, "console",
+               {{"request", std::string_view(request_text)}, {"ok", ok},
+                {"error", std::string_view(reply["error"].get_ref<const std::string&>())}});
   return reply;
 }
 

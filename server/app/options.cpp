@@ -72,7 +72,7 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
   } else if (key == "input-expiry-ms") {
     if (!parse_uint<std::uint32_t>(value, o.input_expiry_ms, 10, 10000)) return bad("must be 10..10000 ms");
   } else if (key == "max-per-address") {
-    if (!parse_uint<std::uint32_t>(value, o.max_per_address, 1, 64)) return bad("must be 1..64");
+    if (!parse_uint<std::uint32_t>(value, o.max_per_address, 1, 1024)) return bad("must be 1..1024");
   } else if (key == "idle-timeout-ms") {
     if (!parse_uint<std::uint32_t>(value, o.idle_timeout_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
   } else if (key == "stats-interval-ms") {
@@ -123,7 +123,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
       {"--reconnect-window-ms", "FTS_RECONNECT_WINDOW_MS", "60000", "how long a dropped player's slot is kept (ms)"},
       {"--input-expiry-ms", "FTS_INPUT_EXPIRY_MS", "150", "a held input goes neutral after this long without a new frame (ms)"},
-      {"--max-per-address", "FTS_MAX_PER_ADDRESS", "4", "players at once from one IP address (1..64)"},
+      {"--max-per-address", "FTS_MAX_PER_ADDRESS", "4", "players at once from one IP address (1..1024)"},
       {"--idle-timeout-ms", "FTS_IDLE_TIMEOUT_MS", "120000", "a player without input this long in a round is dropped (ms, 0: never)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
