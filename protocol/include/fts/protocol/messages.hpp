@@ -26,8 +26,9 @@ struct Hello {
                        // hello with the same nonce is the same attempt (same welcome)
   // Which room to join (PROTOCOL.md 4.6): "" or "quick", "create", "join", "spectate";
   // absent on the wire when empty (quick play).
-  std::string join;
-  std::string room;  // the room's code for join and spectate (5 letters), else ""
+  // (Default member initializers: brace-initialised hellos need not name them.)
+  std::string join = "";
+  std::string room = "";  // the room's code for join and spectate (5 letters), else ""
 
   bool operator==(const Hello&) const = default;
 };
@@ -53,7 +54,7 @@ struct Welcome {
   std::uint32_t server_tick = 0;
   bool reconnected = false;
   sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
-  std::string room;      // the code of the room joined ("" from a server without rooms)
+  std::string room = "";   // the code of the room joined ("" from a server without rooms)
   bool spectator = false;  // joined to watch: no ball, no seat, inputs ignored
 
   bool operator==(const Welcome&) const = default;
