@@ -49,6 +49,10 @@ def test_four_rooms():
         out = json.loads(p.stdout)
         check(out["state_hash"] == live_hash, f"room {room_id}: replayed {out['state_hash']}, live {live_hash}")
         check(out["hashes_checked"] >= 3, f"room {room_id}: only {out['hashes_checked']} hashes checked")
+        sim = os.path.join(os.path.dirname(SERVER), "fts-sim")
+        p = subprocess.run([sim, "--match", "--inputs", path], capture_output=True, text=True, timeout=120)
+        check(p.returncode == 0 and json.loads(p.stdout.strip().splitlines()[-1])["state_hash"] == live_hash,
+              f"fts-sim replay of room {room_id}: {p.returncode} {p.stdout[-300:]} {p.stderr[-300:]}")
         # Room state never leaks: a room's record holds one group's players only.
         with open(path) as f:
             names = set(re.findall(r'"name":"([a-z]+)\d"', f.read()))
