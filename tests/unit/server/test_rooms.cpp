@@ -300,3 +300,31 @@ TEST_CASE("Console: a ban drops the address's sessions and datagrams", "[server]
   CHECK(a.state() == ClientState::connecting);
   CHECK(rig.console(R"({"cmd":"stats"})")["banned_datagrams"].get<std::uint64_t>() > 0);
 }
+
+TEST_CASE("Rooms: a token takes the player back into its own room", "[server][rooms]") {
+  Rig rig(2);
+  auto& a = rig.add();           // room 1
+  auto& b = rig.add("create");   // room 2, private
+  REQUIRE(b.state() == ClientState::connected);
+  const std::string code = Rig::room_of(b);
+  const auto id = b.welcome()->player_id;
+  rig.ticks(3);
+  // b's process restarts: a new client from a new port with the token, asking for
+  // quick play, which the token overrides.
+  protocol::ClientConfig c;
+  c.name = "p2";
+  c.token = b.welcome()->token;
+  c.join = "quick";
+  rig.clients[1] = std::make_unique<protocol::ClientEndpoint>(c);
+  auto& back = *rig.clients[1];
+  back.connect(rig.now);
+  for (int i = 0; i < 50 && back.state() == ClientState::connecting; ++i) rig.tick();
+  REQUIRE(back.state() == ClientState::connected);
+  CHECK(back.welcome()->reconnected);
+  CHECK(back.welcome()->player_id == id);
+  CHECK(Rig::room_of(back) == code);
+  rig.ticks(3);
+  CHECK(sim::find_player(rig.host->room(2)->match(), id) != nullptr);
+  CHECK(sim::find_player(rig.host->room(1)->match(), id) == nullptr);
+  CHECK(a.state() == ClientState::connected);
+}
