@@ -320,7 +320,8 @@ nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_
     const std::string cmd = req["cmd"].get<std::string>();
     // A room by code ("ABCDE", any case) or id (3).
     auto find_room = [&](const nlohmann::json& v) -> const Room* {
-      if (v.is_number_unsigned()) return room(v.get<std::uint32_t>());
+      if (v.is_number_unsigned())
+        return v.get<std::uint64_t>() > 0xFFFFFFFFull ? nullptr : room(static_cast<std::uint32_t>(v.get<std::uint64_t>()));
       if (v.is_string())
         if (auto code = normalize_room_code(v.get<std::string>())) return room_by_code(*code);
       return nullptr;
@@ -352,9 +353,10 @@ nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_
         out["players"].push_back(p);
       }
     } else if (cmd == "kick") {
-      if (!req.contains("player") || !req["player"].is_number_unsigned())
+      if (!req.contains("player") || !req["player"].is_number_unsigned() ||
+          req["player"].get<std::uint64_t>() > 0xFFFFFFFFull)
         return error_reply("kick needs \"player\": a player id (see players)");
-      const auto id = req["player"].get<std::uint32_t>();
+      const auto id = static_cast<std::uint32_t>(req["player"].get<std::uint64_t>());
       const auto sessions = endpoint_.sessions();
       if (std::none_of(sessions.begin(), sessions.end(), [&](const auto& s) { return s.player_id == id; }))
         return error_reply("no player " + std::to_string(id));

@@ -88,7 +88,8 @@ class Loop {
       reply = host_.command(request, now_ms());
     }
     flush();
-    stop_if_drained();
+    // A drain with no room left ends the process at the next tick, after this reply is
+    // written (stopping here would drop it).
     return reply.dump();
   }
 

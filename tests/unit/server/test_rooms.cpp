@@ -256,6 +256,8 @@ TEST_CASE("Console: rooms, players, kick (told why), close, drain and bad input"
   // Bad input: a clear error, nothing changed.
   CHECK(rig.console(R"({"cmd":"kick"})")["ok"] == false);
   CHECK(rig.console(R"({"cmd":"kick","player":99})")["ok"] == false);
+  CHECK(rig.console(R"({"cmd":"kick","player":4294967297})")["ok"] == false);  // not player 1
+  CHECK(rig.console(R"({"cmd":"players","room":4294967297})")["ok"] == false);
   CHECK(rig.console(R"({"cmd":"close","room":"ZZZZZ"})")["ok"] == false);
   CHECK(rig.console(R"({"cmd":"fly"})")["error"].get<std::string>().find("unknown command") != std::string::npos);
   CHECK(rig.console(R"([1,2])")["ok"] == false);
