@@ -25,7 +25,6 @@ std::string hud_line(const Snapshot& s, const ViewState& view) {
     out += "   Coins: " + sim::with_thousands(me->coins);
     out += "   Lives: " + std::to_string(me->lives);
   }
-  if (!view.room.empty()) out += "   " + view.room;
   char buf[64];
   if (view.ping_ms >= 0) {
     std::snprintf(buf, sizeof buf, "   Ping: %.0f ms", view.ping_ms);
@@ -35,6 +34,7 @@ std::string hud_line(const Snapshot& s, const ViewState& view) {
     std::snprintf(buf, sizeof buf, "   Loss: %.1f%%", view.loss_percent);
     out += buf;
   }
+  if (!view.room.empty()) out += "   " + view.room;  // last: the fields before keep their place
   return out;
 }
 
