@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets everything up and runs the main job: a local fts-server with a few bots, and the
 # terminal client on it when this is an interactive terminal (otherwise it says how to
-# join and keeps the server running until Ctrl-C).
+# join and keeps the server running until Ctrl-C). The bots make a private room and the
+# player joins it (its code is in the HUD: friends join with --join CODE).
 #   FTS_PORT (default 7777)   FTS_BOTS (default 3)   FTS_NAME (default: $USER or "player")
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -26,15 +27,24 @@ for _ in $(seq 1 100); do  # up to 10 s for the ready line
   sleep 0.1
 done
 grep " ready " "$log"
+room=()
 if ((nbots > 0)); then
   ./build/client/fts-bot --connect "127.0.0.1:$port" --name bot --count "$nbots" --behavior shopper \
-    --report build/bots.json >/dev/null 2>build/bots.log &
+    --room create --report build/bots.json >/dev/null 2>build/bots.log &
   pids+=($!)
+  code=""
+  for _ in $(seq 1 100); do  # up to 10 s for the bots' room
+    code=$(sed -n 's/.* room_open .*code=\([A-Z]\{5\}\).*/\1/p' "$log" | head -n 1)
+    [[ -n "$code" ]] && break
+    sleep 0.1
+  done
+  [[ -n "$code" ]] && room=(--join "$code")
 fi
-echo "fts-server is on UDP port $port with $nbots bots (log: $log)."
-echo "Join from any terminal:  ./build/client/fts-client --connect 127.0.0.1:$port --name YOURNAME"
+((${#room[@]})) || room=(--create)
+echo "fts-server is on UDP port $port with $nbots bots (log: $log)${code:+ in room $code}."
+echo "Join from any terminal:  ./build/client/fts-client --connect 127.0.0.1:$port --name YOURNAME ${room[*]}"
 if [[ -t 0 && -t 1 && -x build/client/fts-client ]]; then
-  ./build/client/fts-client --connect "127.0.0.1:$port" --name "${name:0:16}"
+  ./build/client/fts-client --connect "127.0.0.1:$port" --name "${name:0:16}" "${room[@]}"
 else
   echo "Press Ctrl-C to stop."
   wait "${pids[0]}"

@@ -21,7 +21,10 @@ using fts::io::udp;
 constexpr const char* kUsage =
     "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
     "               [--script FILE] [--duration S] [--encoding json|msgpack] [--seed S]\n"
-    "               [--token T] [--token-file F] [--report FILE|-]\n"
+    "               [--token T] [--token-file F] [--report FILE|-] [--room CODE|quick|create] [--spectate CODE]\n"
+    "--room: quick (default) plays in the fullest open public room or a new one; create makes a private\n"
+    "room for all K bots (the first creates it, the others join its code); CODE joins that room.\n"
+    "--spectate CODE: watch that room (no ball, no seat).\n"
     "--token-file F: read the session token from F if it exists, and write it there once welcomed\n"
     "(so a killed bot started again takes its player back within the reconnect window).\n"
     "       fts-bot --probe HOST:PORT      connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s\n"
@@ -42,6 +45,7 @@ struct Args {
   fts::protocol::Encoding encoding = fts::protocol::Encoding::msgpack;
   std::uint64_t seed = 1;
   bool probe = false;
+  std::string join, room;  // Hello::join and Hello::room
 };
 
 std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
@@ -53,6 +57,7 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
       {"--duration", "--duration needs seconds"}, {"--encoding", "--encoding must be json or msgpack"},
       {"--seed", "--seed needs a number"}, {"--token", "--token needs a value"},
       {"--token-file", "--token-file needs a file"},
+      {"--room", "--room needs CODE, quick or create"}, {"--spectate", "--spectate needs a room code"},
       {"--protocol-version", "--protocol-version needs a number"},  // for tests of the server's version refusal
       {"--report", "--report needs a file or -"}};
   CLI::App app{"", "fts-bot"};
@@ -116,6 +121,22 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
   if (const auto v = value("--token-file")) a.token_file = *v;
   if (const auto v = value("--protocol-version")) a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
   if (const auto v = value("--report")) a.report = *v;
+  if (const auto v = value("--room")) {
+    if (*v == "quick" || *v == "create") {
+      a.join = *v;
+    } else if (v->size() == 5) {
+      a.join = "join";
+      a.room = *v;
+    } else {
+      return "--room must be quick, create or a 5-letter room code, got " + *v;
+    }
+  }
+  if (const auto v = value("--spectate")) {
+    if (!a.join.empty()) return std::string("--spectate and --room exclude each other");
+    if (v->size() != 5) return "--spectate needs a 5-letter room code, got " + *v;
+    a.join = "spectate";
+    a.room = *v;
+  }
   if (a.host.empty()) return std::string("--connect HOST:PORT (or --probe HOST:PORT) is required");
   return std::nullopt;
 }
@@ -172,7 +193,9 @@ int main(int argc, char** argv) {
         std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count());
   };
   std::vector<std::unique_ptr<Slot>> slots;
-  for (int i = 0; i < (a.probe ? 1 : a.count); ++i) {
+  // --room create: the first bot makes the room, the others join its code once known.
+  const int first_wave = a.join == "create" ? 1 : (a.probe ? 1 : a.count);
+  auto make_slot = [&](int i, const std::string& join, const std::string& room) {
     fts::bot::BotOptions o;
     o.name = a.count > 1 ? a.name + std::to_string(i + 1) : a.name;
     o.behavior = a.probe ? fts::bot::Behavior::idle : a.behavior;
@@ -182,9 +205,12 @@ int main(int argc, char** argv) {
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
     o.protocol_version = a.protocol_version;
+    o.join = join;
+    o.room = room;
     slots.push_back(std::make_unique<Slot>(io, std::move(o)));
     slots.back()->bot.start(now_ms());
-  }
+  };
+  for (int i = 0; i < first_wave; ++i) make_slot(i, a.join, a.room);
 
   // A new connection attempt (the bot's reconnect) sends from a fresh local port.
   auto open_socket = [&](Slot& s) -> bool {
@@ -206,6 +232,7 @@ int main(int argc, char** argv) {
     if (!open_socket(*s)) return 1;
     flush(*s);
   }
+  bool second_wave_failed = false;
 
   const double limit_s = a.probe ? 2.0 : a.duration_s;
   bool stopping = false;
@@ -229,6 +256,19 @@ int main(int argc, char** argv) {
         s->bot.update(now_ms());
         flush(*s);
         all_done = all_done && s->bot.finished();
+      }
+      if (static_cast<int>(slots.size()) < a.count && !a.probe) {
+        all_done = false;
+        if (!slots[0]->bot.room().empty()) {
+          const std::string code = slots[0]->bot.room();
+          for (int i = static_cast<int>(slots.size()); i < a.count; ++i) {
+            make_slot(i, "join", code);
+            if (!open_socket(*slots.back())) second_wave_failed = true;
+            flush(*slots.back());
+          }
+        } else if (slots[0]->bot.finished()) {
+          all_done = true;  // the room was never made: the first bot's report says why
+        }
       }
       if (!a.token_file.empty() && !token_written && !slots[0]->bot.token().empty()) {
         std::ofstream(a.token_file) << slots[0]->bot.token() << "\n";
@@ -277,5 +317,5 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  return ok ? 0 : 1;
+  return ok && !second_wave_failed ? 0 : 1;
 }

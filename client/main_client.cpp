@@ -28,6 +28,7 @@
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 #include "ui/session_store.hpp"
+#include "ui/start_screen.hpp"
 
 namespace asio = fts::io::asio;
 using fts::io::udp;
@@ -55,6 +56,11 @@ constexpr const char* kUsage =
     "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"
     "                          last session on this server, kept in $XDG_STATE_HOME)\n"
+    "  --quick                 quick play: the fullest open room, or a new one\n"
+    "  --create                create a private room; friends join with the code in the HUD\n"
+    "  --join CODE             join the room with this code\n"
+    "  --spectate CODE         watch the room with this code\n"
+    "                          (none of these: a start screen asks)\n"
     "  --help                  this text\n"
     "\n"
     "Controls: arrows, WASD or hjkl thrust (a tap is a short push, holding keeps pushing),\n"
@@ -72,6 +78,7 @@ struct Options {
   bool mouse = true;  // --no-mouse: no mouse reporting, keys only
   bool fresh = false;  // --new: ignore the saved session token
   std::string replay;  // --replay FILE: play a record back, no server
+  std::optional<RoomChoice> room;  // none: the start screen asks
 };
 
 int usage_error(const std::string& msg) {
@@ -89,7 +96,10 @@ int parse(int argc, char** argv, Options& o) {
   const CLI::Option* no_kitty = app.add_flag("--no-kitty");
   const CLI::Option* no_mouse = app.add_flag("--no-mouse");
   const CLI::Option* fresh = app.add_flag("--new");
-  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay"}) app.add_option(flag);
+  const CLI::Option* quick = app.add_flag("--quick");
+  const CLI::Option* create = app.add_flag("--create");
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate"})
+    app.add_option(flag);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ArgumentMismatch&) {
@@ -137,6 +147,18 @@ int parse(int argc, char** argv, Options& o) {
     o.replay = *v;
     return -1;
   }
+  const int room_flags = static_cast<int>(quick->count() > 0) + static_cast<int>(create->count() > 0) +
+                         static_cast<int>(value("--join").has_value()) + static_cast<int>(value("--spectate").has_value());
+  if (room_flags > 1) return usage_error("--quick, --create, --join and --spectate exclude each other");
+  if (quick->count() > 0) o.room = RoomChoice{};
+  if (create->count() > 0) o.room = RoomChoice{"create", ""};
+  for (const char* flag : {"--join", "--spectate"}) {
+    const auto v = value(flag);
+    if (!v) continue;
+    const auto choice = parse_start_choice(std::string(flag == std::string("--join") ? "3 " : "4 ") + *v);
+    if (const auto* why = std::get_if<std::string>(&choice)) return usage_error(std::string(flag) + ": " + *why);
+    o.room = std::get<RoomChoice>(choice);
+  }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
     return usage_error("--name must be 1 to 16 printable ASCII characters");
@@ -174,6 +196,10 @@ class Game {
     proto::ClientConfig cfg;
     cfg.name = o.name;
     cfg.encoding = o.encoding;
+    if (o.room) {
+      cfg.join = o.room->join;
+      cfg.room = o.room->room;
+    }
     if (!o.fresh)
       if (auto token = store.load()) cfg.token = *token;
     return cfg;
@@ -371,7 +397,13 @@ class Game {
       view_.shop_terms = w.shop;
       view_.tick_rate_hz = w.tick_rate_hz;
       clock_.set_tick_rate(w.tick_rate_hz);
+      view_.room = room_label(w.room, w.spectator);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
+      if (!w.room.empty()) {
+        note(std::string(w.spectator ? "Watching room " : "Room ") + sanitize(w.room, 8) +
+             (w.spectator ? "." : ": friends join with --join " + sanitize(w.room, 8)));
+        rooms_rid_ = endpoint.send_command(proto::CommandOp::rooms, 0, now);
+      }
       std::string why;
       if (!store_.save(w.token, why)) note("Cannot keep the session for a restart: " + sanitize(why, 100));
     }
@@ -386,6 +418,11 @@ class Game {
       buffer_.push(std::move(s));
     }
     for (const auto& r : endpoint.take_results()) {
+      if (r.command_rid == rooms_rid_ && rooms_rid_ != 0) {
+        note("Public rooms: " + (r.message.empty() ? std::string("none") : sanitize(r.message, 200)));
+        rooms_rid_ = 0;
+        continue;
+      }
       const proto::Snapshot* newest = buffer_.newest();
       const PlayerState* me = newest != nullptr ? find_player(*newest, view_.my_player_id) : nullptr;
       if (pending_chats_.erase(r.command_rid) > 0) {
@@ -497,6 +534,7 @@ class Game {
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120;
   static constexpr std::size_t kMaxNames = 256;
+  std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
   std::uint64_t last_rx_ms_ = 0;
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
@@ -523,6 +561,15 @@ int main(int argc, char** argv) {
   if (!server) {
     std::cerr << "fts-client: cannot resolve " << opts.host << ":" << opts.port << ": " << why << "\n";
     return 1;
+  }
+  // The start screen: asked in the plain terminal, before the game takes it over.
+  while (!opts.room) {
+    std::cout << start_menu_text() << "> " << std::flush;
+    std::string line;
+    if (!std::getline(std::cin, line)) return 1;
+    const auto choice = parse_start_choice(line);
+    if (const auto* why = std::get_if<std::string>(&choice)) std::cout << *why << "\n";
+    else opts.room = std::get<RoomChoice>(choice);
   }
   if (!term::enter(opts.kitty, opts.mouse)) {
     std::cerr << "fts-client: needs a terminal (stdin and stdout must be a tty)\n";

@@ -1,4 +1,5 @@
-// fts-server: hosts one match over UDP. Settings come from flags and FTS_* variables
+// fts-server: hosts rooms (each a match) over UDP; `fts-server --console SOCKET CMD`
+// talks to a running server's console. Settings come from flags and FTS_* variables
 // (see --help); every bad setting is reported before anything binds.
 #include <chrono>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include "host/journal.hpp"
 #include "host/record.hpp"
 #include "host/text.hpp"
+#include "net/console.hpp"
 #include "net/udp_server.hpp"
 
 namespace {
@@ -28,7 +30,7 @@ int fail(const std::string& message) {
   return 2;
 }
 
-// Until the rooms land, the one match is the room "main": its journal is DIR/main.
+// Only the first room (id 1) is journaled so far, in DIR/main (see GameHost::journal_to).
 constexpr const char* kRoomCode = "main";
 
 // --resume: the room rebuilt from its journal, or nothing (reported) to start afresh.
@@ -60,6 +62,13 @@ std::optional<fts::host::ResumedRoom> resume_room(const std::filesystem::path& d
 int main(int argc, char** argv) {
   using namespace fts;
   const std::vector<std::string> args(argv + 1, argv + argc);
+  // The console's front end: fts-server --console SOCKET CMD [ARGS...]
+  if (!args.empty() && (args[0] == "--console" || args[0].rfind("--console=", 0) == 0)) {
+    const bool inline_path = args[0] != "--console";
+    if (!inline_path && args.size() < 2) return fail("--console: needs the socket path and a command");
+    const std::string path = inline_path ? args[0].substr(10) : args[1];
+    return server::run_console_client(path, {args.begin() + (inline_path ? 1 : 2), args.end()});
+  }
   auto parsed = server::parse_options(args, getenv_opt);
   if (auto* err = std::get_if<server::OptionError>(&parsed)) return fail(err->message);
   auto options = std::get<server::Options>(parsed);
@@ -97,6 +106,13 @@ int main(int argc, char** argv) {
     if (!record) return fail("--record: cannot write " + options.record_path);
   }
 
+  if (!options.record_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.record_dir, ec);
+    if (ec || !std::filesystem::is_directory(options.record_dir))
+      return fail("--record-dir: cannot make directory " + options.record_dir + (ec ? ": " + ec.message() : ""));
+  }
+
   server::init_logging(options.log_level, options.log_format);
   const std::filesystem::path room_dir = std::filesystem::path(options.journal_dir) / kRoomCode;
   std::optional<host::ResumedRoom> resumed;
@@ -106,6 +122,7 @@ int main(int argc, char** argv) {
     options.seed = resumed->seed;
   }
   server::GameHost host(options, config, protocol::random_key());
+  if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
   if (resumed) host.resume_from(*resumed, 0);
   if (record.is_open()) host.record_to(record, FTS_VERSION);
   if (!options.journal_dir.empty()) {
@@ -117,7 +134,9 @@ int main(int argc, char** argv) {
     jc.sync_ms = options.journal_sync_ms;
     jc.checkpoint_every_ticks = static_cast<std::int64_t>(options.journal_checkpoint_s * config.tick_rate_hz);
     host.journal_to(jc);
-    if (const auto err = host.journal()->stats().error; !err.empty()) return fail(err);
+    const auto* journal = host.journal();
+    if (!journal) return fail("--journal-dir: the first room could not be opened");
+    if (const auto err = journal->stats().error; !err.empty()) return fail(err);
   }
   const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
   if (const auto* j = host.journal()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fts/sim/bot_player.hpp"
 
@@ -65,6 +66,8 @@ protocol::ClientConfig connection_config(const BotOptions& o) {
   c.name = o.name;
   c.token = o.token;
   if (o.protocol_version) c.version = o.protocol_version;
+  c.join = o.join;
+  c.room = o.room;
   return c;
 }
 
@@ -105,8 +108,40 @@ double Bot::field(const std::string& name) const {
   return NAN;
 }
 
+namespace {
+
+// FNV-1a over what a snapshot says of the world (balls and players), not its events.
+std::string snapshot_digest(const protocol::Snapshot& s) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&](double v) {
+    const auto q = static_cast<std::int64_t>(v * 16.0);
+    for (int i = 0; i < 8; ++i) h = (h ^ static_cast<std::uint8_t>(q >> (8 * i))) * 0x100000001b3ull;
+  };
+  mix(s.tick);
+  mix(static_cast<double>(s.phase));
+  mix(s.level);
+  for (const auto& b : s.balls) {
+    mix(b.id), mix(b.x), mix(b.y), mix(b.vx), mix(b.vy), mix(b.radius), mix(b.owner);
+  }
+  for (const auto& p : s.players) {
+    mix(p.id), mix(static_cast<double>(p.coins)), mix(p.lives), mix(p.mass), mix(p.alive ? 1 : 0);
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+}  // namespace
+
+std::string Bot::room() const {
+  const auto& w = conn_.endpoint().welcome();
+  return w ? w->room : std::string();
+}
+
 void Bot::on_snapshot(const protocol::Snapshot& s) {
   tally_.on_snapshot(s);
+  digests_.emplace_back(s.tick, snapshot_digest(s));
+  while (digests_.size() > 200) digests_.pop_front();
   // Each event once, by its seq (snapshots repeat them; PROTOCOL.md 8.4).
   for (const auto& e : s.events) {
     if (e.seq <= last_event_seq_) continue;
@@ -172,6 +207,15 @@ void Bot::update(std::uint64_t now_ms) {
   switch (conn_.endpoint().state()) {
     case protocol::ClientState::refused: {
       const auto& e = conn_.endpoint().error();
+      // "expect room refused CODE" as the step now: the refusal is the success.
+      if (script_.pc < options_.script.size()) {
+        const Step& s = options_.script[script_.pc];
+        if (s.op == Step::Op::expect_room && s.word == "refused" && e && e->code == s.cmp) {
+          refused_as_expected_ = e->code;
+          finished_ = true;
+          return;
+        }
+      }
       fail("refused by the server: " + (e ? e->code + ": " + e->message : std::string("no reason")));
       return;
     }
@@ -328,6 +372,15 @@ bool Bot::step_script(const Step& s, std::uint64_t now_ms) {
              (std::isnan(v) ? std::string("unknown") : std::to_string(static_cast<long long>(v))));
       return true;
     }
+    case Step::Op::expect_room: {
+      if (s.word == "refused") return false;  // met (or failed) by the refusal in update()
+      if (!connected) return false;
+      const std::string code = room();
+      if ((s.word == "any" && code.empty()) || (s.word != "any" && code != s.word))
+        fail("script line " + std::to_string(s.line) + " '" + s.text + "' failed: the room is " +
+             (code.empty() ? std::string("none") : code));
+      return true;
+    }
     case Step::Op::disconnect:
       script_.disconnected = true;
       conn_.leave(now_ms, "script");
@@ -377,6 +430,11 @@ nlohmann::ordered_json Bot::report() const {
   r["prices"] = p ? nlohmann::ordered_json(p->prices) : nlohmann::ordered_json::array();
   r["purchases_refused"] = tally_.purchases_refused();
   r["bought"] = tally_.bought();
+  r["room"] = room();
+  if (const auto& w = conn_.endpoint().welcome()) r["spectator"] = w->spectator;
+  if (!refused_as_expected_.empty()) r["refused"] = refused_as_expected_;
+  r["snapshot_digests"] = nlohmann::ordered_json::object();
+  for (const auto& [tick, digest] : digests_) r["snapshot_digests"][std::to_string(tick)] = digest;
   r["errors"] = errors_;
   r["ok"] = failure_.empty();
   return r;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <span>
 #include <string>
@@ -29,6 +30,8 @@ struct BotOptions {
   std::string token;         // take a previous player back
   bool probe = false;        // done at the first snapshot
   std::uint16_t protocol_version = 0;  // 0: ours; other values test the server's refusal
+  std::string join;  // Hello::join: "" (quick), "quick", "create", "join", "spectate"
+  std::string room;  // the room code for join and spectate
 };
 
 // Where a bot is in its script, and what the script holds it to.
@@ -76,6 +79,8 @@ class Bot {
   // One more for each connection attempt: the caller sends each from a fresh socket.
   std::uint64_t attempt() const { return conn_.attempt(); }
   nlohmann::ordered_json report() const;
+  // The code of the room the server put us in ("" before the welcome).
+  std::string room() const;
 
  private:
   const protocol::PlayerState* me() const;
@@ -111,6 +116,10 @@ class Bot {
   std::string failure_;
   bool finished_ = false;
   Wander wander_;
+  std::string refused_as_expected_;  // "expect room refused CODE" met: the refusal's code
+  // (tick, digest of the snapshot's balls and players) of the latest snapshots: a
+  // spectator and a player of one room report the same digests for the same ticks.
+  std::deque<std::pair<std::uint32_t, std::string>> digests_;
 };
 
 std::optional<Behavior> parse_behavior(const std::string& s);

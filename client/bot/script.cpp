@@ -96,7 +96,17 @@ std::variant<std::vector<Step>, std::string> parse_script(const std::string& tex
     } else if (k == "play_again" && need(1)) {
       s.op = Step::Op::play_again;
     } else if (k == "expect") {
-      if (need(3) && w[1] == "result" && is_one_of(w[2], {"ok", "refused"})) {
+      if (w.size() >= 3 && w[1] == "room") {
+        s.op = Step::Op::expect_room;
+        if (need(4) && w[2] == "refused") {
+          s.word = "refused";
+          s.cmp = w[3];
+        } else if (need(3) && w[2] != "refused") {
+          s.word = w[2];
+        } else {
+          return err("expect room takes a code, 'any', or 'refused REASON'");
+        }
+      } else if (need(3) && w[1] == "result" && is_one_of(w[2], {"ok", "refused"})) {
         s.op = Step::Op::expect_result;
         s.word = w[2];
       } else if (need(4) && is_one_of(w[1], {"coins", "lives", "level", "mass", "tick", "purchases"}) &&

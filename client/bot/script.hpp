@@ -13,6 +13,9 @@
 //   expect FIELD OP NUMBER                  FIELD: coins lives level mass tick purchases
 //                                           OP: == != >= <= > <
 //   expect result ok|refused                the last command's result
+//   expect room CODE|any                    welcomed into room CODE (any: some room)
+//   expect room refused REASON              the join is refused with REASON (room_full,
+//                                           no_such_room, server_full): the bot succeeds
 //   disconnect | reconnect                  clean bye; new handshake with the session token
 //
 // A failed expect, a refused connection or a missed deadline ends the bot with a message.
@@ -27,7 +30,7 @@ namespace fts::bot {
 
 struct Step {
   enum class Op { wait_event, wait_phase, wait_ticks, set_timeout, move, hunt, fire, buy, ready, play_again,
-                  expect_field, expect_result, disconnect, reconnect };
+                  expect_field, expect_result, expect_room, disconnect, reconnect };
   Op op = Op::wait_ticks;
   std::string word;     // event, phase, direction, item, field, "ok"/"refused", comparison
   std::string cmp;      // expect: == != >= <= > <

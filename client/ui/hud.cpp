@@ -34,6 +34,7 @@ std::string hud_line(const Snapshot& s, const ViewState& view) {
     std::snprintf(buf, sizeof buf, "   Loss: %.1f%%", view.loss_percent);
     out += buf;
   }
+  if (!view.room.empty()) out += "   " + view.room;  // last: the fields before keep their place
   return out;
 }
 

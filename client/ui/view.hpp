@@ -52,6 +52,7 @@ struct ViewState {
   std::string chat_draft;
   bool mouse_steering = false;  // the pointer steers (shown in the footer)
   std::string replay_footer;    // --replay: the footer text (speed, pause, keys)
+  std::string room;           // "Room ABCDE" / "Watching ABCDE" (ui/start_screen.hpp), "" : none
 };
 
 }  // namespace fts::client

@@ -48,7 +48,7 @@ void ClientEndpoint::send_hello(std::uint64_t now_ms) {
   Header h;
   h.version = config_.version;
   h.encoding = config_.encoding;
-  Hello hello{config_.name, config_.token, cookie_, "", nonce_};
+  Hello hello{config_.name, config_.token, cookie_, "", nonce_, config_.join, config_.room};
   // Pad to kMinHelloBytes (a longer pad may need a longer length prefix: loop).
   for (;;) {
     const std::size_t size = kHeaderBytes + encode_payload(config_.encoding, {hello}).size();

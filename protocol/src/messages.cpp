@@ -20,6 +20,7 @@ const char* op_name(CommandOp op) {
     case CommandOp::play_again: return "again";
     case CommandOp::unknown: return "unknown";
     case CommandOp::chat: return "chat";
+    case CommandOp::rooms: return "rooms";
   }
   return "?";
 }
@@ -27,6 +28,8 @@ const char* op_name(CommandOp op) {
 
 void to_json(json& j, const Hello& m) {
   j = json{{"name", m.name}, {"token", m.token}, {"cookie", m.cookie}, {"pad", m.pad}, {"nonce", m.nonce}};
+  if (!m.join.empty()) j["join"] = m.join;
+  if (!m.room.empty()) j["room"] = m.room;
 }
 void from_json(const json& j, Hello& m) {
   // Any string up to kMaxTextBytes: the server checks the name itself, so that a bad one
@@ -40,6 +43,11 @@ void from_json(const json& j, Hello& m) {
   m.token = as_hex(field(j, "token"), kTokenHex);
   m.cookie = as_hex(field(j, "cookie"), kCookieHex);
   m.pad = as_text(field(j, "pad"), kMaxDatagramBytes);
+  // Optional (older clients send neither); the server checks the values and answers a
+  // bad one with an error that says what is wrong.
+  m.join = m.room = "";
+  if (const json* join = optional_field(j, "join")) m.join = as_text(*join, 16);
+  if (const json* room = optional_field(j, "room")) m.room = as_text(*room, 16);
 }
 
 void to_json(json& j, const Challenge& m) { j = json{{"cookie", m.cookie}}; }
@@ -64,6 +72,8 @@ void to_json(json& j, const Welcome& m) {
            {"frame_s", m.shop.frame_s},
            {"multiplier_upgrade_factor", m.shop.multiplier_upgrade_factor},
            {"bank_interest_factor", m.shop.bank_interest_factor}};
+  if (!m.room.empty()) j["room"] = m.room;
+  if (m.spectator) j["spectator"] = true;
 }
 void from_json(const json& j, Welcome& m) {
   m.player_id = as_u32(field(j, "player_id"));
@@ -82,6 +92,10 @@ void from_json(const json& j, Welcome& m) {
   m.shop.frame_s = as_double(field(j, "frame_s"), 1e-6, 1e6);
   m.shop.multiplier_upgrade_factor = as_double(field(j, "multiplier_upgrade_factor"), 0, 1e6);
   m.shop.bank_interest_factor = as_double(field(j, "bank_interest_factor"), 0, 1e6);
+  m.room.clear();
+  m.spectator = false;
+  if (const json* room = optional_field(j, "room")) m.room = as_text(*room, 16);
+  if (const json* spectator = optional_field(j, "spectator")) m.spectator = as_bool(*spectator);
 }
 
 void to_json(json& j, const Error& m) { j = json{{"code", m.code}, {"msg", m.message}}; }
@@ -134,6 +148,8 @@ void from_json(const json& j, Command& m) {
   } else if (op == "chat") {
     m.op = CommandOp::chat;
     if (const json* text = optional_field(j, "text")) m.text = as_text(*text, kMaxTextBytes);
+  } else if (op == "rooms") {
+    m.op = CommandOp::rooms;
   } else {
     m.op = CommandOp::unknown;
   }

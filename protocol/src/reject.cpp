@@ -25,6 +25,7 @@ std::string_view to_string(Reject reason) {
     case Reject::overflow: return "overflow";
     case Reject::address_full: return "address_full";
     case Reject::idle: return "idle";
+    case Reject::join_refused: return "join_refused";
     case Reject::count_: break;
   }
   return "unknown";

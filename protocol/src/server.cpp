@@ -113,7 +113,9 @@ void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding 
   Welcome w = config_.settings;
   w.player_id = s.player_id;
   w.token = s.token;
-  w.server_tick = server_tick_;
+  if (auto it = room_ticks_.find(s.room); it != room_ticks_.end()) w.server_tick = it->second;
+  w.room = s.room_code;
+  w.spectator = s.spectator;
   w.reconnected = reconnected;
   w.max_players = config_.max_players;
   w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
@@ -198,17 +200,25 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     Session& s = it->second;
     s.token = hello.token;
     // A player who quit gave its seat up: it comes back only to a free one.
-    if (s.quit && seats_taken() >= config_.max_players) return refuse_full(from, enc, request_bytes);
+    if (s.quit && !s.spectator &&
+        (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
+      if (!config_.admit) return refuse_full(from, enc, request_bytes);
+      rejects_.add(Reject::join_refused);
+      reply_unconnected(from, enc, 0,
+                        Error{"room_full", "room " + s.room_code + " has no free seat; try again later"},
+                        request_bytes);
+      return;
+    }
     // The token from another address takes the session over; the old address is told.
     if (s.connected && s.address != from)
       send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
     start_session(s, from, enc, hello.nonce, now_ms);
     s.welcomed_as_reconnect = true;
-    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token"});
+    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
     send_welcome(s, from, enc, true, request_bytes);
     return;
   }
-  if (seats_taken() >= config_.max_players || sessions_.size() >= config_.max_sessions())
+  if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
     return refuse_full(from, enc, request_bytes);
   if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
     rejects_.add(Reject::address_full);
@@ -217,6 +227,20 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
     return;
   }
+  // The host picks the room last: a refused hello above creates no room.
+  Admission admission;
+  if (config_.admit) {
+    admission = config_.admit(JoinAsk{hello.join, hello.room, from});
+    if (!admission.error.empty() || admission.room == 0) {
+      rejects_.add(Reject::join_refused);
+      reply_unconnected(from, enc, 0,
+                        Error{admission.error.empty() ? "refused" : admission.error.substr(0, 32),
+                              admission.message.substr(0, kMaxTextBytes)},
+                        request_bytes);
+      return;
+    }
+    room_ticks_[admission.room] = admission.server_tick;
+  }
   std::uint32_t player_id = 1;
   while (sessions_.count(player_id)) ++player_id;
   Session& s = sessions_[player_id];
@@ -224,13 +248,21 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   s.name = hello.name;
   s.token = derive_token(config_.key, sessions_made_ + 1);
   s.verifier = token_verifier(s.token);
+  s.room = admission.room;
+  s.room_code = admission.code;
+  s.spectator = admission.spectator;
   start_session(s, from, enc, hello.nonce, now_ms);
-  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, ""});
+  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator});
   send_welcome(s, from, enc, false, request_bytes);
 }
 
 void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
   rejects_.add(Reject::server_full);
+  if (config_.admit) {
+    reply_unconnected(to, encoding, 0, Error{"server_full", "the server has no room for more players; try again later"},
+                      request_bytes);
+    return;
+  }
   const std::string text = "the server is full (" + std::to_string(config_.max_players) +
                            " players); try again later";
   reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
@@ -245,6 +277,30 @@ std::size_t ServerEndpoint::seats_taken_from(std::string_view host) const {
 std::size_t ServerEndpoint::seats_taken() const {
   return static_cast<std::size_t>(
       std::count_if(sessions_.begin(), sessions_.end(), [](const auto& kv) { return !kv.second.quit; }));
+}
+
+std::size_t ServerEndpoint::seats_in_room(std::uint32_t room) const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+    return kv.second.room == room && !kv.second.quit && !kv.second.spectator;
+  }));
+}
+
+std::size_t ServerEndpoint::spectators_in_room(std::uint32_t room) const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+    return kv.second.room == room && kv.second.spectator && kv.second.connected;
+  }));
+}
+
+std::size_t ServerEndpoint::sessions_in_room(std::uint32_t room) const {
+  return static_cast<std::size_t>(
+      std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) { return kv.second.room == room; }));
+}
+
+std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room) const {
+  std::vector<std::uint32_t> out;
+  for (const auto& [id, s] : sessions_)
+    if (s.connected && s.room == room) out.push_back(id);
+  return out;
 }
 
 void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms) {
@@ -269,6 +325,7 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
   for (const auto& m : d.messages) {
     if (const auto* in = std::get_if<Input>(&m)) {
       s.snapshots.on_ack(in->snapshot_ack);
+      if (s.spectator) continue;  // a spectator's input is its heartbeat and acks, nothing more
       std::vector<InputFrame> frames = in->frames;
       std::sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
       for (const auto& f : frames) {
@@ -280,7 +337,7 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
           continue;
         }
         s.last_input_seq = f.seq;
-        inputs_.push_back({s.player_id, f});
+        inputs_.push_back({s.player_id, s.room, f});
         if (f.move_x != 0 || f.move_y != 0 || f.fire) {
           s.last_active_ms = now_ms;
           s.played = true;
@@ -294,7 +351,7 @@ void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std:
       }
       if (auto why = s.commands.accept(*c)) rejects_.add(*why);
       for (auto& cmd : s.commands.take()) {
-        commands_.push_back({s.player_id, cmd});
+        commands_.push_back({s.player_id, s.room, cmd});
         ++s.unanswered;
         s.last_active_ms = now_ms;
         s.played = true;
@@ -372,7 +429,7 @@ void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std:
   s.disconnected_ms = now_ms;
   by_session_id_.erase(s.session_id);
   by_address_.erase(s.address);
-  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit});
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit, s.room, s.spectator});
 }
 
 void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {
@@ -380,7 +437,8 @@ void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason)
   if (it == sessions_.end()) return;
   by_session_id_.erase(it->second.session_id);
   by_address_.erase(it->second.address);
-  events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason});
+  events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason, false, it->second.room,
+                     it->second.spectator});
   sessions_.erase(it);
 }
 
@@ -393,7 +451,8 @@ void ServerEndpoint::kick(std::uint32_t player_id, const std::string& code, cons
   release(player_id, code);
 }
 
-bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms) {
+bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms, std::uint32_t room,
+                                     const std::string& room_code) {
   const bool hex32 = r.token_verifier.size() == 32 &&
                      std::all_of(r.token_verifier.begin(), r.token_verifier.end(),
                                  [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
@@ -405,11 +464,13 @@ bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now
   s.name = r.name;
   s.verifier = r.token_verifier;
   s.quit = r.quit;
+  s.room = room;
+  s.room_code = room_code;
   s.played = true;  // it held a seat: the reconnect window applies
   s.connected = false;
   s.disconnected_ms = now_ms;
   s.last_active_ms = now_ms;
-  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit});
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit, s.room, false});
   return true;
 }
 
@@ -434,7 +495,7 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
   std::vector<std::uint32_t> idle;
   std::vector<std::uint32_t> never_played;
   for (auto& [id, s] : sessions_) {
-    if (idle_paused_) s.last_active_ms = now_ms;
+    if (s.spectator || idle_paused_rooms_.count(s.room)) s.last_active_ms = now_ms;
     if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) {
       drop_connection(s, "timeout", now_ms);
       // A session that never played (a probe whose bye was lost, a script that only
@@ -492,7 +553,7 @@ std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
   for (const auto& [id, s] : sessions_)
     out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
-                   s.rate_limited});
+                   s.rate_limited, s.room, s.spectator});
   return out;
 }
 

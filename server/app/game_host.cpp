@@ -1,54 +1,59 @@
 #include "app/game_host.hpp"
 
 #include <algorithm>
-#include <memory>
+#include <filesystem>
 
-#include "app/log.hpp"
 #include "app/snapshot_build.hpp"
-#include "fts/sim/match_view.hpp"
+#include "fts/protocol/limits.hpp"
+#include "host/text.hpp"
 
 namespace fts::server {
 namespace {
 
-constexpr std::size_t kRecentEvents = 48;
-
-std::string refusal_code(sim::Refusal r) {
-  switch (r) {
-    case sim::Refusal::none: return "ok";
-    case sim::Refusal::not_enough_coins: return "coins";
-    case sim::Refusal::already_owned: return "owned";
-    case sim::Refusal::wrong_phase: return "phase";
-    case sim::Refusal::unknown_item: return "item";
-    case sim::Refusal::no_player: return "dead";
-  }
-  return "error";
+std::uint64_t fold_key(const protocol::ServerKey& key) {
+  std::uint64_t v = 0x6A09E667F3BCC908ull;
+  for (auto b : key) v = (v ^ b) * 0x100000001B3ull;
+  return v;
 }
 
-// The sentence of a command's result.
-std::string result_message(const sim::CommandResult& r) {
-  if (r.kind != sim::CommandKind::buy) {
-    if (r.ok()) return "done";
-    return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
-  }
-  if (r.code == sim::Refusal::no_player) return "not in the match";
-  const std::string item(sim::to_string(r.item));
-  if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
-  return item + " not bought: " + std::string(sim::to_string(r.code));
+protocol::Admission refusal(std::string code, std::string message) {
+  protocol::Admission a;
+  a.error = std::move(code);
+  a.message = std::move(message);
+  return a;
+}
+
+nlohmann::ordered_json error_reply(const std::string& message) {
+  nlohmann::ordered_json j;
+  j["ok"] = false;
+  j["error"] = message;
+  return j;
 }
 
 }  // namespace
+
+std::uint64_t room_seed(std::uint64_t server_seed, std::uint32_t room_id) {
+  if (room_id == 1) return server_seed;
+  std::uint64_t z = server_seed + 0x9E3779B97F4A7C15ull * room_id;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
 
 protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchConfig& cfg,
                                             const protocol::ServerKey& key) {
   protocol::ServerConfig c;
   c.key = key;
-  c.max_players = o.max_players;
+  c.max_players = o.max_players;  // a room's seats
+  c.max_sessions_total = (4 * static_cast<std::size_t>(o.max_players) + o.max_spectators) * o.max_rooms;
   c.timeout_ms = o.timeout_ms;
   c.reconnect_window_ms = o.reconnect_window_ms;
   c.max_sessions_per_address = o.max_per_address;
   c.idle_timeout_ms = o.idle_timeout_ms;
   // A host may send what its sessions may send together.
   c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * o.max_per_address;
+  // ... and may shake hands as often as it may seat players (never under the default 10/s).
+  c.hellos_per_s = c.hello_burst = std::max<std::uint32_t>(c.hellos_per_s, o.max_per_address);
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
@@ -63,13 +68,19 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
 
 GameHost::GameHost(const Options& options, const sim::MatchConfig& config, const protocol::ServerKey& key)
     : options_(options),
-      match_(sim::make_match(config, options.seed)),
-      endpoint_(make_endpoint_config(options, config, key)) {
-  ticks_per_snapshot_ = std::max<std::uint32_t>(1, options.tick_rate_hz / std::max<std::uint32_t>(1, options.snapshot_rate_hz));
-}
+      config_(config),
+      endpoint_([&] {
+        auto c = make_endpoint_config(options, config, key);
+        c.admit = [this](const protocol::JoinAsk& ask) { return admit(ask); };
+        return c;
+      }()),
+      codes_(fold_key(key)),
+      no_match_(sim::make_match(config, options.seed)) {}
 
 void GameHost::record_to(std::ostream& out, const std::string& version) {
-  recorder_ = std::make_unique<host::RecordWriter>(out, options_.seed, match_.cfg, version);
+  first_record_ = &out;
+  version_ = version;
+  if (auto it = rooms_.find(1); it != rooms_.end()) it->second->record_to(out, version);
 }
 
 std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutput& out) {
@@ -78,45 +89,142 @@ std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutpu
   return static_cast<std::uint32_t>(wire.size());
 }
 
-void GameHost::resume_from(const host::ResumedRoom& room, std::uint64_t now_ms) {
-  match_ = room.state;
-  event_seq_ = room.event_seq;
-  last_phase_ = match_.phase;
-  endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
-  for (const auto& s : room.sessions) {
+void GameHost::resume_from(const host::ResumedRoom& resumed, std::uint64_t now_ms) {
+  Room* r = rooms_.count(1) ? rooms_[1].get() : create_room(false);
+  if (!r || r->id() != 1) return;
+  r->resume_from(resumed);
+  endpoint_.set_server_tick(1, static_cast<std::uint32_t>(resumed.state.tick));
+  for (const auto& s : resumed.sessions) {
     // Each comes back as "disconnected" in the next tick's events: the match marks it away.
-    if (!endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms))
+    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms, r->id(), r->code()))
+      members_[s.player] = {r->id(), false};
+    else
       log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}});
   }
 }
 
 void GameHost::journal_to(host::JournalConfig config) {
-  std::vector<host::JournalSession> sessions;
-  for (const auto& s : endpoint_.sessions())
-    sessions.push_back({s.player_id, s.name, endpoint_.session_verifier(s.player_id), !s.connected});
-  journal_ = std::make_unique<host::JournalWriter>(std::move(config), match_.cfg, match_, event_seq_, std::move(sessions));
+  Room* r = rooms_.count(1) ? rooms_[1].get() : (next_room_id_ == 1 ? create_room(false) : nullptr);
+  if (!r) return;
+  journaling_ = true;
+  r->journal_to(std::move(config), endpoint_);
 }
 
-void GameHost::journal_session(const protocol::ServerEvent& e) {
-  if (!journal_) return;
-  using K = protocol::ServerEvent::Kind;
-  if (e.kind == K::released) return journal_->released(match_.tick, e.player_id);
-  const bool quit = e.kind == K::disconnected && e.quit;
-  journal_->session(match_.tick, {e.player_id, e.name, endpoint_.session_verifier(e.player_id), quit});
+const host::JournalWriter* GameHost::journal() const {
+  auto it = rooms_.find(1);
+  return it == rooms_.end() ? nullptr : it->second->journal();
 }
 
-// Every 10 s: a journal that dropped records or failed says so (once per change).
-void GameHost::watch_journal() {
-  const auto st = journal_->stats();
-  if (st.dropped != journal_dropped_logged_) {
-    log_record(spdlog::level::warn, "journal_dropped",
-               {{"records", st.dropped - journal_dropped_logged_}, {"total", st.dropped}, {"durable_tick", st.durable_tick}});
-    journal_dropped_logged_ = st.dropped;
+host::JournalWriter* GameHost::journal() {
+  auto it = rooms_.find(1);
+  return it == rooms_.end() ? nullptr : it->second->journal();
+}
+
+void GameHost::record_dir(const std::string& dir, const std::string& version) {
+  record_dir_ = dir;
+  version_ = version;
+}
+
+const sim::MatchState& GameHost::match() const { return rooms_.empty() ? no_match_ : rooms_.begin()->second->match(); }
+
+const Room* GameHost::room(std::uint32_t id) const {
+  auto it = rooms_.find(id);
+  return it == rooms_.end() ? nullptr : it->second.get();
+}
+
+const Room* GameHost::room_by_code(const std::string& code) const {
+  for (const auto& [id, r] : rooms_)
+    if (r->code() == code) return r.get();
+  return nullptr;
+}
+
+std::vector<std::uint32_t> GameHost::room_ids() const {
+  std::vector<std::uint32_t> ids;
+  for (const auto& [id, r] : rooms_) ids.push_back(id);
+  return ids;
+}
+
+Room* GameHost::create_room(bool is_private) {
+  auto code = codes_.next([&](const std::string& c) { return room_by_code(c) != nullptr; });
+  if (!code) return nullptr;
+  const std::uint32_t id = next_room_id_++;
+  auto room = std::make_unique<Room>(id, *code, is_private, room_seed(options_.seed, id), options_, config_);
+  if (!record_dir_.empty()) {
+    const std::string path = (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id) + ".jsonl")).string();
+    if (!room->record_to(path, version_))
+      log_record(spdlog::level::err, "record_failed", {{"room", id}, {"path", path}});
+  } else if (id == 1 && first_record_) {
+    room->record_to(*first_record_, version_);
   }
-  if (!st.error.empty() && !journal_error_logged_) {
-    log_record(spdlog::level::err, "journal_failed", {{"error", st.error}, {"durable_tick", st.durable_tick}});
-    journal_error_logged_ = true;
+  ++rooms_made_;
+  room->count_into(&stats_.totals);
+  log_record(spdlog::level::info, "room_open",
+             {{"room", id}, {"code", *code}, {"private", is_private}, {"seed", room->seed()},
+              {"record", room->record_path()}});
+  return rooms_.emplace(id, std::move(room)).first->second.get();
+}
+
+// Called by the endpoint for a new player whose hello passed every other check.
+protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
+  const std::string& how = ask.join;
+  auto admitted = [&](const Room& r, bool spectator) {
+    protocol::Admission a;
+    a.room = r.id();
+    a.code = r.code();
+    a.spectator = spectator;
+    a.server_tick = static_cast<std::uint32_t>(r.match().tick);
+    return a;
+  };
+  if (refuse_players_) {
+    log_record(spdlog::level::info, "join_refused", {{"address", ask.from}, {"reason", "draining"}});
+    return refusal("draining", "this server is shutting down; join another");
   }
+  auto new_room = [&](bool is_private) -> protocol::Admission {
+    if (draining_) return refusal("server_full", "the server is draining (about to restart): no new rooms");
+    if (rooms_.size() >= options_.max_rooms)
+      return refusal("server_full", "the server has " + std::to_string(options_.max_rooms) +
+                                        " rooms already, all full; try again later");
+    Room* r = create_room(is_private);
+    if (!r) return refusal("server_full", "no room code is free");
+    return admitted(*r, false);
+  };
+  if (how.empty() || how == "quick") {
+    // The public room in the lobby or the shop with the most players and a free seat
+    // (the lowest id among equals), else a new one.
+    const Room* best = nullptr;
+    std::size_t best_seats = 0;
+    for (const auto& [id, r] : rooms_) {
+      if (r->is_private()) continue;
+      const auto phase = r->match().phase;
+      if (phase != sim::Phase::lobby && phase != sim::Phase::shop) continue;
+      const std::size_t seats = endpoint_.seats_in_room(id);
+      if (seats >= options_.max_players) continue;
+      if (!best || seats > best_seats) {
+        best = r.get();
+        best_seats = seats;
+      }
+    }
+    if (best) return admitted(*best, false);
+    return new_room(false);
+  }
+  if (how == "create") return new_room(true);
+  if (how == "join" || how == "spectate") {
+    const auto code = normalize_room_code(ask.room);
+    if (!code) return refusal("no_such_room", "a room code is 5 letters (A-Z without I, L, O)");
+    const Room* r = room_by_code(*code);
+    if (!r) return refusal("no_such_room", "there is no room " + *code + " on this server");
+    if (how == "join") {
+      if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
+        return refusal("room_full", "room " + *code + " has all " + std::to_string(options_.max_players) +
+                                        " seats taken; spectate it or try again later");
+      return admitted(*r, false);
+    }
+    if (endpoint_.spectators_in_room(r->id()) >= options_.max_spectators)
+      return refusal("room_full", "room " + *code + " has " + std::to_string(options_.max_spectators) +
+                                      " spectators already (the most it takes)");
+    return admitted(*r, true);
+  }
+  return refusal("bad_join", "join must be quick, create, join or spectate");
 }
 
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
@@ -124,6 +232,13 @@ void GameHost::receive(const std::string& from, std::span<const std::uint8_t> by
   stats_.bytes_in += bytes.size();
   ++stats_.totals.datagrams_in;
   stats_.totals.bytes_in += bytes.size();
+  if (!bans_.empty()) {
+    auto it = bans_.find(protocol::host_of(from));
+    if (it != bans_.end() && now_ms < it->second) {
+      ++banned_datagrams_;  // dropped without an answer: a ban costs the server nothing
+      return;
+    }
+  }
   endpoint_.receive(from, bytes, now_ms);
 }
 
@@ -138,88 +253,28 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
   return out;
 }
 
-sim::TickInputs GameHost::gather(std::uint64_t now_ms) {
-  // Nobody idles while the players cannot act: lobby, shop countdown, game over.
-  endpoint_.set_idle_paused(match_.phase != sim::Phase::playing);
-  endpoint_.update(now_ms);
-  sim::TickInputs in;
-  for (const auto& e : endpoint_.take_events()) {
-    using K = protocol::ServerEvent::Kind;
-    journal_session(e);
-    switch (e.kind) {
-      case K::connected:
-        if (draining_) {  // a draining server takes nobody new (fleet: SIGTERM or drain)
-          endpoint_.kick(e.player_id, "draining", "this server is shutting down; join another", now_ms);
-          log_record(spdlog::level::info, "join_refused", {{"player", e.player_id}, {"reason", "draining"}});
-          break;
-        }
-        in.joins.push_back({e.player_id, e.name});
-        log_record(spdlog::level::info, "connect", {{"player", e.player_id}, {"name", e.name}});
-        break;
-      case K::reconnected:
-        held_.erase(e.player_id);  // the new session numbers its inputs from 1 again
-        in.back.push_back(e.player_id);
-        log_record(spdlog::level::info, "reconnect", {{"player", e.player_id}, {"name", e.name}});
-        break;
-      case K::disconnected:
-        held_.erase(e.player_id);  // a gone client stops pushing
-        // A quit takes the ball off at once; a lost connection leaves it (for a resume).
-        (e.quit ? in.quit : in.away).push_back(e.player_id);
-        log_record(spdlog::level::info, "disconnect", {{"player", e.player_id}, {"reason", e.reason}});
-        break;
-      case K::released:
-        held_.erase(e.player_id);
-        in.leaves.push_back(e.player_id);
-        log_record(spdlog::level::info, "leave", {{"player", e.player_id}, {"reason", e.reason}});
-        break;
-    }
+void GameHost::answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
+  endpoint_.send_result(pc.player_id, pc.command.rid, true, "ok", room_list_text(), now_ms);
+}
+
+// "CODE players/seats level phase" per public room, most players first, as many as fit
+// in a result's message (PROTOCOL.md 4.6).
+std::string GameHost::room_list_text() const {
+  std::vector<const Room*> list;
+  for (const auto& [id, r] : rooms_)
+    if (!r->is_private()) list.push_back(r.get());
+  std::stable_sort(list.begin(), list.end(), [&](const Room* a, const Room* b) {
+    return endpoint_.seats_in_room(a->id()) > endpoint_.seats_in_room(b->id());
+  });
+  std::string text;
+  for (const Room* r : list) {
+    std::string entry = r->code() + " " + std::to_string(endpoint_.seats_in_room(r->id())) + "/" +
+                        std::to_string(options_.max_players) + " " + std::to_string(r->match().level) + " " +
+                        std::string(sim::to_string(r->match().phase));
+    if (text.size() + entry.size() + 2 > protocol::kMaxTextBytes) break;
+    text += (text.empty() ? "" : "; ") + entry;
   }
-  // Inputs arrive in (player, seq) order; the newest frame holds until a newer one, or
-  // until input_expiry_ms pass without one: a crashed client's held key goes neutral
-  // (PROTOCOL.md 4.5). The recording holds what the match was given, so a replay
-  // repeats the expiry exactly.
-  for (const auto& pi : endpoint_.take_inputs()) {
-    Held& h = held_[pi.player_id];
-    if (pi.frame.seq >= h.frame.seq) h.frame = pi.frame;
-    h.fire = h.fire || pi.frame.fire;
-    h.received_ms = now_ms;
-  }
-  std::map<std::uint32_t, sim::PlayerTick> ticks;
-  for (auto& [id, h] : held_) {
-    sim::PlayerTick& t = ticks[id];
-    t.player = id;
-    const bool expired = now_ms - h.received_ms > options_.input_expiry_ms;
-    t.input.move_x = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_x, -1, 1));
-    t.input.move_y = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_y, -1, 1));
-    t.input.fire = h.fire;
-    h.fire = false;
-  }
-  for (const auto& pc : endpoint_.take_commands()) {
-    sim::PlayerTick& t = ticks[pc.player_id];
-    t.player = pc.player_id;
-    switch (pc.command.op) {
-      case protocol::CommandOp::buy:
-        t.commands.push_back({sim::CommandKind::buy, pc.command.item ? std::string(1, pc.command.item) : std::string(),
-                              pc.command.rid});
-        break;
-      case protocol::CommandOp::ready: t.commands.push_back({sim::CommandKind::ready, {}, pc.command.rid}); break;
-      case protocol::CommandOp::play_again:
-        t.commands.push_back({sim::CommandKind::play_again, {}, pc.command.rid});
-        break;
-      case protocol::CommandOp::chat: relay_chat(pc, now_ms); break;
-      case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
-        endpoint_.send_result(pc.player_id, pc.command.rid, false, "op",
-                              "unknown command; this server knows buy, ready and again", now_ms);
-        break;
-    }
-  }
-  for (auto& [id, t] : ticks) {
-    // Inputs of players that have not joined the match (yet) have nothing to apply; their
-    // commands still go to the step, which answers them.
-    const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
-    if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
-  }
-  return in;
+  return text;
 }
 
 void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
@@ -230,53 +285,57 @@ void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_m
     return;
   }
   endpoint_.send_result(pc.player_id, pc.command.rid, true, "ok", "", now_ms);
-  const sim::Player* p = sim::find_player(match_, sim::PlayerId{pc.player_id});
   protocol::Chat line;
   line.from = pc.player_id;
-  line.name = p != nullptr ? p->name : "player " + std::to_string(pc.player_id);
+  line.name = "player " + std::to_string(pc.player_id);
+  for (const auto& s : endpoint_.sessions())
+    if (s.player_id == pc.player_id) line.name = s.name;
   line.text = v.text;
-  for (const std::uint32_t to : endpoint_.connected_players()) endpoint_.send_chat(to, line, now_ms);
-  log_record(spdlog::level::info, "chat", {{"player", pc.player_id}, {"chars", v.text.size()}});
+  // Only the sender's room hears it.
+  for (const std::uint32_t to : endpoint_.connected_in_room(pc.room)) endpoint_.send_chat(to, line, now_ms);
+  log_record(spdlog::level::info, "chat", {{"player", pc.player_id}, {"room", pc.room}, {"chars", v.text.size()}});
 }
 
-void GameHost::answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms) {
-  for (const sim::CommandResult& r : results)
-    endpoint_.send_result(r.player.value, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
-}
-
-void GameHost::log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms) {
-  for (const auto& event : events) {
-    std::visit(
-        sim::Overloaded{
-            [&](const sim::JoinRefused& e) {
-              log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}});
-              endpoint_.kick(e.player.value, "refused", "the match refused the join: " + e.reason, now_ms);
-            },
-            [&](const sim::LevelStarted& e) {
-              log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}});
-            },
-            [&](const sim::LevelComplete& e) { log_record(spdlog::level::info, "level_complete", {{"level", e.level}}); },
-            [&](const sim::Purchased& e) {
-              ++(e.ok ? stats_.totals.purchases : stats_.totals.purchases_refused);
-              log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
-                         {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
-                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}, {"tick", match_.tick}});
-            },
-            [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}}); },
-            [&](const sim::EnemyDefeated& e) {
-              log_record(spdlog::level::debug, "enemy_defeated", {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}, {"tick", match_.tick}});
-            },
-            [&](const sim::PlayerFell& e) {
-              log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}});
-            },
-            [&](const sim::InterestPaid& e) {
-              log_record(spdlog::level::debug, "interest", {{"player", e.player}, {"coins", e.coins}, {"tick", match_.tick}});
-            },
-            [](const auto&) {},  // the rest is not logged
-        },
-        event);
+std::size_t GameHost::announce(const std::string& text, std::uint64_t now_ms) {
+  protocol::Chat line;
+  line.from = 0;  // the host (PROTOCOL.md: chat)
+  line.name = "host";
+  line.text = ChatRelay::clean(text, protocol::kMaxTextBytes);
+  std::size_t told = 0;
+  if (line.text.empty()) return told;
+  for (const std::uint32_t to : endpoint_.connected_players()) {
+    endpoint_.send_chat(to, line, now_ms);
+    ++told;
   }
-  refused_log_.flush(now_ms);
+  return told;
+}
+
+void GameHost::dispatch(std::uint64_t now_ms) {
+  for (const auto& e : endpoint_.take_events()) {
+    using K = protocol::ServerEvent::Kind;
+    if (e.kind == K::connected || e.kind == K::reconnected) members_[e.player_id] = {e.room, e.spectator};
+    if (e.kind == K::released) members_.erase(e.player_id);
+    if (auto it = rooms_.find(e.room); it != rooms_.end()) it->second->on_event(e, endpoint_);
+  }
+  for (const auto& pi : endpoint_.take_inputs())
+    if (auto it = rooms_.find(pi.room); it != rooms_.end()) it->second->on_input(pi, now_ms);
+  for (const auto& pc : endpoint_.take_commands()) {
+    if (pc.command.op == protocol::CommandOp::rooms) {
+      answer_rooms(pc, now_ms);
+      continue;
+    }
+    if (pc.command.op == protocol::CommandOp::chat) {  // spectators may talk too
+      relay_chat(pc, now_ms);
+      continue;
+    }
+    auto m = members_.find(pc.player_id);
+    if (m != members_.end() && m->second.spectator) {
+      endpoint_.send_result(pc.player_id, pc.command.rid, false, "spectator", "a spectator cannot play; join the room to play",
+                            now_ms);
+      continue;
+    }
+    if (auto it = rooms_.find(pc.room); it != rooms_.end()) it->second->on_command(pc, endpoint_, now_ms);
+  }
 }
 
 void GameHost::tick(std::uint64_t now_ms) {
@@ -284,45 +343,178 @@ void GameHost::tick(std::uint64_t now_ms) {
     log_record(spdlog::level::warn, "stall", {{"ms", stalled - stalled_logged_ms_}, {"total_ms", stalled}});
     stalled_logged_ms_ = stalled;
   }
-  const sim::TickInputs in = gather(now_ms);
-  if (recorder_) recorder_->inputs(match_.tick, in);
-  if (journal_) journal_->inputs(match_.tick, in);
-  const sim::TickOutput stepped = sim::step(match_, in);
-  const std::vector<sim::Event>& events = stepped.events;
-  if (recorder_) recorder_->stepped(match_);
-  answer(stepped.results, now_ms);
-  log_events(events, now_ms);
+  // Nobody idles while the players of their room cannot act: lobby, shop, game over.
+  for (const auto& [id, r] : rooms_) endpoint_.set_idle_paused(id, r->match().phase != sim::Phase::playing);
+  endpoint_.update(now_ms);
+  dispatch(now_ms);
+  for (auto& [id, r] : rooms_) r->tick(endpoint_, now_ms);
 
-  std::vector<protocol::Event> wire;
-  append_wire_events(match_.tick, events, wire);
-  for (auto& w : wire) {
-    w.seq = ++event_seq_;
-    recent_.push_back(w);
+  // A room nobody is connected to for room_idle_ms is closed; while draining, at once (the
+  // drain ends when the last room does). A journaled room 1 stays open otherwise.
+  std::vector<std::uint32_t> idle;
+  const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
+  for (auto& [id, r] : rooms_) {
+    const bool connected = !endpoint_.connected_in_room(id).empty();
+    if (!draining_ && (r->last_occupied_ms == 0 || connected || (id == 1 && journaling_)))
+      r->last_occupied_ms = now_ms;
+    else if (!connected && now_ms - r->last_occupied_ms >= idle_ms) idle.push_back(id);
   }
-  while (recent_.size() > kRecentEvents) recent_.pop_front();
-  if (journal_) {
-    journal_->stepped(match_, event_seq_);
-    if (match_.tick % 1000 == 0) watch_journal();
-  }
-
-  endpoint_.set_server_tick(static_cast<std::uint32_t>(match_.tick));
-  if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(now_ms);
+  for (auto id : idle) close_room(id, "room_closed", "the room was empty and is closed", now_ms);
+  if (!bans_.empty()) std::erase_if(bans_, [&](const auto& kv) { return now_ms >= kv.second; });
 }
 
-void GameHost::send_snapshots(std::uint64_t now_ms) {
-  const auto players = endpoint_.connected_players();
-  if (players.empty()) return;
-  // Quantized once per tick; each client gets only its delta against that.
-  const auto snap = std::make_shared<const protocol::Snapshot>(
-      protocol::quantize(build_snapshot(sim::make_view(match_), recent_)));
-  for (auto id : players) endpoint_.send_snapshot(id, snap, now_ms);
+void GameHost::close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms) {
+  auto it = rooms_.find(id);
+  if (it == rooms_.end()) return;
+  for (const auto& s : endpoint_.sessions())
+    if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
+  Room& r = *it->second;
+  r.seal();
+  log_record(spdlog::level::info, "room_closed",
+             {{"room", id}, {"code", r.code()}, {"reason", code}, {"tick", r.match().tick},
+              {"state_hash", host::hex16(sim::match_hash(r.match()))}, {"record", r.record_path()}});
+  endpoint_.forget_room(id);
+  rooms_.erase(it);
+  if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
 }
 
 void GameHost::shutdown(std::uint64_t now_ms) {
+  // Sealed first: the shutdown's releases are not journaled (a clean stop resumes like
+  // a crash).
+  for (auto& [id, r] : rooms_) r->seal();
   endpoint_.shutdown(now_ms);
-  if (recorder_) recorder_->flush();
-  // The shutdown's releases are not journaled: a clean stop resumes like a crash.
-  if (journal_) journal_->flush();
+}
+
+nlohmann::ordered_json GameHost::room_json(const Room& r) const {
+  nlohmann::ordered_json j;
+  j["id"] = r.id();
+  j["code"] = r.code();
+  j["private"] = r.is_private();
+  j["players"] = endpoint_.seats_in_room(r.id());
+  j["spectators"] = endpoint_.spectators_in_room(r.id());
+  j["level"] = r.match().level;
+  j["phase"] = std::string(sim::to_string(r.match().phase));
+  j["tick"] = r.match().tick;
+  j["seed"] = r.seed();
+  j["state_hash"] = host::hex16(sim::match_hash(r.match()));
+  return j;
+}
+
+// One console request: {"cmd":"rooms"}, {"cmd":"players","room":"ABCDE"}, {"cmd":"kick",
+// "player":3,"reason":"..."}, {"cmd":"ban","address":"10.0.0.7","minutes":60},
+// {"cmd":"close","room":"ABCDE"}, {"cmd":"drain"}, {"cmd":"stats"}.
+nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_t now_ms) {
+  auto reply = [&]() -> nlohmann::ordered_json {
+    if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string())
+      return error_reply("a request is a JSON object with a \"cmd\" string");
+    const std::string cmd = req["cmd"].get<std::string>();
+    // A room by code ("ABCDE", any case) or id (3).
+    auto find_room = [&](const nlohmann::json& v) -> const Room* {
+      if (v.is_number_unsigned())
+        return v.get<std::uint64_t>() > 0xFFFFFFFFull ? nullptr : room(static_cast<std::uint32_t>(v.get<std::uint64_t>()));
+      if (v.is_string())
+        if (auto code = normalize_room_code(v.get<std::string>())) return room_by_code(*code);
+      return nullptr;
+    };
+    nlohmann::ordered_json out;
+    out["ok"] = true;
+    if (cmd == "rooms") {
+      out["rooms"] = nlohmann::ordered_json::array();
+      for (const auto& [id, r] : rooms_) out["rooms"].push_back(room_json(*r));
+    } else if (cmd == "players") {
+      std::optional<std::uint32_t> only;
+      if (req.contains("room")) {
+        const Room* r = find_room(req["room"]);
+        if (!r) return error_reply("no such room: " + req["room"].dump());
+        only = r->id();
+      }
+      out["players"] = nlohmann::ordered_json::array();
+      for (const auto& s : endpoint_.sessions()) {
+        if (only && s.room != *only) continue;
+        nlohmann::ordered_json p;
+        p["player"] = s.player_id;
+        p["name"] = s.name;
+        const Room* r = room(s.room);
+        p["room"] = r ? r->code() : "";
+        p["spectator"] = s.spectator;
+        p["connected"] = s.connected;
+        p["address"] = s.address;
+        p["rtt_ms"] = s.rtt_ms;
+        out["players"].push_back(p);
+      }
+    } else if (cmd == "kick") {
+      if (!req.contains("player") || !req["player"].is_number_unsigned() ||
+          req["player"].get<std::uint64_t>() > 0xFFFFFFFFull)
+        return error_reply("kick needs \"player\": a player id (see players)");
+      const auto id = static_cast<std::uint32_t>(req["player"].get<std::uint64_t>());
+      const auto sessions = endpoint_.sessions();
+      if (std::none_of(sessions.begin(), sessions.end(), [&](const auto& s) { return s.player_id == id; }))
+        return error_reply("no player " + std::to_string(id));
+      std::string reason = req.contains("reason") && req["reason"].is_string() ? req["reason"].get<std::string>() : "";
+      endpoint_.kick(id, "kicked", reason.empty() ? "kicked by the host" : "kicked by the host: " + reason, now_ms);
+      out["kicked"] = id;
+    } else if (cmd == "ban") {
+      if (!req.contains("address") || !req["address"].is_string())
+        return error_reply("ban needs \"address\": an IP address (the port is ignored)");
+      const std::string host(protocol::host_of(req["address"].get<std::string>()));
+      std::uint64_t minutes = 60;
+      if (req.contains("minutes")) {
+        if (!req["minutes"].is_number_unsigned() || req["minutes"].get<std::uint64_t>() < 1 ||
+            req["minutes"].get<std::uint64_t>() > 525600)
+          return error_reply("minutes must be 1..525600");
+        minutes = req["minutes"].get<std::uint64_t>();
+      }
+      if (host.empty()) return error_reply("ban needs an IP address");
+      bans_[host] = now_ms + minutes * 60000;
+      std::vector<std::uint32_t> kicked;
+      for (const auto& s : endpoint_.sessions())
+        if (protocol::host_of(s.address) == host) kicked.push_back(s.player_id);
+      for (auto id : kicked)
+        endpoint_.kick(id, "banned", "banned by the host for " + std::to_string(minutes) + " minutes", now_ms);
+      out["banned"] = host;
+      out["minutes"] = minutes;
+      out["kicked"] = kicked;
+    } else if (cmd == "close") {
+      const Room* r = req.contains("room") ? find_room(req["room"]) : nullptr;
+      if (!r) return error_reply("close needs \"room\": the code or id of an open room");
+      out["closed"] = r->code();
+      close_room(r->id(), "room_closed", "the host closed this room", now_ms);
+    } else if (cmd == "announce") {
+      if (!req.contains("text") || !req["text"].is_string() || ChatRelay::clean(req["text"].get<std::string>(), protocol::kMaxTextBytes).empty())
+        return error_reply("announce needs \"text\": a line with something printable");
+      out["told"] = announce(req["text"].get<std::string>(), now_ms);
+    } else if (cmd == "drain") {
+      draining_ = true;
+      out["draining"] = true;
+      out["rooms"] = rooms_.size();
+      if (rooms_.empty()) log_record(spdlog::level::info, "drained", {});
+    } else if (cmd == "stats") {
+      std::size_t players = 0, spectators = 0;
+      for (const auto& s : endpoint_.sessions()) (s.spectator ? spectators : players) += s.connected ? 1 : 0;
+      out["rooms"] = rooms_.size();
+      out["max_rooms"] = options_.max_rooms;
+      out["rooms_made"] = rooms_made_;
+      out["players"] = players;
+      out["spectators"] = spectators;
+      out["sessions"] = endpoint_.sessions().size();
+      out["draining"] = draining_;
+      out["bans"] = bans_.size();
+      out["banned_datagrams"] = banned_datagrams_;
+      out["rejected_datagrams"] = endpoint_.rejects().total();
+      out["skipped_ticks"] = stats_.skipped_ticks;
+    } else {
+      return error_reply("unknown command \"" + cmd + "\"; commands: rooms, players, kick, ban, announce, close, drain, stats");
+    }
+    return out;
+  }();
+  const std::string request_text = req.dump();
+  const bool ok = reply.value("ok", false);
+  if (ok) log_record(spdlog::level::info, "console", {{"request", std::string_view(request_text)}, {"ok", ok}});
+  else
+    log_record(spdlog::level::warn, "console",
+               {{"request", std::string_view(request_text)}, {"ok", ok},
+                {"error", std::string_view(reply["error"].get_ref<const std::string&>())}});
+  return reply;
 }
 
 }  // namespace fts::server

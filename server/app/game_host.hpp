@@ -1,24 +1,27 @@
-// The server without its socket: connections (protocol::ServerEndpoint), the match and
-// the glue between them. The UDP loop feeds it datagrams and calls tick() at the fixed
-// rate; everything here is driven by the time passed in, so tests step it by hand.
+// The server without its socket, process part: the one endpoint of the port (sessions,
+// limits, rate caps are process-wide), the room table and its lifecycle, the host's
+// console commands. Each room (app/room.hpp) is a match of its own; all rooms are stepped
+// by the one tick in room-id order. Driven by the time passed in, so tests step it by hand.
 #pragma once
 
-#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/chat_relay.hpp"
 #include "app/log.hpp"
 #include "app/options.hpp"
+#include "app/room.hpp"
+#include "app/room_codes.hpp"
 #include "app/stats.hpp"
 #include "fts/protocol/server.hpp"
 #include "fts/sim/match.hpp"
-#include "host/journal.hpp"
-#include "host/record.hpp"
 
 namespace fts::server {
 
@@ -26,73 +29,94 @@ class GameHost {
  public:
   GameHost(const Options& options, const sim::MatchConfig& config, const protocol::ServerKey& key);
 
-  // Writes the input log and hashes (--record) to `out` from now on.
+  // Writes the input log and hashes of the first room (id 1) to `out` (--record).
   void record_to(std::ostream& out, const std::string& version);
-
-  // ---- crash-safe journal (issue 15): a room's hooks, kept together for the rooms merge.
-  // Resumes the room from its journal (read_journal): the match, the event numbering and
-  // the sessions (away until their clients come back with their tokens).
-  void resume_from(const host::ResumedRoom& room, std::uint64_t now_ms);
-  // Journals this room from now on (a new segment starting with a checkpoint).
-  void journal_to(host::JournalConfig config);
-  const host::JournalWriter* journal() const { return journal_.get(); }
-  host::JournalWriter* journal() { return journal_.get(); }
-  // The wire events of one step (for read_journal's event numbering).
-  static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
+  // Writes each room's input log to dir/room-<id>.jsonl (--record-dir).
+  void record_dir(const std::string& dir, const std::string& version);
 
   void receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
-  // One simulation tick: connection events, inputs and commands in, step, results and
-  // (when due) snapshots out.
+  // One tick: connection events, inputs and commands to their rooms, every room stepped
+  // in id order, empty rooms closed.
   void tick(std::uint64_t now_ms);
   // Tells every client the server stops.
   void shutdown(std::uint64_t now_ms);
   std::vector<protocol::Outgoing> take_datagrams();
 
-  const sim::MatchState& match() const { return match_; }
-  const protocol::ServerEndpoint& endpoint() const { return endpoint_; }
-  Stats& stats() { return stats_; }
-  // While draining, a new player is refused (error "draining"); reconnects still resume.
-  void set_draining(bool draining) { draining_ = draining; }
+  // The console (JSON in, JSON out; PROTOCOL-free: see README "The host's console").
+  // Bad input gets {"ok":false,"error":...} and changes nothing.
+  nlohmann::ordered_json command(const nlohmann::json& request, std::uint64_t now_ms);
+  // drain was asked and the last room has closed: the process should exit 0.
+  bool drained() const { return draining_ && rooms_.empty(); }
+  // The fleet's drain (SIGTERM under Agones): no new rooms, and a new player is refused
+  // with "draining"; reconnects still resume. The console's drain only stops new rooms.
+  void set_draining(bool draining) { draining_ = refuse_players_ = draining; }
   bool draining() const { return draining_; }
 
+  // ---- crash-safe journal (issue 15), for the first room (id 1) only so far: with a
+  // journal, room 1 is opened at once and never closed for being empty.
+  // Rebuilds room 1 from its journal (read_journal): the match, the event numbering and
+  // the sessions (away until their clients come back with their tokens).
+  void resume_from(const host::ResumedRoom& room, std::uint64_t now_ms);
+  // Journals room 1 from now on (a new segment starting with a checkpoint).
+  void journal_to(host::JournalConfig config);
+  const host::JournalWriter* journal() const;
+  host::JournalWriter* journal();
+  // The wire events of one step (for read_journal's event numbering).
+  static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
+
+  // The first room's match (an empty lobby when there is no room): single-room tests.
+  const sim::MatchState& match() const;
+  const Room* room(std::uint32_t id) const;
+  const Room* room_by_code(const std::string& code) const;
+  std::vector<std::uint32_t> room_ids() const;
+  std::uint64_t rooms_made() const { return rooms_made_; }
+  const protocol::ServerEndpoint& endpoint() const { return endpoint_; }
+  Stats& stats() { return stats_; }
+
  private:
-  struct Held {
-    protocol::InputFrame frame;  // latest frame by seq
-    bool fire = false;           // any fire since the last tick
-    std::uint64_t received_ms = 0;  // when the latest frame arrived
+  struct Member {
+    std::uint32_t room = 0;
+    bool spectator = false;
   };
-  sim::TickInputs gather(std::uint64_t now_ms);
-  // Forwards the step's result of each command to the client that sent it.
-  void answer(const std::vector<sim::CommandResult>& results, std::uint64_t now_ms);
-  void log_events(const std::vector<sim::Event>& events, std::uint64_t now_ms);
-  void send_snapshots(std::uint64_t now_ms);
-  // A chat command: refused, or relayed to every connected player (chat_relay.hpp).
+  protocol::Admission admit(const protocol::JoinAsk& ask);
+  Room* create_room(bool is_private);
+  void close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms);
+  void dispatch(std::uint64_t now_ms);
+  void answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
+  // A chat command: refused, or relayed to everybody connected in the sender's room.
   void relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
+  // The console's announce: a chat line from the host to every connected client.
+  std::size_t announce(const std::string& text, std::uint64_t now_ms);
+  std::string room_list_text() const;
+  nlohmann::ordered_json room_json(const Room& r) const;
 
   Options options_;
-  sim::MatchState match_;
+  sim::MatchConfig config_;
   protocol::ServerEndpoint endpoint_;
-  std::map<std::uint32_t, Held> held_;
-  ChatRelay chat_;
-  std::vector<sim::JoinRequest> joins_;
-  std::vector<sim::PlayerId> leaves_;
-  std::deque<protocol::Event> recent_;
-  std::uint32_t event_seq_ = 0;
-  std::uint64_t stalled_logged_ms_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
-  std::unique_ptr<host::RecordWriter> recorder_;
-  void journal_session(const protocol::ServerEvent& e);
-  void watch_journal();
-  std::unique_ptr<host::JournalWriter> journal_;
-  std::uint64_t journal_dropped_logged_ = 0;
-  bool journal_error_logged_ = false;
-  std::uint32_t ticks_per_snapshot_ = 5;
-  sim::Phase last_phase_ = sim::Phase::lobby;
-  Stats stats_;
+  std::map<std::uint32_t, std::unique_ptr<Room>> rooms_;  // by id: the stepping order
+  std::map<std::uint32_t, Member> members_;               // by player id
+  RoomCodes codes_;
+  std::uint32_t next_room_id_ = 1;
+  std::uint64_t rooms_made_ = 0;
   bool draining_ = false;
-  RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
+  bool refuse_players_ = false;
+  ChatRelay chat_;
+  bool journaling_ = false;  // room 1 is journaled (and kept open)
+  std::map<std::string, std::uint64_t, std::less<>> bans_;  // host -> until (ms)
+  std::uint64_t banned_datagrams_ = 0;
+  std::ostream* first_record_ = nullptr;
+  std::string record_dir_;
+  std::string version_;
+  std::uint64_t stalled_logged_ms_ = 0;
+  sim::MatchState no_match_;
+  Stats stats_;
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,
                                             const protocol::ServerKey& key);
+
+// The seed of room `id`: the server's seed for room 1 (a one-room server plays as before
+// rooms), a mix of it and the id for the others.
+std::uint64_t room_seed(std::uint64_t server_seed, std::uint32_t room_id);
 
 }  // namespace fts::server

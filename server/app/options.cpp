@@ -74,7 +74,7 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
   } else if (key == "input-expiry-ms") {
     if (!parse_uint<std::uint32_t>(value, o.input_expiry_ms, 10, 10000)) return bad("must be 10..10000 ms");
   } else if (key == "max-per-address") {
-    if (!parse_uint<std::uint32_t>(value, o.max_per_address, 1, 64)) return bad("must be 1..64");
+    if (!parse_uint<std::uint32_t>(value, o.max_per_address, 1, 1024)) return bad("must be 1..1024");
   } else if (key == "idle-timeout-ms") {
     if (!parse_uint<std::uint32_t>(value, o.idle_timeout_ms, 0, 3600000)) return bad("must be 0..3600000 ms");
   } else if (key == "stats-interval-ms") {
@@ -86,6 +86,16 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.journal_sync_ms, 1, 10000)) return bad("must be 1..10000 ms");
   } else if (key == "journal-checkpoint-s") {
     if (!parse_uint<std::uint32_t>(value, o.journal_checkpoint_s, 1, 3600)) return bad("must be 1..3600 s");
+  } else if (key == "max-rooms") {
+    if (!parse_uint<std::uint32_t>(value, o.max_rooms, 1, 1024)) return bad("must be 1..1024");
+  } else if (key == "room-idle-ms") {
+    if (!parse_uint<std::uint32_t>(value, o.room_idle_ms, 0, 86400000)) return bad("must be 0..86400000 ms");
+  } else if (key == "max-spectators") {
+    if (!parse_uint<std::uint32_t>(value, o.max_spectators, 0, 64)) return bad("must be 0..64");
+  } else if (key == "record-dir") {
+    o.record_dir = value;
+  } else if (key == "console-socket") {
+    o.console_path = value;
   } else if (key == "time-scale") {
     char* end = nullptr;
     o.time_scale = std::strtod(value.c_str(), &end);
@@ -135,18 +145,18 @@ const std::vector<OptionDoc>& option_docs() {
       {"--bind", "FTS_BIND", "0.0.0.0", "address to bind"},
       {"--tick-rate", "FTS_TICK_RATE", "100", "simulation ticks per second (Hz)"},
       {"--snapshot-rate", "FTS_SNAPSHOT_RATE", "20", "snapshots per second to each client (Hz)"},
-      {"--max-players", "FTS_MAX_PLAYERS", "8", "players in the match at once"},
+      {"--max-players", "FTS_MAX_PLAYERS", "8", "players in one room's match at once"},
       {"--model", "FTS_MODEL", "continuous", "physics model: seed, discrete or continuous"},
       {"--seed", "FTS_SEED", "1", "seed of the match's random generator"},
       {"--config", "FTS_CONFIG", "", "match configuration JSON (docker/server-config.example.json)"},
-      {"--record", "FTS_RECORD", "", "write the input log of the match to this file"},
+      {"--record", "FTS_RECORD", "", "write the input log of the first room (id 1) to this file"},
       {"--replay", "FTS_REPLAY", "", "re-run a recorded input log, check every hash, exit"},
       {"--log-level", "FTS_LOG_LEVEL", "info", "trace, debug, info, warn, error or off"},
       {"--log-format", "FTS_LOG_FORMAT", "text", "text or json (one JSON record per line)"},
       {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
       {"--reconnect-window-ms", "FTS_RECONNECT_WINDOW_MS", "60000", "how long a dropped player's slot is kept (ms)"},
       {"--input-expiry-ms", "FTS_INPUT_EXPIRY_MS", "150", "a held input goes neutral after this long without a new frame (ms)"},
-      {"--max-per-address", "FTS_MAX_PER_ADDRESS", "4", "players at once from one IP address (1..64)"},
+      {"--max-per-address", "FTS_MAX_PER_ADDRESS", "4", "players at once from one IP address (1..1024)"},
       {"--idle-timeout-ms", "FTS_IDLE_TIMEOUT_MS", "120000", "a player without input this long in a round is dropped (ms, 0: never)"},
       {"--stats-interval-ms", "FTS_STATS_INTERVAL_MS", "10000", "period of the stats log line (ms)"},
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
@@ -157,6 +167,11 @@ const std::vector<OptionDoc>& option_docs() {
       {"--agones-health-ms", "FTS_AGONES_HEALTH_MS", "2000", "period of the Agones health ping, sent from the tick loop (ms)"},
       {"--drain-grace-ms", "FTS_DRAIN_GRACE_MS", "25000", "with Agones, SIGTERM drains: the longest wait for the last match (ms)"},
       {"--metrics", "FTS_METRICS", "", "serve Prometheus /metrics on ADDR:PORT (off when empty)"},
+      {"--max-rooms", "FTS_MAX_ROOMS", "64", "rooms at once, each a match of --max-players (1..1024)"},
+      {"--room-idle-ms", "FTS_ROOM_IDLE_MS", "60000", "a room with nobody connected this long is closed (ms)"},
+      {"--max-spectators", "FTS_MAX_SPECTATORS", "8", "spectators per room (0..64)"},
+      {"--record-dir", "FTS_RECORD_DIR", "", "write each room's input log to DIR/room-<id>.jsonl"},
+      {"--console-socket", "FTS_CONSOLE_SOCKET", "", "serve the host's console on this UNIX socket (mode 0600)"},
   };
   return docs;
 }

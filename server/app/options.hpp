@@ -45,6 +45,11 @@ struct Options {
   std::uint32_t agones_health_ms = 2000;
   std::uint32_t drain_grace_ms = 25000;
   std::string metrics_address;  // "ADDR:PORT"
+  std::uint32_t max_rooms = 64;         // rooms at once; each a match of max_players
+  std::uint32_t room_idle_ms = 60000;   // a room without a connected client this long is closed
+  std::uint32_t max_spectators = 8;     // spectators per room (0: none)
+  std::string record_dir;   // "" : no per-room records; else DIR/room-<id>.jsonl per room
+  std::string console_path;  // "" : no console; else the host's UNIX socket (mode 0600)
   bool help = false;
   bool version = false;
   // The settings given by a flag or an FTS_* variable, by flag name without dashes

@@ -1,6 +1,6 @@
 // What the fleet (Agones, /metrics) needs to know of the server, taken once per tick by
-// the tick loop. Today one match: rooms is 1 while it has a connected player; with rooms
-// (issue 13) observe() counts the live rooms instead — the one place to change.
+// the tick loop: the live rooms, the connected players' names, the first room's phase
+// and whether the server drains.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,7 @@ namespace fts::server {
 class GameHost;
 
 struct FleetState {
-  std::uint32_t rooms = 0;          // live rooms (matches with a connected player)
+  std::uint32_t rooms = 0;          // open rooms
   std::set<std::string> players;    // names of the connected players (an Agones List)
   std::string phase = "lobby";      // lobby, playing, shop, game_over; "draining" while draining
   bool draining = false;            // no new players or rooms; Shutdown when rooms reach 0

@@ -30,6 +30,10 @@ void RecordWriter::inputs(std::int64_t tick, const sim::TickInputs& in) {
 
 void RecordWriter::stepped(const sim::MatchState& state) {
   if (state.tick % kRecordHashEvery != 0) return;
+  hash_line(state);
+}
+
+void RecordWriter::hash_line(const sim::MatchState& state) {
   out_ << R"({"tick":)" << state.tick << R"(,"hash":")" << hex16(sim::match_hash(state)) << "\"}\n";
 }
 

@@ -27,6 +27,9 @@ class RecordWriter {
   void inputs(std::int64_t tick, const sim::TickInputs& inputs);
   // Call after stepping; writes the hash when state.tick is a multiple of kRecordHashEvery.
   void stepped(const sim::MatchState& state);
+  // The hash line of the state now, whatever its tick (a room that closes ends its
+  // record with it, so a replay ends on the hash the room ended on).
+  void hash_line(const sim::MatchState& state);
   void flush() { out_.flush(); }
 
  private:

@@ -10,6 +10,7 @@
 #include "app/tick_clock.hpp"
 #include "fleet/fleet.hpp"
 #include "fts/io/udp.hpp"
+#include "net/console.hpp"
 
 namespace fts::server {
 namespace {
@@ -54,11 +55,20 @@ class Loop {
       return 1;
     }
     const auto bound = socket_.local_endpoint();
+    if (!options_.console_path.empty()) {
+      console_ = std::make_unique<ConsoleServer>(io_, options_.console_path,
+                                                 [this](const std::string& line) { return console_line(line); });
+      if (const std::string why = console_->start(); !why.empty()) {
+        log_record(spdlog::level::err, "console_failed", {{"error", why}});
+        return 1;
+      }
+    }
     log_record(spdlog::level::info, "ready",
                {{"address", bound.address().to_string()}, {"port", bound.port()},
                 {"tick_rate_hz", options_.tick_rate_hz}, {"snapshot_rate_hz", options_.snapshot_rate_hz},
                 {"max_players", options_.max_players}, {"model", options_.model}, {"seed", options_.seed},
-                {"time_scale", options_.time_scale}, {"record", options_.record_path}, {"version", FTS_VERSION}});
+                {"time_scale", options_.time_scale}, {"record", options_.record_path}, {"max_rooms", options_.max_rooms},
+                {"console", options_.console_path}, {"version", FTS_VERSION}});
     fleet_->bound();
     receive();
     clock_.start(now_ns());
@@ -72,6 +82,34 @@ class Loop {
   // Stop taking players and rooms; the server stops once the last match ends or
   // --drain-grace-ms runs out (after Agones took the Shutdown). SIGTERM under Agones.
   void drain() { fleet_->drain(host_, now_ms()); }
+
+  // One console request (a JSON line) -> its reply; datagrams it caused (a kick) go now.
+  std::string console_line(const std::string& line) {
+    const auto request = nlohmann::json::parse(line, nullptr, false);
+    nlohmann::ordered_json reply;
+    if (request.is_discarded()) {
+      reply = {{"ok", false}, {"error", "not a JSON line"}};
+      log_record(spdlog::level::warn, "console", {{"request", "(not JSON)"}, {"ok", false}});
+    } else {
+      reply = host_.command(request, now_ms());
+    }
+    flush();
+    // A drain with no room left ends the process at the next tick, after this reply is
+    // written (stopping here would drop it).
+    return reply.dump();
+  }
+
+  // The console's drain: the last room has ended, the process exits 0. Under Agones the
+  // fleet's drain takes over instead (it tells Agones first; see schedule_tick).
+  void stop_if_drained() {
+    if (!host_.drained() || stopping_) return;
+    stopping_ = true;
+    log_record(spdlog::level::info, "shutdown", {{"reason", "drained"}});
+    host_.shutdown(now_ms());
+    flush();
+    if (record_) record_->flush();
+    io_.stop();
+  }
 
  private:
   // Under Agones the first SIGTERM drains (Kubernetes' stop); any other signal, or a
@@ -133,6 +171,12 @@ class Loop {
         host_.stats().tick_us.push_back(took.count() * 1e6);
         fleet_->observe_tick(took.count());
       }
+      if (fleet_->agones()) {
+        if (host_.draining() && !fleet_->draining()) drain();  // the console's drain, told to Agones
+      } else {
+        stop_if_drained();
+        if (stopping_) return;
+      }
       if (clock_.skipped() != skipped_before) {
         host_.stats().skipped_ticks += clock_.skipped() - skipped_before;
         if (now_ns() - last_skip_log_ns_ > 1'000'000'000) {  // at most once a second
@@ -165,7 +209,7 @@ class Loop {
       last_rejects_ = rejects;
       log_record(spdlog::level::info, "stats",
                  {{"players", host_.endpoint().connected_players().size()},
-                  {"tick", host_.match().tick},
+                  {"tick", host_.match().tick}, {"rooms", host_.room_ids().size()},
                   {"tick_p50_us", p.p50_us}, {"tick_p99_us", p.p99_us}, {"tick_max_us", p.max_us},
                   {"ticks_skipped_total", clock_.skipped()},
                   {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
@@ -190,6 +234,8 @@ class Loop {
   std::int64_t last_skip_log_ns_ = 0;
   protocol::RejectCounters last_rejects_;
   std::unique_ptr<Fleet> fleet_;
+  std::unique_ptr<ConsoleServer> console_;
+  bool stopping_ = false;
 };
 
 }  // namespace

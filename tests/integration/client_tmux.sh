@@ -101,7 +101,7 @@ if [[ -n "$BOT" && -x "$BOT" ]]; then
   BOT_PID=$!
 fi
 
-CLIENT_CMD="NO_COLOR=1 XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name e2e; echo CLIENT_EXIT=\$?; sleep 600"
+CLIENT_CMD="NO_COLOR=1 XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name e2e --quick; echo CLIENT_EXIT=\$?; sleep 600"
 tm new-session -d -s "$SESSION" -x 120 -y 40 "$CLIENT_CMD"
 
 wait_for 10 '@ e2e '

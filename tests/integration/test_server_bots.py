@@ -184,7 +184,7 @@ def test_garbage():
 
 def test_refusals():
     """A wrong protocol version gets its error; a player over the maximum a clear refusal."""
-    with Server("--max-players", "2") as srv:
+    with Server("--max-players", "2", "--max-rooms", "1") as srv:
         p = subprocess.run([BOT, "--probe", srv.address, "--protocol-version", "99"], capture_output=True, text=True,
                            timeout=10)
         check(p.returncode == 1 and "version" in p.stderr, f"version mismatch: exit {p.returncode}: {p.stderr.strip()}")

@@ -66,3 +66,18 @@ TEST_CASE("Bot scripts: comparisons", "[bot][script]") {
   CHECK(compare(1, "!=", 2));
   CHECK_FALSE(compare(1, "??", 1));
 }
+
+TEST_CASE("Bot scripts: expect room CODE | any | refused REASON", "[bot][script][rooms]") {
+  auto r = parse_script("expect room KXBQT\nexpect room any\nexpect room refused no_such_room\n");
+  REQUIRE(std::holds_alternative<std::vector<Step>>(r));
+  const auto& steps = std::get<std::vector<Step>>(r);
+  REQUIRE(steps.size() == 3);
+  CHECK(steps[0].op == Step::Op::expect_room);
+  CHECK(steps[0].word == "KXBQT");
+  CHECK(steps[1].word == "any");
+  CHECK(steps[2].word == "refused");
+  CHECK(steps[2].cmp == "no_such_room");
+  CHECK(error_of("expect room\n").rfind("line 1:", 0) == 0);
+  CHECK(error_of("expect room refused\n").rfind("line 1: expect room", 0) == 0);
+  CHECK_FALSE(error_of("expect room KXBQT extra\n").empty());
+}

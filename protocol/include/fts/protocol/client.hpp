@@ -22,6 +22,8 @@ struct ClientConfig {
   Encoding encoding = Encoding::msgpack;
   std::string name = "player";  // 1..16 printable ASCII
   std::string token;            // a previous welcome's token, to take a player back
+  std::string join;             // Hello::join: "" (quick), "quick", "create", "join", "spectate"
+  std::string room;             // Hello::room: the code for join and spectate
   // Names one connection attempt in its hellos (Hello::nonce). 0: a random one, new at
   // every connect().
   std::uint64_t nonce = 0;

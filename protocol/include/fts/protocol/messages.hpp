@@ -24,6 +24,11 @@ struct Hello {
   std::string pad;     // ignored filler, any printable ASCII
   std::string nonce;   // 16 hex digits, new for every connection attempt: a repeated
                        // hello with the same nonce is the same attempt (same welcome)
+  // Which room to join (PROTOCOL.md 4.6): "" or "quick", "create", "join", "spectate";
+  // absent on the wire when empty (quick play).
+  // (Default member initializers: brace-initialised hellos need not name them.)
+  std::string join = "";
+  std::string room = "";  // the room's code for join and spectate (5 letters), else ""
 
   bool operator==(const Hello&) const = default;
 };
@@ -49,6 +54,8 @@ struct Welcome {
   std::uint32_t server_tick = 0;
   bool reconnected = false;
   sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
+  std::string room = "";   // the code of the room joined ("" from a server without rooms)
+  bool spectator = false;  // joined to watch: no ball, no seat, inputs ignored
 
   bool operator==(const Welcome&) const = default;
 };
@@ -78,7 +85,9 @@ struct Input {
 };
 
 // unknown: an op this server does not know (answered with code "op", never applied).
-enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3, chat = 4 };
+// chat: a chat line (text); rooms: asks for the room list, answered in the result's
+// message (PROTOCOL.md 4.6).
+enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3, chat = 4, rooms = 5 };
 
 // client -> server, reliable: applied exactly once, in rid order, answered by a Result.
 struct Command {

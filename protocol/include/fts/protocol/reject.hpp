@@ -30,6 +30,7 @@ enum class Reject : std::uint8_t {
   overflow,           // a session over a queue cap: the session is dropped (error "overflow")
   address_full,       // a new session from a host that has max_sessions_per_address already
   idle,               // a session without real input for idle_timeout_ms: dropped (error "idle")
+  join_refused,       // a new player's room choice refused (room_full, no_such_room, server_full, bad_join)
   count_
 };
 

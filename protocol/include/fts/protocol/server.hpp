@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <set>
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +25,26 @@
 namespace fts::protocol {
 
 using Address = std::string;
+
+class ServerEndpoint;
+
+// A new player's choice of room (Hello::join, Hello::room), as the host sees it.
+struct JoinAsk {
+  std::string join;  // "" (quick), "quick", "create", "join", "spectate"
+  std::string room;  // code for join and spectate
+  Address from;
+};
+
+// The host's answer: the room the session belongs to, or a refusal (error code and a
+// sentence) sent to the client instead of a welcome.
+struct Admission {
+  std::uint32_t room = 0;  // the host's room id (never 0 when admitted)
+  std::string code;        // the room's code, sent in the welcome
+  bool spectator = false;
+  std::uint32_t server_tick = 0;  // the room's tick, sent in the welcome
+  std::string error;       // "" : admitted; else "room_full", "no_such_room", "server_full", ...
+  std::string message;
+};
 
 struct ServerConfig {
   ServerKey key{};  // random_key() at start-up; fixed in tests
@@ -44,7 +66,14 @@ struct ServerConfig {
   std::uint32_t snapshot_max_base_age_ticks = 100;
   // Sessions kept at most (seated players plus players who quit and keep their progress
   // for the reconnect window).
-  std::size_t max_sessions() const { return 4 * static_cast<std::size_t>(max_players); }
+  std::size_t max_sessions() const {
+    return max_sessions_total != 0 ? max_sessions_total : 4 * static_cast<std::size_t>(max_players);
+  }
+  std::size_t max_sessions_total = 0;  // 0: 4 * max_players (one room)
+  // Rooms (PROTOCOL.md 4.6). When set, a new player's hello is passed to the host, which
+  // picks its room (max_players is then a room's seats, checked by the host through
+  // seats_in_room); when unset, the endpoint has one room (0) of max_players seats.
+  std::function<Admission(const JoinAsk&)> admit;
   // Bounds on what one session may make the server hold (PROTOCOL.md 10). A session over
   // either cap is dropped at once with error "overflow" (counted as overflow).
   // Results sent and not yet acknowledged by the client.
@@ -92,6 +121,8 @@ struct ServerEvent {
   std::string name;
   std::string reason;
   bool quit = false;  // disconnected by the client's bye: its seat is free (PROTOCOL.md 5.4)
+  std::uint32_t room = 0;
+  bool spectator = false;
 };
 
 // A session carried over a server restart (from a room's journal): its player is away,
@@ -111,11 +142,13 @@ struct Outgoing {
 
 struct PlayerInput {
   std::uint32_t player_id = 0;
+  std::uint32_t room = 0;
   InputFrame frame;  // each (player, seq) delivered at most once, ascending seq
 };
 
 struct PlayerCommand {
   std::uint32_t player_id = 0;
+  std::uint32_t room = 0;
   Command command;  // each exactly once, in rid order
 };
 
@@ -128,6 +161,8 @@ struct SessionInfo {
   std::optional<std::uint32_t> acked_snapshot;
   Encoding encoding = Encoding::msgpack;
   std::uint64_t rate_limited = 0;  // datagrams of this session dropped over its rate
+  std::uint32_t room = 0;
+  bool spectator = false;
 };
 
 class ServerEndpoint {
@@ -152,16 +187,27 @@ class ServerEndpoint {
   // Re-creates a session of a previous server process, disconnected as of now_ms (an
   // event `disconnected` with reason "restart" tells the host). A player id in use or a
   // bad verifier is refused (false), changing nothing.
-  bool restore_session(const RestoredSession& restored, std::uint64_t now_ms);
+  // `room` / `room_code`: the host's room the session belongs to (0: a server without rooms).
+  bool restore_session(const RestoredSession& restored, std::uint64_t now_ms, std::uint32_t room = 0,
+                       const std::string& room_code = {});
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
   // While paused (the host's lobby, shop and game-over phases) nobody idles: every
   // session's idle clock restarts when the pause ends.
-  void set_idle_paused(bool paused) { idle_paused_ = paused; }
-  // The tick reported in welcomes.
-  void set_server_tick(std::uint32_t tick) { server_tick_ = tick; }
+  void set_idle_paused(bool paused) { set_idle_paused(0, paused); }
+  void set_idle_paused(std::uint32_t room, bool paused) {
+    if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
+  }
+  // The tick reported in welcomes (of a reconnect: the admission gives a new player's).
+  void set_server_tick(std::uint32_t tick) { set_server_tick(0, tick); }
+  void set_server_tick(std::uint32_t room, std::uint32_t tick) { room_ticks_[room] = tick; }
+  // A closed room's entries are forgotten.
+  void forget_room(std::uint32_t room) {
+    idle_paused_rooms_.erase(room);
+    room_ticks_.erase(room);
+  }
 
   std::vector<Outgoing> take_datagrams();
   std::vector<ServerEvent> take_events();
@@ -175,6 +221,12 @@ class ServerEndpoint {
   const RejectCounters& rejects() const { return rejects_; }
   std::vector<SessionInfo> sessions() const;
   std::vector<std::uint32_t> connected_players() const;
+  // Rooms: connected sessions of a room (players and spectators), seats taken (players
+  // not quit, connected or held for a reconnect), connected spectators, every session.
+  std::vector<std::uint32_t> connected_in_room(std::uint32_t room) const;
+  std::size_t seats_in_room(std::uint32_t room) const;
+  std::size_t spectators_in_room(std::uint32_t room) const;
+  std::size_t sessions_in_room(std::uint32_t room) const;
   // Time the server itself stood still (gaps over stall_threshold_ms), in total.
   std::uint64_t stalled_ms() const { return stalled_ms_; }
 
@@ -205,6 +257,9 @@ class ServerEndpoint {
     ReliableSender<Chat> chats;
     ReliableReceiver<Command> commands;
     SnapshotSender snapshots;
+    std::uint32_t room = 0;
+    std::string room_code;
+    bool spectator = false;  // no seat; inputs dropped; never idle
   };
 
   struct AddressState {
@@ -239,9 +294,9 @@ class ServerEndpoint {
   std::map<std::uint32_t, std::uint32_t> by_session_id_;
   std::map<std::string, AddressState, std::less<>> addresses_;  // by host
   std::uint64_t last_forget_ms_ = 0;
-  bool idle_paused_ = false;
+  std::set<std::uint32_t> idle_paused_rooms_;
   std::uint64_t sessions_made_ = 0;
-  std::uint32_t server_tick_ = 0;
+  std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;
   std::vector<Outgoing> out_;

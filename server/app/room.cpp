@@ -1,0 +1,279 @@
+#include "app/room.hpp"
+
+#include <algorithm>
+#include <memory>
+
+#include "app/snapshot_build.hpp"
+#include "fts/sim/match_view.hpp"
+
+namespace fts::server {
+namespace {
+
+constexpr std::size_t kRecentEvents = 48;
+
+// The sentence of a command's result.
+std::string result_message(const sim::CommandResult& r) {
+  if (r.kind != sim::CommandKind::buy) {
+    if (r.ok()) return "done";
+    return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
+  }
+  if (r.code == sim::Refusal::no_player) return "not in the match";
+  const std::string item(sim::to_string(r.item));
+  if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
+  return item + " not bought: " + std::string(sim::to_string(r.code));
+}
+
+}  // namespace
+
+std::string refusal_code(sim::Refusal r) {
+  switch (r) {
+    case sim::Refusal::none: return "ok";
+    case sim::Refusal::not_enough_coins: return "coins";
+    case sim::Refusal::already_owned: return "owned";
+    case sim::Refusal::wrong_phase: return "phase";
+    case sim::Refusal::unknown_item: return "item";
+    case sim::Refusal::no_player: return "dead";
+  }
+  return "error";
+}
+
+Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
+           const sim::MatchConfig& config)
+    : id_(id),
+      code_(std::move(code)),
+      private_(is_private),
+      seed_(seed),
+      input_expiry_ms_(options.input_expiry_ms),
+      match_(sim::make_match(config, seed)) {
+  ticks_per_snapshot_ = std::max<std::uint32_t>(1, options.tick_rate_hz / std::max<std::uint32_t>(1, options.snapshot_rate_hz));
+}
+
+bool Room::record_to(const std::string& path, const std::string& version) {
+  record_file_.open(path);
+  if (!record_file_) return false;
+  record_path_ = path;
+  record_to(record_file_, version);
+  return true;
+}
+
+void Room::record_to(std::ostream& out, const std::string& version) {
+  recorder_ = std::make_unique<host::RecordWriter>(out, seed_, match_.cfg, version);
+}
+
+void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
+  using K = protocol::ServerEvent::Kind;
+  journal_session(e, endpoint);
+  const std::string_view who = e.spectator ? "spectator" : "player";
+  switch (e.kind) {
+    case K::connected:
+      if (!e.spectator) pending_.joins.push_back({e.player_id, e.name});
+      log_record(spdlog::level::info, "connect", {{who, e.player_id}, {"name", e.name}, {"room", id_}});
+      break;
+    case K::reconnected:
+      held_.erase(e.player_id);  // the new session numbers its inputs from 1 again
+      if (!e.spectator) pending_.back.push_back(e.player_id);
+      log_record(spdlog::level::info, "reconnect", {{who, e.player_id}, {"name", e.name}, {"room", id_}});
+      break;
+    case K::disconnected:
+      held_.erase(e.player_id);  // a gone client stops pushing
+      // A quit takes the ball off at once; a lost connection leaves it (for a resume).
+      if (!e.spectator) (e.quit ? pending_.quit : pending_.away).push_back(e.player_id);
+      log_record(spdlog::level::info, "disconnect", {{who, e.player_id}, {"reason", e.reason}, {"room", id_}});
+      break;
+    case K::released:
+      held_.erase(e.player_id);
+      if (!e.spectator) pending_.leaves.push_back(e.player_id);
+      log_record(spdlog::level::info, "leave", {{who, e.player_id}, {"reason", e.reason}, {"room", id_}});
+      break;
+  }
+}
+
+// Inputs arrive in (player, seq) order; the newest frame holds until a newer one, or
+// until input_expiry_ms pass without one: a crashed client's held key goes neutral
+// (PROTOCOL.md 4.5). The recording holds what the match was given, so a replay repeats
+// the expiry exactly.
+void Room::on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms) {
+  Held& h = held_[pi.player_id];
+  if (pi.frame.seq >= h.frame.seq) h.frame = pi.frame;
+  h.fire = h.fire || pi.frame.fire;
+  h.received_ms = now_ms;
+}
+
+void Room::on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  sim::PlayerTick* t = nullptr;
+  for (auto& p : pending_.players)
+    if (p.player == pc.player_id) t = &p;
+  if (!t) {
+    pending_.players.emplace_back();
+    t = &pending_.players.back();
+    t->player = pc.player_id;
+  }
+  switch (pc.command.op) {
+    case protocol::CommandOp::buy:
+      t->commands.push_back({sim::CommandKind::buy, pc.command.item ? std::string(1, pc.command.item) : std::string(),
+                             pc.command.rid});
+      break;
+    case protocol::CommandOp::ready: t->commands.push_back({sim::CommandKind::ready, {}, pc.command.rid}); break;
+    case protocol::CommandOp::play_again:
+      t->commands.push_back({sim::CommandKind::play_again, {}, pc.command.rid});
+      break;
+    case protocol::CommandOp::rooms:  // the host answers these
+    case protocol::CommandOp::chat:
+    case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
+      endpoint.send_result(pc.player_id, pc.command.rid, false, "op",
+                           "unknown command; this server knows buy, ready, again, chat and rooms", now_ms);
+      break;
+  }
+}
+
+sim::TickInputs Room::gather(std::uint64_t now_ms) {
+  sim::TickInputs in = std::exchange(pending_, {});
+  std::map<std::uint32_t, sim::PlayerTick> ticks;
+  for (auto& t : in.players) ticks[t.player.value] = std::move(t);
+  in.players.clear();
+  for (auto& [id, h] : held_) {
+    sim::PlayerTick& t = ticks[id];
+    t.player = id;
+    const bool expired = now_ms - h.received_ms > input_expiry_ms_;
+    t.input.move_x = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_x, -1, 1));
+    t.input.move_y = expired ? 0 : static_cast<std::int8_t>(std::clamp<int>(h.frame.move_y, -1, 1));
+    t.input.fire = h.fire;
+    h.fire = false;
+  }
+  for (auto& [id, t] : ticks) {
+    // Inputs of players that have not joined the match (yet) have nothing to apply; their
+    // commands still go to the step, which answers them.
+    const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
+    if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
+  }
+  return in;
+}
+
+void Room::answer(const std::vector<sim::CommandResult>& results, protocol::ServerEndpoint& endpoint,
+                  std::uint64_t now_ms) {
+  for (const sim::CommandResult& r : results)
+    endpoint.send_result(r.player.value, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
+}
+
+void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  for (const auto& event : events) {
+    std::visit(
+        sim::Overloaded{
+            [&](const sim::JoinRefused& e) {
+              log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}, {"room", id_}});
+              endpoint.kick(e.player.value, "refused", "the match refused the join: " + e.reason, now_ms);
+            },
+            [&](const sim::LevelStarted& e) {
+              log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}, {"room", id_}});
+            },
+            [&](const sim::LevelComplete& e) {
+              log_record(spdlog::level::info, "level_complete", {{"level", e.level}, {"room", id_}});
+            },
+            [&](const sim::Purchased& e) {
+              if (totals_) ++(e.ok ? totals_->purchases : totals_->purchases_refused);
+              log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
+                         {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
+                          {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}, {"room", id_},
+                          {"tick", match_.tick}});
+            },
+            [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}, {"room", id_}}); },
+            [&](const sim::EnemyDefeated& e) {
+              log_record(spdlog::level::debug, "enemy_defeated",
+                         {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", match_.tick}});
+            },
+            [&](const sim::PlayerFell& e) {
+              log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}, {"room", id_}});
+            },
+            [&](const sim::InterestPaid& e) {
+              log_record(spdlog::level::debug, "interest",
+                         {{"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", match_.tick}});
+            },
+            [](const auto&) {},  // the rest is not logged
+        },
+        event);
+  }
+  refused_log_.flush(now_ms);
+}
+
+void Room::tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  const sim::TickInputs in = gather(now_ms);
+  if (recorder_) recorder_->inputs(match_.tick, in);
+  if (journal_) journal_->inputs(match_.tick, in);
+  const sim::TickOutput stepped = sim::step(match_, in);
+  if (recorder_) recorder_->stepped(match_);
+  answer(stepped.results, endpoint, now_ms);
+  log_events(stepped.events, endpoint, now_ms);
+
+  std::vector<protocol::Event> wire;
+  append_wire_events(match_.tick, stepped.events, wire);
+  for (auto& w : wire) {
+    w.seq = ++event_seq_;
+    recent_.push_back(w);
+  }
+  while (recent_.size() > kRecentEvents) recent_.pop_front();
+  if (journal_) {
+    journal_->stepped(match_, event_seq_);
+    if (match_.tick % 1000 == 0) watch_journal();
+  }
+
+  endpoint.set_server_tick(id_, static_cast<std::uint32_t>(match_.tick));
+  if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(endpoint, now_ms);
+}
+
+void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  const auto members = endpoint.connected_in_room(id_);
+  if (members.empty()) return;
+  // Quantized once per tick; each client gets only its delta against that.
+  const auto snap = std::make_shared<const protocol::Snapshot>(
+      protocol::quantize(build_snapshot(sim::make_view(match_), recent_)));
+  for (auto id : members) endpoint.send_snapshot(id, snap, now_ms);
+}
+
+void Room::seal() {
+  if (recorder_ && match_.tick % host::kRecordHashEvery != 0) recorder_->hash_line(match_);
+  flush();
+}
+
+void Room::flush() {
+  if (recorder_) recorder_->flush();
+  // The shutdown's releases are not journaled: a clean stop resumes like a crash.
+  if (journal_) journal_->flush();
+}
+
+void Room::resume_from(const host::ResumedRoom& room) {
+  match_ = room.state;
+  event_seq_ = room.event_seq;
+}
+
+void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint) {
+  std::vector<host::JournalSession> sessions;
+  for (const auto& s : endpoint.sessions())
+    if (s.room == id_ && !s.spectator)
+      sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected});
+  journal_ = std::make_unique<host::JournalWriter>(std::move(config), match_.cfg, match_, event_seq_, std::move(sessions));
+}
+
+void Room::journal_session(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
+  if (!journal_ || e.spectator) return;
+  using K = protocol::ServerEvent::Kind;
+  if (e.kind == K::released) return journal_->released(match_.tick, e.player_id);
+  const bool quit = e.kind == K::disconnected && e.quit;
+  journal_->session(match_.tick, {e.player_id, e.name, endpoint.session_verifier(e.player_id), quit});
+}
+
+// Every 1000 ticks: a journal that dropped records or failed says so (once per change).
+void Room::watch_journal() {
+  const auto st = journal_->stats();
+  if (st.dropped != journal_dropped_logged_) {
+    log_record(spdlog::level::warn, "journal_dropped",
+               {{"records", st.dropped - journal_dropped_logged_}, {"total", st.dropped}, {"durable_tick", st.durable_tick},
+                {"room", id_}});
+    journal_dropped_logged_ = st.dropped;
+  }
+  if (!st.error.empty() && !journal_error_logged_) {
+    log_record(spdlog::level::err, "journal_failed", {{"error", st.error}, {"durable_tick", st.durable_tick}, {"room", id_}});
+    journal_error_logged_ = true;
+  }
+}
+
+}  // namespace fts::server

@@ -1,0 +1,97 @@
+// One room: a match of its own (seed, inputs, events, record, snapshots). The process
+// part (game_host) owns the endpoint and hands each room the connection events, inputs
+// and commands of its own sessions; a room never sees another room's players.
+#pragma once
+
+#include <deque>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/log.hpp"
+#include "app/options.hpp"
+#include "app/stats.hpp"
+#include "fts/protocol/server.hpp"
+#include "fts/sim/match.hpp"
+#include "host/journal.hpp"
+#include "host/record.hpp"
+
+namespace fts::server {
+
+class Room {
+ public:
+  Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
+       const sim::MatchConfig& config);
+
+  // Writes the input log and hashes to `path` from now on (false: cannot open it).
+  bool record_to(const std::string& path, const std::string& version);
+  void record_to(std::ostream& out, const std::string& version);
+
+  // What the endpoint reported for this room's sessions since the last tick.
+  void on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
+  void on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms);
+  void on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  // One tick: step the match with what was gathered, answer commands, send snapshots.
+  void tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  void flush();
+  // Ends the record with the hash of the state now (the room closes).
+  void seal();
+
+  // ---- crash-safe journal (issue 15). Resumes the match and the event numbering from a
+  // journal (the host restores the sessions); journals this room from now on.
+  void resume_from(const host::ResumedRoom& room);
+  void journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint);
+  const host::JournalWriter* journal() const { return journal_.get(); }
+  host::JournalWriter* journal() { return journal_.get(); }
+  // Purchases counted for the fleet's metrics (Stats::Totals), when set.
+  void count_into(Stats::Totals* totals) { totals_ = totals; }
+
+  std::uint32_t id() const { return id_; }
+  const std::string& code() const { return code_; }
+  bool is_private() const { return private_; }
+  std::uint64_t seed() const { return seed_; }
+  const sim::MatchState& match() const { return match_; }
+  const std::string& record_path() const { return record_path_; }
+  // When the room last had a connected session (the host closes it after a while).
+  std::uint64_t last_occupied_ms = 0;
+
+ private:
+  struct Held {
+    protocol::InputFrame frame;  // latest frame by seq
+    bool fire = false;           // any fire since the last tick
+    std::uint64_t received_ms = 0;  // when the latest frame arrived
+  };
+  sim::TickInputs gather(std::uint64_t now_ms);
+  void answer(const std::vector<sim::CommandResult>& results, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  void log_events(const std::vector<sim::Event>& events, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  void send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  void journal_session(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
+  void watch_journal();
+
+  std::uint32_t id_;
+  std::string code_;
+  bool private_;
+  std::uint64_t seed_;
+  std::uint32_t input_expiry_ms_;
+  sim::MatchState match_;
+  sim::TickInputs pending_;  // connection events and commands for the next step
+  std::map<std::uint32_t, Held> held_;
+  std::deque<protocol::Event> recent_;
+  std::uint32_t event_seq_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
+  std::ofstream record_file_;
+  std::string record_path_;
+  std::unique_ptr<host::RecordWriter> recorder_;
+  std::uint32_t ticks_per_snapshot_ = 5;
+  RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
+  std::unique_ptr<host::JournalWriter> journal_;
+  std::uint64_t journal_dropped_logged_ = 0;
+  bool journal_error_logged_ = false;
+  Stats::Totals* totals_ = nullptr;
+};
+
+// The sentence and code of a command's result (shared with the unit tests).
+std::string refusal_code(sim::Refusal r);
+
+}  // namespace fts::server
