@@ -78,7 +78,7 @@ done
 echo "server on port $PORT"
 
 for name in ann bob; do
-  cmd="TERM=xterm-256color XDG_STATE_HOME='$WORK/state-$name' '$CLIENT' --connect 127.0.0.1:$PORT --name $name --no-kitty; echo CLIENT_EXIT=\$?; sleep 600"
+  cmd="TERM=xterm-256color XDG_STATE_HOME='$WORK/state-$name' '$CLIENT' --connect 127.0.0.1:$PORT --name $name --no-kitty --quick; echo CLIENT_EXIT=\$?; sleep 600"
   tm new-session -d -s "$name" -x 120 -y 40 "$cmd"
 done
 "$BOT" --connect "127.0.0.1:$PORT" --name bot1 --behavior wander --duration 120 >"$WORK/bot.log" 2>&1 &

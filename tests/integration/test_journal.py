@@ -24,14 +24,14 @@ def ledger(text, upto_tick=None):
     def keep(m):
         return upto_tick is None or int(m.group("tick")) <= upto_tick
 
-    for m in re.finditer(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+) tick=(?P<tick>\d+)", text):
+    for m in re.finditer(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+)(?: room=\d+)? tick=(?P<tick>\d+)", text):
         if keep(m):
             earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
-    for m in re.finditer(r"interest player=(?P<p>\d+) coins=(?P<c>\d+) tick=(?P<tick>\d+)", text):
+    for m in re.finditer(r"interest player=(?P<p>\d+) coins=(?P<c>\d+)(?: room=\d+)? tick=(?P<tick>\d+)", text):
         if keep(m):
             earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
     for m in re.finditer(r"purchase player=(?P<p>\d+) item=\w+ ok=true reason=\w* price=(?P<c>\d+) coins=\d+ "
-                         r"tick=(?P<tick>\d+)", text):
+                         r"(?:room=\d+ )?tick=(?P<tick>\d+)", text):
         if keep(m):
             spent[m["p"]] = spent.get(m["p"], 0) + int(m["c"])
     return earned, spent
