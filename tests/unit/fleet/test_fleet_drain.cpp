@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "app/game_host.hpp"
+#include "../../support/host_rig.hpp"
 #include "fleet/fleet.hpp"
 #include "fleet/fleet_state.hpp"
 #include "fts/protocol/client.hpp"
@@ -11,31 +12,13 @@ using namespace fts;
 
 namespace {
 
-struct Rig {
-  server::Options options;
-  sim::MatchConfig config;
-  std::unique_ptr<server::GameHost> host;
-  std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
-  std::uint64_t now = 1000;
-
-  Rig() { host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{}); }
-  protocol::ClientEndpoint& add(const std::string& name) {
-    protocol::ClientConfig c;
-    c.name = name;
-    clients.push_back(std::make_unique<protocol::ClientEndpoint>(c));
-    clients.back()->connect(now);
-    return *clients.back();
-  }
+struct Rig : test::HostRig {
+  Rig() { start(); }
+  // One tick, then the fleet's per-tick work.
   void tick(server::Fleet& fleet) {
-    for (std::size_t i = 0; i < clients.size(); ++i) {
-      clients[i]->update(now);
-      for (auto& d : clients[i]->take_datagrams()) host->receive("10.0.0." + std::to_string(i + 1) + ":5000", d, now);
-    }
+    send();
     host->tick(now);
-    for (auto& out : host->take_datagrams()) {
-      const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
-      clients[idx]->receive(out.bytes, now);
-    }
+    deliver();
     fleet.tick(*host, 0, 0, now);
     now += 10;
   }

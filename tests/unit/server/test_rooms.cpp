@@ -6,6 +6,7 @@
 #include <set>
 
 #include "app/game_host.hpp"
+#include "../../support/host_rig.hpp"
 #include "app/room_codes.hpp"
 #include "fts/protocol/client.hpp"
 
@@ -14,13 +15,7 @@ using protocol::ClientState;
 
 namespace {
 
-struct Rig {
-  server::Options options;
-  sim::MatchConfig config;
-  std::unique_ptr<server::GameHost> host;
-  std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
-  std::uint64_t now = 1000;
-
+struct Rig : test::HostRig {
   explicit Rig(std::uint32_t seats = 2, std::uint32_t max_rooms = 4) {
     options.seed = 5;
     options.max_players = seats;
@@ -30,34 +25,15 @@ struct Rig {
     options.max_per_address = 64;
     start();
   }
-  void start() { host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{}); }
-  std::string address(std::size_t i) const { return "10.0.0." + std::to_string(i + 1) + ":5000"; }
   // A client that asks for `join` (and `room`); ticks until it is welcomed or refused.
   protocol::ClientEndpoint& add(const std::string& join = "", const std::string& room = "") {
     protocol::ClientConfig c;
     c.name = "p" + std::to_string(clients.size() + 1);
     c.join = join;
     c.room = room;
-    clients.push_back(std::make_unique<protocol::ClientEndpoint>(c));
-    auto& client = *clients.back();
-    client.connect(now);
+    auto& client = connect(c);
     for (int i = 0; i < 50 && client.state() == ClientState::connecting; ++i) tick();
     return client;
-  }
-  void tick() {
-    for (std::size_t i = 0; i < clients.size(); ++i) {
-      clients[i]->update(now);
-      for (auto& d : clients[i]->take_datagrams()) host->receive(address(i), d, now);
-    }
-    host->tick(now);
-    deliver();
-    now += 10;
-  }
-  void deliver() {
-    for (auto& out : host->take_datagrams()) {
-      const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
-      clients[idx]->receive(out.bytes, now);
-    }
   }
   void ticks(int n) {
     for (int i = 0; i < n; ++i) tick();
