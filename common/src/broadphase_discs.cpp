@@ -89,27 +89,15 @@ void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::p
   file(balls);
   const Slot* slots = slots_.data();
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
-  for (std::uint32_t cy = 0; cy < grid_.ny; ++cy) {
-    for (std::uint32_t cx = 0; cx < grid_.nx; ++cx) {
-      const std::uint32_t c = cy * grid_.nx + cx;
-      const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
-      if (p0 == p1) continue;
-      const auto [right_end, up0, up1] = half_stencil(grid_, begin, cx, cy);
-      for (std::uint32_t p = p0; p < p1; ++p) {
-        const Slot a = slots[p];
-        for (std::uint32_t q = p + 1; q < right_end; ++q) {
-          const double dx = slots[q].x - a.x, dy = slots[q].y - a.y, reach = a.r + slots[q].r;
-          if (dx * dx + dy * dy <= reach * reach)
-            out.emplace_back(std::min(a.id, slots[q].id), std::max(a.id, slots[q].id));
-        }
-        for (std::uint32_t q = up0; q < up1; ++q) {
-          const double dx = slots[q].x - a.x, dy = slots[q].y - a.y, reach = a.r + slots[q].r;
-          if (dx * dx + dy * dy <= reach * reach)
-            out.emplace_back(std::min(a.id, slots[q].id), std::max(a.id, slots[q].id));
-        }
-      }
-    }
-  }
+  for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {
+    const Slot a = slots[p];
+    auto test = [&](std::uint32_t q) {
+      const double dx = slots[q].x - a.x, dy = slots[q].y - a.y, reach = a.r + slots[q].r;
+      if (dx * dx + dy * dy <= reach * reach) out.emplace_back(std::min(a.id, slots[q].id), std::max(a.id, slots[q].id));
+    };
+    for (std::uint32_t q = p + 1; q < st.right_end; ++q) test(q);
+    for (std::uint32_t q = st.up0; q < st.up1; ++q) test(q);
+  });
   // Giants meet everything: filed discs, then later giants.
   for (std::size_t g = 0; g < giants_.size(); ++g) {
     const std::uint32_t gi = giants_[g];

@@ -70,31 +70,23 @@ void Grid::for_each_overlapping_pair(Fn&& fn) {
   std::uint32_t* hits = hits_.data();
   const Slot* slots = slots_.data();
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
-  for (std::uint32_t cy = 0; cy < grid_.ny; ++cy) {
-    for (std::uint32_t cx = 0; cx < grid_.nx; ++cx) {
-      const std::uint32_t c = cy * grid_.nx + cx;
-      const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
-      if (p0 == p1) continue;
-      const auto [right_end, up0, up1] = half_stencil(grid_, begin, cx, cy);
-      for (std::uint32_t p = p0; p < p1; ++p) {
-        const Box a = slots[p].box;
-        const std::uint32_t i = slots[p].id;
-        std::uint32_t k = 0;
-        for (std::uint32_t q = p + 1; q < right_end; ++q) {
-          hits[k] = q;
-          k += overlap_bit(a, slots[q].box);
-        }
-        for (std::uint32_t q = up0; q < up1; ++q) {
-          hits[k] = q;
-          k += overlap_bit(a, slots[q].box);
-        }
-        for (std::uint32_t m = 0; m < k; ++m) {
-          const std::uint32_t j = slots[hits[m]].id;
-          fn(i < j ? i : j, i < j ? j : i);
-        }
-      }
+  for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {
+    const Box a = slots[p].box;
+    const std::uint32_t i = slots[p].id;
+    std::uint32_t k = 0;
+    for (std::uint32_t q = p + 1; q < st.right_end; ++q) {
+      hits[k] = q;
+      k += overlap_bit(a, slots[q].box);
     }
-  }
+    for (std::uint32_t q = st.up0; q < st.up1; ++q) {
+      hits[k] = q;
+      k += overlap_bit(a, slots[q].box);
+    }
+    for (std::uint32_t m = 0; m < k; ++m) {
+      const std::uint32_t j = slots[hits[m]].id;
+      fn(i < j ? i : j, i < j ? j : i);
+    }
+  });
   const std::uint32_t n = static_cast<std::uint32_t>(boxes_.size());
   for (std::uint32_t i : overflow_) {
     for (std::uint32_t j = 0; j < n; ++j) {

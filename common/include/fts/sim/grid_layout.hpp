@@ -73,4 +73,19 @@ inline HalfStencil half_stencil(const GridLayout& g, const std::uint32_t* begin,
   return s;
 }
 
+// The scan both broad phases run: fn(p, stencil) for every filed slot p, with the ranges
+// its half stencil tests (cells in row order, slots in cell order).
+template <class Fn>
+inline void for_each_stencil_slot(const GridLayout& g, const std::uint32_t* begin, Fn&& fn) {
+  for (std::uint32_t cy = 0; cy < g.ny; ++cy) {
+    for (std::uint32_t cx = 0; cx < g.nx; ++cx) {
+      const std::uint32_t c = cy * g.nx + cx;
+      const std::uint32_t p0 = begin[c], p1 = begin[c + 1];
+      if (p0 == p1) continue;
+      const HalfStencil stencil = half_stencil(g, begin, cx, cy);
+      for (std::uint32_t p = p0; p < p1; ++p) fn(p, stencil);
+    }
+  }
+}
+
 }  // namespace fts::sim
