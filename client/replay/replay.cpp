@@ -9,6 +9,7 @@
 #include "host/json_fields.hpp"
 #include "host/match_config_json.hpp"
 #include "host/text.hpp"
+#include "ui/panel.hpp"
 
 namespace fts::client {
 
@@ -125,13 +126,7 @@ std::string replay_footer(const Replay& r, int cols) {
   std::string text = "Replay: tick " + std::to_string(r.state().tick) + "/" + std::to_string(r.tape().last_tick) + " " +
                      speed + (r.at_end() ? " (end)" : r.paused() ? " (paused)" : "") +
                      "   Space: pause   -/+: speed   n/p: next/previous level   1-9: level   Tab: follow   q: quit";
-  if (static_cast<int>(text.size()) > cols) {
-    std::string shorter;
-    for (std::size_t i = 0; i < text.size(); ++i)
-      if (!(text[i] == ' ' && i > 0 && text[i - 1] == ' ')) shorter += text[i];
-    text = shorter;
-  }
-  return text;
+  return fit_footer(std::move(text), cols);
 }
 
 }  // namespace fts::client

@@ -274,14 +274,15 @@ std::string footer_text(const Snapshot& s, const ViewState& view, int cols) {
     text = help_line(s.phase);
     if (s.phase == Phase::play && view.mouse_steering) text += "   (mouse steering)";
   }
-  if (static_cast<int>(text.size()) > cols) {
-    // Shorter: single spaces between the key groups.
-    std::string shorter;
-    for (std::size_t i = 0; i < text.size(); ++i)
-      if (!(text[i] == ' ' && i > 0 && text[i - 1] == ' ')) shorter += text[i];
-    text = shorter;
-  }
-  return text;
+  return fit_footer(std::move(text), cols);
+}
+
+std::string fit_footer(std::string text, int cols) {
+  if (static_cast<int>(text.size()) <= cols) return text;
+  std::string shorter;
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (!(text[i] == ' ' && i > 0 && text[i - 1] == ' ')) shorter += text[i];
+  return shorter;
 }
 
 FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapshot& snap) {

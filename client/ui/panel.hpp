@@ -67,6 +67,9 @@ std::vector<std::string> wrap(const std::string& text, int cols);
 // The ranking: coins this level and in total, enemies knocked off, lives; by total coins.
 std::vector<std::string> scoreboard_lines(const protocol::Snapshot& s, const ViewState& view, bool final_standings);
 
+// A footer line that fits `cols` where it can: wider than that, the runs of spaces
+// between key groups become single spaces.
+std::string fit_footer(std::string text, int cols);
 // The footer: what the keys do now (chat being typed, watching, the phase's controls).
 std::string footer_text(const protocol::Snapshot& s, const ViewState& view, int cols);
 
