@@ -105,7 +105,7 @@ JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_co
   lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
   if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     stats_.error = "journal: " + cfg_.dir.string() + " is in use by another process (or cannot be locked)";
-    stop_ = true;
+    stop_ = exited_ = true;
     return;
   }
   const auto existing = list_segments(cfg_.dir);
@@ -186,6 +186,20 @@ void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_se
   if (state.tick % cfg_.hash_every_ticks == 0) push(Hash{state.tick, sim::match_hash(state), event_seq});
 }
 
+void JournalWriter::finish() {
+  {
+    std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal, or finished already
+    finish_ = stop_ = true;
+  }
+  wake_.notify_all();
+}
+
+bool JournalWriter::stopped() const {
+  std::lock_guard lock(mu_);
+  return exited_;
+}
+
 void JournalWriter::flush() {
   std::unique_lock lock(mu_);
   if (!thread_.joinable()) return;
@@ -220,6 +234,24 @@ bool JournalWriter::open_segment() {
   std::lock_guard lock(mu_);
   ++stats_.segments;
   return true;
+}
+
+void JournalWriter::remove_journal() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  std::error_code ec;
+  auto closed = cfg_.dir;
+  closed += ".closed";
+  std::filesystem::remove_all(closed, ec);
+  std::filesystem::rename(cfg_.dir, closed, ec);
+  if (ec) {
+    errno = ec.value();
+    return fail("journal: cannot rename " + cfg_.dir.string() + " to finish it");
+  }
+  sync_dir(cfg_.dir.parent_path());  // from here on a resume does not bring the room back
+  std::filesystem::remove_all(closed, ec);
+  std::lock_guard lock(mu_);
+  stats_.finished = true;
 }
 
 void JournalWriter::remove_old_segments() {
@@ -276,6 +308,8 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                      head["fts_journal"] = kJournalFormat;
                      head["version"] = cfg_.version;
                      head["room"] = cfg_.room;
+                     head["room_id"] = cfg_.room_id;
+                     head["private"] = cfg_.is_private;
                      head["segment"] = segment_;
                      head["seed"] = cfg_.seed;
                      head["config"] = ojson::parse(header_config_);
@@ -332,13 +366,21 @@ void JournalWriter::run() {
         if (synced_ >= pushed_) flush_requested_ = false;
         if (newest >= 0 && stats_.error.empty()) stats_.durable_tick = std::max(stats_.durable_tick, newest);
       }
-      if (stopping && queue_.empty()) {
-        done_.notify_all();
-        return;
-      }
+      if (stopping && queue_.empty()) break;
     }
     done_.notify_all();
   }
+  bool finish = false;
+  {
+    std::lock_guard lock(mu_);
+    finish = finish_;
+  }
+  if (finish) remove_journal();
+  {
+    std::lock_guard lock(mu_);
+    exited_ = true;
+  }
+  done_.notify_all();
 }
 
 // ----- reader ------------------------------------------------------------------------
@@ -366,6 +408,8 @@ std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
   try {
     if (head->at("fts_journal").get<int>() != kJournalFormat) return std::string("line 1: unknown journal format");
     s.room.room = head->at("room").get<std::string>();
+    s.room.room_id = head->value("room_id", std::uint32_t{0});
+    s.room.is_private = head->value("private", false);
     s.room.version = head->at("version").get<std::string>();
     s.room.seed = head->at("seed").get<std::uint64_t>();
     s.room.segment = head->at("segment").get<std::uint64_t>();
