@@ -3,6 +3,8 @@
 #include <filesystem>
 
 #include "app/game_host.hpp"
+#include "app/room_codes.hpp"
+#include "app/snapshot_build.hpp"
 
 namespace fts::server {
 
