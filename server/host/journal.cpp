@@ -335,7 +335,10 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
 }
 
 void JournalWriter::run() {
-  auto last_sync = Clock::now() - std::chrono::milliseconds(cfg_.sync_ms);
+  // The first batch (the segment's checkpoint) waits sync_ms like every other: a server
+  // resuming 64 rooms starts 64 writers at once, and their checkpoints are written after
+  // the port opens instead of competing with the resume for the cores.
+  auto last_sync = Clock::now();
   for (;;) {
     std::deque<Record> batch;
     bool stopping = false;

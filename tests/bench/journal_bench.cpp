@@ -144,14 +144,19 @@ void rooms_resume(const fs::path& root, const sim::MatchConfig& cfg, int rooms, 
   helper.join();
   const double gen_s = std::chrono::duration<double>(Clock::now() - g0).count();
 
+  // Resumed from a copy: the generated journals stay as they are (--keep).
+  const fs::path copy = root.string() + ".resumed";
+  fs::remove_all(copy);
+  fs::copy(root, copy, fs::copy_options::recursive);
   const auto t0 = Clock::now();
-  server::JournalRoot dir(root);
-  const auto reads = server::read_room_journals(root, dir.room_codes(), std::thread::hardware_concurrency());
+  server::JournalRoot dir(copy);
+  const auto reads = server::read_room_journals(copy, dir.room_codes(), std::thread::hardware_concurrency());
   const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   server::Options options;
   options.max_rooms = static_cast<std::uint32_t>(rooms);
   const auto config = server::resumed_config(reads).value_or(cfg);
   server::GameHost host(options, config, protocol::ServerKey{});
+  host.journal_rooms(journal_config(copy, checkpoint_ticks));  // as the server: each room journals on
   const auto sum = server::resume_rooms(host, reads, config, 0);
   const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   std::size_t equal = 0;
@@ -166,7 +171,7 @@ void rooms_resume(const fs::path& root, const sim::MatchConfig& cfg, int rooms, 
     if (const auto* room = std::get_if<host::ResumedRoom>(&rd.result)) replayed += room->ticks_replayed;
   }
   std::printf("resume of %d rooms x %.1f min (checkpoint every %lld ticks, %lld ticks replayed in all, %u threads): "
-              "read %.0f ms, whole resume %.0f ms (slowest room %.1f ms); %zu resumed, %zu hashes equal; "
+              "read %.0f ms, whole resume (rooms open, journals on) %.0f ms (slowest room %.1f ms); %zu resumed, %zu hashes equal; "
               "journals generated in %.1f s, %.1f MB on disk\n",
               rooms, static_cast<double>(ticks) / cfg.tick_rate_hz / 60.0, static_cast<long long>(checkpoint_ticks),
               static_cast<long long>(replayed), std::thread::hardware_concurrency(), read_ms, total_ms, slowest_ms,
@@ -204,6 +209,7 @@ int main(int argc, char** argv) {
     const fs::path dir = keep.empty() ? root : fs::path(keep);
     fs::remove_all(dir);
     rooms_resume(dir, cfg, rooms, ticks, cp_ticks);
+    fs::remove_all(dir.string() + ".resumed");
     if (keep.empty()) fs::remove_all(root);
     return 0;
   }
