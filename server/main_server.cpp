@@ -1,6 +1,8 @@
 // fts-server: hosts rooms (each a match) over UDP; `fts-server --console SOCKET CMD`
 // talks to a running server's console. Settings come from flags and FTS_* variables
 // (see --help); every bad setting is reported before anything binds.
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -26,6 +28,14 @@ std::optional<std::string> getenv_opt(const std::string& name) {
   const char* v = std::getenv(name.c_str());
   if (!v) return std::nullopt;
   return std::string(v);
+}
+
+// User + system CPU time of the process so far, all threads (ms).
+double process_cpu_ms() {
+  rusage u{};
+  ::getrusage(RUSAGE_SELF, &u);
+  auto ms = [](const timeval& t) { return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_usec) / 1e3; };
+  return ms(u.ru_utime) + ms(u.ru_stime);
 }
 
 int fail(const std::string& message) {
@@ -96,6 +106,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<server::JournalRoot> journal_root;
   std::vector<server::RoomJournalRead> reads;
   const auto resume_t0 = std::chrono::steady_clock::now();
+  const double resume_cpu0 = process_cpu_ms();
   if (!options.journal_dir.empty()) {
     journal_root = std::make_unique<server::JournalRoot>(options.journal_dir);
     if (!journal_root->error().empty()) return fail(journal_root->error());
@@ -124,7 +135,8 @@ int main(int argc, char** argv) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - resume_t0).count();
     server::log_record(spdlog::level::info, "resume_done",
                        {{"rooms", sum.rooms}, {"resumed", sum.resumed}, {"skipped", sum.skipped},
-                        {"sessions", sum.sessions}, {"threads", std::thread::hardware_concurrency()}, {"ms", ms}});
+                        {"sessions", sum.sessions}, {"threads", std::thread::hardware_concurrency()}, {"ms", ms},
+                        {"cpu_ms", process_cpu_ms() - resume_cpu0}});
   }
   const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
   return rc;

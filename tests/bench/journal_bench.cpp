@@ -182,7 +182,7 @@ void rooms_resume(const fs::path& root, const sim::MatchConfig& cfg, int rooms, 
 
 int main(int argc, char** argv) {
   double minutes = 10;
-  double checkpoint_s = 10;
+  double checkpoint_s = 5;  // the server's default
   std::int64_t tick_ticks = 3000;
   int rooms = 0;
   std::string keep;
@@ -217,8 +217,7 @@ int main(int argc, char** argv) {
   // 1. Tick time, same run: match A plain, match B journaled, stepped alternately.
   {
     sim::MatchState a = sim::make_match(cfg, 7), b = sim::make_match(cfg, 7);
-    auto jc = journal_config(root / "tick", static_cast<std::int64_t>(checkpoint_s * cfg.tick_rate_hz));
-    jc.checkpoint_every_ticks = 1000;  // a checkpoint every 10 s: its copy is on the tick path
+    auto jc = journal_config(root / "tick", cp_ticks);  // each checkpoint's copy is on the tick path
     jc.max_queued = 16384;             // the server's bound
     host::JournalWriter w(jc, cfg, b, 0, {});
     std::vector<double> plain_us, journaled_us;

@@ -90,7 +90,7 @@ RESUMED = (r"resumed room=(?P<id>\d+) code=(?P<code>[A-Z]{5}) tick=(?P<tick>\d+)
 
 def resume_done(srv):
     return wait_for(lambda: re.search(r"resume_done rooms=(\d+) resumed=(\d+) skipped=(\d+) sessions=(\d+) "
-                                      r"threads=\d+ ms=([0-9.]+)", srv.text()), 30, "the resume_done line")
+                                      r"threads=\d+ ms=([0-9.]+) cpu_ms", srv.text()), 30, "the resume_done line")
 
 
 def play_and_crash(kills, seed, checkpoint_s, replay_check, duration):
