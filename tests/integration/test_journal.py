@@ -93,7 +93,18 @@ def resume_done(srv):
                                       r"threads=\d+ ms=([0-9.]+) cpu_ms", srv.text()), 30, "the resume_done line")
 
 
-def play_and_crash(kills, seed, checkpoint_s, replay_check, duration):
+def damage_journals(journal, code):
+    """Tears the last line of room `code`'s newest segment and adds a room directory with
+    nothing usable in it: the resume must go on with both reported."""
+    room = os.path.join(journal, code)
+    newest = os.path.join(room, sorted(f for f in os.listdir(room) if f.startswith("journal-"))[-1])
+    os.truncate(newest, os.path.getsize(newest) - 3)
+    os.makedirs(os.path.join(journal, "ZZZZZ"))
+    with open(os.path.join(journal, "ZZZZZ", "journal-000001.jsonl"), "w") as f:
+        f.write('{"fts_journal":1\n')
+
+
+def play_and_crash(kills, seed, checkpoint_s, replay_check, duration, damage=False):
     rng = random.Random(seed)
     journal = tempfile.mkdtemp(prefix="fts-journal-")
     sock = os.path.join(journal, "console.sock")
@@ -128,11 +139,20 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, duration):
                 for rid, code in codes.items():
                     saved[rid] = tempfile.mktemp(prefix="fts-journal-seg1-")
                     shutil.copy(os.path.join(journal, code, "journal-000001.jsonl"), saved[rid])
+            torn = codes[min(codes, key=int)] if damage and k == 0 else None
+            if torn:
+                damage_journals(journal, torn)
             srv.log.close()
             srv = Server(*server_args(journal, checkpoint_s, sock), "--port", str(port), "--resume")
             done = resume_done(srv)
-            check(done.groups()[:4] == (str(ROOMS), str(ROOMS), "0", str(ROOMS * BOTS)),
+            extra = 1 if damage else 0  # the directory with nothing usable stays (reported each time)
+            check(done.groups()[:4] == (str(ROOMS + extra), str(ROOMS), str(extra), str(ROOMS * BOTS)),
                   f"resume_done: {done.group(0)}")
+            if torn:
+                check(re.search(r"resume_skipped code=ZZZZZ reason=no usable journal segment", srv.text()),
+                      "the room with nothing usable was not reported")
+                check(re.search(rf"resume_damage code={torn} damage=journal-\d+\.jsonl: line \d+: torn", srv.text()),
+                      f"the torn tail of room {torn} was not reported")
             resumed = {m["id"]: m for m in re.finditer(RESUMED, srv.text())}
             check({rid: m["code"] for rid, m in resumed.items()} == codes,
                   f"resumed rooms {[(k, m['code']) for k, m in resumed.items()]}, had {codes}")
@@ -186,9 +206,10 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, duration):
 
 
 def test_kill_resume():
-    """4 rooms x 4 bots, one kill at a random moment; each room checked against a straight replay."""
+    """4 rooms x 4 bots, one kill at a random moment; each room checked against a straight
+    replay; one room's journal torn at its tail and a fifth room with nothing usable."""
     play_and_crash(kills=1, seed=int(os.environ.get("FTS_JOURNAL_SEED", "1")), checkpoint_s=3600, replay_check=True,
-                   duration=16)
+                   duration=16, damage=True)
 
 
 def test_soak_kill_resume():
