@@ -43,6 +43,8 @@
 
 namespace fts::host {
 
+inline constexpr int kJournalFormat = 1;  // "fts_journal" in a segment's header
+
 struct JournalSession {
   std::uint32_t player = 0;
   std::string name;
@@ -165,7 +167,7 @@ class JournalWriter {
   std::thread thread_;
 };
 
-// ----- reading -----------------------------------------------------------------------
+// ----- reading (host/journal_read.cpp) -----------------------------------------------------------------------
 
 // The file name of segment n ("journal-000001.jsonl") and the segments in a room's
 // directory, oldest first.

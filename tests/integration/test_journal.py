@@ -7,7 +7,7 @@ with its token into its room and finds its player; each bot's coins equal its le
 events only up to its room's resumed tick); each resumed room's hash equals a straight
 replay of its journal (as a --record) up to that tick; the play lost is about the sync
 interval (measured from the console's tick just before the kill)."""
-import json, os, random, re, shutil, signal, subprocess, sys, tempfile, time
+import json, os, random, re, shutil, signal, socket, subprocess, sys, tempfile, time
 
 from harness import SERVER, HERE, Failure, Server, check, finish_bots, main, start_bots, wait_for
 
@@ -22,23 +22,23 @@ GROUPS = ["ann", "bob", "cat", "dan"][:ROOMS]
 def ledger(text, upto=None):
     """Per player: coins earned (defeats, interest) and spent, from a server log; only
     events of ticks <= upto[room] when given (the crashed server's events past a room's
-    resumed tick never happened for the resumed match)."""
+    resumed tick never happened for the resumed match), and only until the player's bot
+    said goodbye (its report is written then; its last push may still earn later)."""
     earned, spent = {}, {}
-
-    def keep(m):
-        return upto is None or int(m.group("tick")) <= upto.get(m.group("room"), -1)
-
-    room_tick = r"room=(?P<room>\d+) tick=(?P<tick>\d+)"
-    for m in re.finditer(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+) " + room_tick, text):
-        if keep(m):
-            earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
-    for m in re.finditer(r"interest player=(?P<p>\d+) coins=(?P<c>\d+) " + room_tick, text):
-        if keep(m):
-            earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
-    for m in re.finditer(r"purchase player=(?P<p>\d+) item=\w+ ok=true reason=\w* price=(?P<c>\d+) coins=\d+ "
-                         + room_tick, text):
-        if keep(m):
-            spent[m["p"]] = spent.get(m["p"], 0) + int(m["c"])
+    gone = set()
+    room_tick = r" room=(?P<room>\d+) tick=(?P<tick>\d+)"
+    patterns = [(earned, re.compile(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+)" + room_tick)),
+                (earned, re.compile(r"interest player=(?P<p>\d+) coins=(?P<c>\d+)" + room_tick)),
+                (spent, re.compile(r"purchase player=(?P<p>\d+) item=\w+ ok=true reason=\w* price=(?P<c>\d+) "
+                                   r"coins=\d+" + room_tick))]
+    for line in text.splitlines():
+        bye = re.search(r"disconnect player=(\d+) reason=done", line)
+        if bye:
+            gone.add(bye.group(1))
+        for book, pattern in patterns:
+            m = pattern.search(line)
+            if m and m["p"] not in gone and (upto is None or int(m["tick"]) <= upto.get(m["room"], -1)):
+                book[m["p"]] = book.get(m["p"], 0) + int(m["c"])
     return earned, spent
 
 
@@ -73,10 +73,21 @@ def journal_as_record(segment_path, upto_tick, final_hash):
     return path
 
 
-def console(sock, *words):
-    p = subprocess.run([SERVER, "--console", sock, *words], capture_output=True, text=True, timeout=10)
-    check(p.returncode == 0, f"console {words}: {p.returncode} {p.stdout} {p.stderr}")
-    return json.loads(p.stdout)
+def rooms_now(sock):
+    """The console's rooms (JSON lines on its UNIX socket, spoken here directly: the kill
+    follows the answer within a millisecond, so its ticks bound the ticks at the kill)."""
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as c:
+        c.settimeout(10)
+        c.connect(sock)
+        c.sendall(b'{"cmd":"rooms"}\n')
+        data = b""
+        while not data.endswith(b"\n"):
+            chunk = c.recv(65536)
+            check(chunk, "the console closed without an answer")
+            data += chunk
+    reply = json.loads(data)
+    check(reply.get("ok"), f"console rooms: {reply}")
+    return reply["rooms"]
 
 
 def server_args(journal, checkpoint_s, sock):
@@ -130,7 +141,7 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, duration, damage=Fal
             wait_for(lambda: re.search(r"enemy_defeated enemy=\d+ player=[1-9]", srv.text()), 60,
                      "a bot to defeat an enemy")
             time.sleep(rng.uniform(0.5, 4.0))  # the random kill moment (the event under test)
-            live = {str(r["id"]): r["tick"] for r in console(sock, "rooms")["rooms"]}
+            live = {str(r["id"]): r["tick"] for r in rooms_now(sock)}
             srv.proc.send_signal(signal.SIGKILL)
             srv.proc.wait()
             before = srv.text()
