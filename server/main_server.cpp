@@ -1,16 +1,21 @@
 // fts-server: hosts rooms (each a match) over UDP; `fts-server --console SOCKET CMD`
 // talks to a running server's console. Settings come from flags and FTS_* variables
 // (see --help); every bad setting is reported before anything binds.
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <thread>
 
 #include "app/game_host.hpp"
 #include "app/log.hpp"
 #include "app/match_settings.hpp"
 #include "app/options.hpp"
+#include "app/room_journals.hpp"
 #include "host/journal.hpp"
 #include "host/record.hpp"
 #include "host/text.hpp"
@@ -25,36 +30,17 @@ std::optional<std::string> getenv_opt(const std::string& name) {
   return std::string(v);
 }
 
+// User + system CPU time of the process so far, all threads (ms).
+double process_cpu_ms() {
+  rusage u{};
+  ::getrusage(RUSAGE_SELF, &u);
+  auto ms = [](const timeval& t) { return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_usec) / 1e3; };
+  return ms(u.ru_utime) + ms(u.ru_stime);
+}
+
 int fail(const std::string& message) {
   std::cerr << "fts-server: " << message << "\n";
   return 2;
-}
-
-// Only the first room (id 1) is journaled so far, in DIR/main (see GameHost::journal_to).
-constexpr const char* kRoomCode = "main";
-
-// --resume: the room rebuilt from its journal, or nothing (reported) to start afresh.
-std::optional<fts::host::ResumedRoom> resume_room(const std::filesystem::path& dir) {
-  using namespace fts;
-  const auto t0 = std::chrono::steady_clock::now();
-  auto r = host::read_journal(dir, &server::GameHost::wire_event_count);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (auto* err = std::get_if<std::string>(&r)) {
-    server::log_record(spdlog::level::err, "resume_skipped", {{"room", kRoomCode}, {"reason", *err}});
-    return std::nullopt;
-  }
-  auto& room = std::get<host::ResumedRoom>(r);
-  for (const auto& why : room.skipped)
-    server::log_record(spdlog::level::warn, "resume_segment_skipped", {{"room", kRoomCode}, {"reason", why}});
-  if (!room.damage.empty())
-    server::log_record(spdlog::level::warn, "resume_damage", {{"room", kRoomCode}, {"damage", room.damage}});
-  server::log_record(spdlog::level::info, "resumed",
-                     {{"room", kRoomCode}, {"tick", room.state.tick}, {"level", room.state.level},
-                      {"segment", room.segment}, {"checkpoint_tick", room.checkpoint_tick},
-                      {"ticks_replayed", room.ticks_replayed}, {"hashes_checked", room.hashes_checked},
-                      {"sessions", room.sessions.size()}, {"event_seq", room.event_seq},
-                      {"hash", host::hex16(sim::match_hash(room.state))}, {"ms", ms}});
-  return std::move(room);
 }
 
 }  // namespace
@@ -114,37 +100,44 @@ int main(int argc, char** argv) {
   }
 
   server::init_logging(options.log_level, options.log_format);
-  const std::filesystem::path room_dir = std::filesystem::path(options.journal_dir) / kRoomCode;
-  std::optional<host::ResumedRoom> resumed;
-  if (options.resume) resumed = resume_room(room_dir);
-  if (resumed) {  // the journal's match goes on: its seed and config win over the flags
-    config = resumed->config;
-    options.seed = resumed->seed;
+  // --journal-dir: the directory locked; --resume: every room's journal read (rooms in
+  // parallel), before anything binds. Without --resume, journals left there are an error:
+  // starting afresh over them would lose what the players earned.
+  std::unique_ptr<server::JournalRoot> journal_root;
+  std::vector<server::RoomJournalRead> reads;
+  const auto resume_t0 = std::chrono::steady_clock::now();
+  const double resume_cpu0 = process_cpu_ms();
+  if (!options.journal_dir.empty()) {
+    journal_root = std::make_unique<server::JournalRoot>(options.journal_dir);
+    if (!journal_root->error().empty()) return fail(journal_root->error());
+    const auto codes = journal_root->room_codes();
+    if (!options.resume && !codes.empty())
+      return fail("--journal-dir: " + options.journal_dir + " holds the journals of " + std::to_string(codes.size()) +
+                  " rooms (" + codes.front() + (codes.size() > 1 ? ", ..." : "") +
+                  "): start with --resume to bring them back, or remove them");
+    if (options.resume) reads = server::read_room_journals(options.journal_dir, codes, std::thread::hardware_concurrency());
   }
+  // The journals' matches go on: their config wins over the flags.
+  if (auto resumed_cfg = server::resumed_config(reads)) config = *resumed_cfg;
   server::GameHost host(options, config, protocol::random_key());
   if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
-  if (resumed) host.resume_from(*resumed, 0);
   if (record.is_open()) host.record_to(record, FTS_VERSION);
-  if (!options.journal_dir.empty()) {
+  if (journal_root) {
     host::JournalConfig jc;
-    jc.dir = room_dir;
-    jc.room = kRoomCode;
+    jc.dir = options.journal_dir;
     jc.version = FTS_VERSION;
-    jc.seed = options.seed;
     jc.sync_ms = options.journal_sync_ms;
     jc.checkpoint_every_ticks = static_cast<std::int64_t>(options.journal_checkpoint_s * config.tick_rate_hz);
-    host.journal_to(jc);
-    const auto* journal = host.journal();
-    if (!journal) return fail("--journal-dir: the first room could not be opened");
-    if (const auto err = journal->stats().error; !err.empty()) return fail(err);
+    host.journal_rooms(jc);
+  }
+  if (options.resume) {
+    const auto sum = server::resume_rooms(host, reads, config, 0);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - resume_t0).count();
+    server::log_record(spdlog::level::info, "resume_done",
+                       {{"rooms", sum.rooms}, {"resumed", sum.resumed}, {"skipped", sum.skipped},
+                        {"sessions", sum.sessions}, {"threads", std::thread::hardware_concurrency()}, {"ms", ms},
+                        {"cpu_ms", process_cpu_ms() - resume_cpu0}});
   }
   const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
-  if (const auto* j = host.journal()) {
-    const auto st = j->stats();
-    server::log_record(st.error.empty() ? spdlog::level::info : spdlog::level::err, "journal",
-                       {{"room", kRoomCode}, {"records", st.records}, {"bytes", st.bytes}, {"syncs", st.syncs},
-                        {"segments", st.segments}, {"removed_segments", st.removed_segments},
-                        {"dropped", st.dropped}, {"durable_tick", st.durable_tick}, {"error", st.error}});
-  }
   return rc;
 }

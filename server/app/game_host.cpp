@@ -83,43 +83,6 @@ void GameHost::record_to(std::ostream& out, const std::string& version) {
   if (auto it = rooms_.find(1); it != rooms_.end()) it->second->record_to(out, version);
 }
 
-std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutput& out) {
-  std::vector<protocol::Event> wire;
-  append_wire_events(tick + 1, out.events, wire);
-  return static_cast<std::uint32_t>(wire.size());
-}
-
-void GameHost::resume_from(const host::ResumedRoom& resumed, std::uint64_t now_ms) {
-  Room* r = rooms_.count(1) ? rooms_[1].get() : create_room(false);
-  if (!r || r->id() != 1) return;
-  r->resume_from(resumed);
-  endpoint_.set_server_tick(1, static_cast<std::uint32_t>(resumed.state.tick));
-  for (const auto& s : resumed.sessions) {
-    // Each comes back as "disconnected" in the next tick's events: the match marks it away.
-    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms, r->id(), r->code()))
-      members_[s.player] = {r->id(), false};
-    else
-      log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}});
-  }
-}
-
-void GameHost::journal_to(host::JournalConfig config) {
-  Room* r = rooms_.count(1) ? rooms_[1].get() : (next_room_id_ == 1 ? create_room(false) : nullptr);
-  if (!r) return;
-  journaling_ = true;
-  r->journal_to(std::move(config), endpoint_);
-}
-
-const host::JournalWriter* GameHost::journal() const {
-  auto it = rooms_.find(1);
-  return it == rooms_.end() ? nullptr : it->second->journal();
-}
-
-host::JournalWriter* GameHost::journal() {
-  auto it = rooms_.find(1);
-  return it == rooms_.end() ? nullptr : it->second->journal();
-}
-
 void GameHost::record_dir(const std::string& dir, const std::string& version) {
   record_dir_ = dir;
   version_ = version;
@@ -145,10 +108,17 @@ std::vector<std::uint32_t> GameHost::room_ids() const {
 }
 
 Room* GameHost::create_room(bool is_private) {
-  auto code = codes_.next([&](const std::string& c) { return room_by_code(c) != nullptr; });
+  auto code = codes_.next([&](const std::string& c) { return room_by_code(c) != nullptr || journal_exists(c); });
   if (!code) return nullptr;
   const std::uint32_t id = next_room_id_++;
-  auto room = std::make_unique<Room>(id, *code, is_private, room_seed(options_.seed, id), options_, config_);
+  Room* r = open_room(id, *code, is_private, room_seed(options_.seed, id), config_);
+  start_journal(*r);
+  return r;
+}
+
+Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
+                          const sim::MatchConfig& config) {
+  auto room = std::make_unique<Room>(id, code, is_private, seed, options_, config);
   if (!record_dir_.empty()) {
     const std::string path = (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id) + ".jsonl")).string();
     if (!room->record_to(path, version_))
@@ -159,7 +129,7 @@ Room* GameHost::create_room(bool is_private) {
   ++rooms_made_;
   room->count_into(&stats_.totals);
   log_record(spdlog::level::info, "room_open",
-             {{"room", id}, {"code", *code}, {"private", is_private}, {"seed", room->seed()},
+             {{"room", id}, {"code", code}, {"private", is_private}, {"seed", room->seed()},
               {"record", room->record_path()}});
   return rooms_.emplace(id, std::move(room)).first->second.get();
 }
@@ -350,16 +320,17 @@ void GameHost::tick(std::uint64_t now_ms) {
   for (auto& [id, r] : rooms_) r->tick(endpoint_, now_ms);
 
   // A room nobody is connected to for room_idle_ms is closed; while draining, at once (the
-  // drain ends when the last room does). A journaled room 1 stays open otherwise.
+  // drain ends when the last room does).
   std::vector<std::uint32_t> idle;
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
     const bool connected = !endpoint_.connected_in_room(id).empty();
-    if (!draining_ && (r->last_occupied_ms == 0 || connected || (id == 1 && journaling_)))
+    if (!draining_ && (r->last_occupied_ms == 0 || connected))
       r->last_occupied_ms = now_ms;
     else if (!connected && now_ms - r->last_occupied_ms >= idle_ms) idle.push_back(id);
   }
   for (auto id : idle) close_room(id, "room_closed", "the room was empty and is closed", now_ms);
+  std::erase_if(closing_journals_, [](const auto& j) { return j->stopped(); });
   if (!bans_.empty()) std::erase_if(bans_, [&](const auto& kv) { return now_ms >= kv.second; });
 }
 
@@ -369,6 +340,7 @@ void GameHost::close_room(std::uint32_t id, const std::string& code, const std::
   for (const auto& s : endpoint_.sessions())
     if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
   Room& r = *it->second;
+  finish_journal(r);  // first: the seal must not wait for the journal's disk
   r.seal();
   log_record(spdlog::level::info, "room_closed",
              {{"room", id}, {"code", r.code()}, {"reason", code}, {"tick", r.match().tick},

@@ -52,15 +52,20 @@ class GameHost {
   void set_draining(bool draining) { draining_ = refuse_players_ = draining; }
   bool draining() const { return draining_; }
 
-  // ---- crash-safe journal (issue 15), for the first room (id 1) only so far: with a
-  // journal, room 1 is opened at once and never closed for being empty.
-  // Rebuilds room 1 from its journal (read_journal): the match, the event numbering and
-  // the sessions (away until their clients come back with their tokens).
-  void resume_from(const host::ResumedRoom& room, std::uint64_t now_ms);
-  // Journals room 1 from now on (a new segment starting with a checkpoint).
-  void journal_to(host::JournalConfig config);
-  const host::JournalWriter* journal() const;
-  host::JournalWriter* journal();
+  // ---- crash-safe journal (issue 15; app/game_host_journal.cpp). With journal_rooms(),
+  // every room journals into base.dir/<room code>/ from its opening on (base gives the
+  // sync, checkpoint and queue settings); a room that closes finishes its journal (the
+  // directory goes, on the writer's thread: the tick never waits for the disk).
+  void journal_rooms(host::JournalConfig base);
+  // Opens a room rebuilt from its journal (host::read_journal): its code, id (a fresh one
+  // if that id is taken), privacy, seed, match and event numbering; its sessions come back
+  // away until their clients return with their tokens. False (logged): the code is not a
+  // room code or is taken, or the server has max_rooms rooms.
+  bool resume_room(const host::ResumedRoom& room, std::uint64_t now_ms);
+  const host::JournalWriter* journal(std::uint32_t room_id) const;
+  host::JournalWriter* journal(std::uint32_t room_id);
+  // Writers of closed rooms still finishing (removed each tick once stopped).
+  std::size_t closing_journals() const { return closing_journals_.size(); }
   // The wire events of one step (for read_journal's event numbering).
   static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
 
@@ -80,6 +85,11 @@ class GameHost {
   };
   protocol::Admission admit(const protocol::JoinAsk& ask);
   Room* create_room(bool is_private);
+  Room* open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
+                  const sim::MatchConfig& config);
+  void start_journal(Room& r);
+  void finish_journal(Room& r);
+  bool journal_exists(const std::string& code) const;  // a directory of that code under the root
   void close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms);
   void dispatch(std::uint64_t now_ms);
   void answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
@@ -101,7 +111,8 @@ class GameHost {
   bool draining_ = false;
   bool refuse_players_ = false;
   ChatRelay chat_;
-  bool journaling_ = false;  // room 1 is journaled (and kept open)
+  std::optional<host::JournalConfig> journal_base_;  // journal_rooms(): dir is the root
+  std::vector<std::unique_ptr<host::JournalWriter>> closing_journals_;
   std::map<std::string, std::uint64_t, std::less<>> bans_;  // host -> until (ms)
   std::uint64_t banned_datagrams_ = 0;
   std::ostream* first_record_ = nullptr;

@@ -162,7 +162,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--time-scale", "FTS_TIME_SCALE", "1", "run ticks this many times faster than real time (tests)"},
       {"--journal-dir", "FTS_JOURNAL_DIR", "", "keep each room's crash-safe journal under this directory"},
       {"--journal-sync-ms", "FTS_JOURNAL_SYNC_MS", "100", "make the journal durable (fdatasync) at most this often (ms)"},
-      {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "10", "write a journal checkpoint (new segment) this often (s)"},
+      {"--journal-checkpoint-s", "FTS_JOURNAL_CHECKPOINT_S", "5", "write a journal checkpoint (new segment) this often (s)"},
       {"--agones", "FTS_AGONES", "off", "Agones SDK sidecar: on, off or its REST port (on when AGONES_SDK_HTTP_PORT is set)"},
       {"--agones-health-ms", "FTS_AGONES_HEALTH_MS", "2000", "period of the Agones health ping, sent from the tick loop (ms)"},
       {"--drain-grace-ms", "FTS_DRAIN_GRACE_MS", "25000", "with Agones, SIGTERM drains: the longest wait for the last match (ms)"},

@@ -36,7 +36,7 @@ struct Options {
   // Crash-safe rooms (server/host/journal.hpp): "" : no journal.
   std::string journal_dir;
   std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
-  std::uint32_t journal_checkpoint_s = 10;   // a checkpoint (new segment) this often
+  std::uint32_t journal_checkpoint_s = 5;    // a checkpoint (new segment) this often (bounds a resume's replay)
   bool resume = false;                       // rebuild the rooms of --journal-dir first
   // Fleet (server/fleet/): the Agones SDK sidecar's REST port (0: Agones off; --agones
   // on, or AGONES_SDK_HTTP_PORT set, turns it on), the health ping period, how long a

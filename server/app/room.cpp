@@ -253,6 +253,11 @@ void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint
   journal_ = std::make_unique<host::JournalWriter>(std::move(config), match_.cfg, match_, event_seq_, std::move(sessions));
 }
 
+std::unique_ptr<host::JournalWriter> Room::finish_journal() {
+  if (journal_) journal_->finish();
+  return std::move(journal_);
+}
+
 void Room::journal_session(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
   if (!journal_ || e.spectator) return;
   using K = protocol::ServerEvent::Kind;

@@ -43,6 +43,8 @@ class Room {
   // journal (the host restores the sessions); journals this room from now on.
   void resume_from(const host::ResumedRoom& room);
   void journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint);
+  // The room closes: its journal finishes (JournalWriter::finish) and is handed over.
+  std::unique_ptr<host::JournalWriter> finish_journal();
   const host::JournalWriter* journal() const { return journal_.get(); }
   host::JournalWriter* journal() { return journal_.get(); }
   // Purchases counted for the fleet's metrics (Stats::Totals), when set.

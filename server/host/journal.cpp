@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -20,10 +19,7 @@
 namespace fts::host {
 namespace {
 
-using nlohmann::json;
 using Clock = std::chrono::steady_clock;
-
-constexpr int kJournalFormat = 1;
 
 using ojson = nlohmann::ordered_json;
 
@@ -36,14 +32,6 @@ ojson session_json(const JournalSession& s) {
   return j;
 }
 
-JournalSession session_from(const json& j) {
-  JournalSession s;
-  s.player = j.at("player").get<std::uint32_t>();
-  s.name = j.at("name").get<std::string>();
-  s.verifier = j.at("verifier").get<std::string>();
-  s.quit = j.at("quit").get<bool>();
-  return s;
-}
 
 // Writes all of `text`; false on an error (errno set).
 bool write_all(int fd, std::string_view text) {
@@ -105,7 +93,7 @@ JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_co
   lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
   if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     stats_.error = "journal: " + cfg_.dir.string() + " is in use by another process (or cannot be locked)";
-    stop_ = true;
+    stop_ = exited_ = true;
     return;
   }
   const auto existing = list_segments(cfg_.dir);
@@ -186,6 +174,20 @@ void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_se
   if (state.tick % cfg_.hash_every_ticks == 0) push(Hash{state.tick, sim::match_hash(state), event_seq});
 }
 
+void JournalWriter::finish() {
+  {
+    std::lock_guard lock(mu_);
+    if (stop_) return;  // no journal, or finished already
+    finish_ = stop_ = true;
+  }
+  wake_.notify_all();
+}
+
+bool JournalWriter::stopped() const {
+  std::lock_guard lock(mu_);
+  return exited_;
+}
+
 void JournalWriter::flush() {
   std::unique_lock lock(mu_);
   if (!thread_.joinable()) return;
@@ -220,6 +222,24 @@ bool JournalWriter::open_segment() {
   std::lock_guard lock(mu_);
   ++stats_.segments;
   return true;
+}
+
+void JournalWriter::remove_journal() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  std::error_code ec;
+  auto closed = cfg_.dir;
+  closed += ".closed";
+  std::filesystem::remove_all(closed, ec);
+  std::filesystem::rename(cfg_.dir, closed, ec);
+  if (ec) {
+    errno = ec.value();
+    return fail("journal: cannot rename " + cfg_.dir.string() + " to finish it");
+  }
+  sync_dir(cfg_.dir.parent_path());  // from here on a resume does not bring the room back
+  std::filesystem::remove_all(closed, ec);
+  std::lock_guard lock(mu_);
+  stats_.finished = true;
 }
 
 void JournalWriter::remove_old_segments() {
@@ -276,6 +296,8 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                      head["fts_journal"] = kJournalFormat;
                      head["version"] = cfg_.version;
                      head["room"] = cfg_.room;
+                     head["room_id"] = cfg_.room_id;
+                     head["private"] = cfg_.is_private;
                      head["segment"] = segment_;
                      head["seed"] = cfg_.seed;
                      head["config"] = ojson::parse(header_config_);
@@ -301,7 +323,10 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
 }
 
 void JournalWriter::run() {
-  auto last_sync = Clock::now() - std::chrono::milliseconds(cfg_.sync_ms);
+  // The first batch (the segment's checkpoint) waits sync_ms like every other: a server
+  // resuming 64 rooms starts 64 writers at once, and their checkpoints are written after
+  // the port opens instead of competing with the resume for the cores.
+  auto last_sync = Clock::now();
   for (;;) {
     std::deque<Record> batch;
     bool stopping = false;
@@ -332,165 +357,21 @@ void JournalWriter::run() {
         if (synced_ >= pushed_) flush_requested_ = false;
         if (newest >= 0 && stats_.error.empty()) stats_.durable_tick = std::max(stats_.durable_tick, newest);
       }
-      if (stopping && queue_.empty()) {
-        done_.notify_all();
-        return;
-      }
+      if (stopping && queue_.empty()) break;
     }
     done_.notify_all();
   }
-}
-
-// ----- reader ------------------------------------------------------------------------
-
-namespace {
-
-struct Replay {
-  sim::MatchState state;
-  std::uint32_t event_seq = 0;
-  std::map<std::uint32_t, JournalSession> sessions;
-};
-
-struct SegmentStart {
-  ResumedRoom room;
-  Replay now;
-};
-
-// Header and checkpoint of one segment, or why they are not usable.
-std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
-  std::string line, why;
-  if (!std::getline(in, line) || in.eof()) return std::string("line 1: no complete header");
-  auto head = parse_json(line, why);
-  if (!head) return "line 1: invalid JSON: " + why;
-  SegmentStart s;
-  try {
-    if (head->at("fts_journal").get<int>() != kJournalFormat) return std::string("line 1: unknown journal format");
-    s.room.room = head->at("room").get<std::string>();
-    s.room.version = head->at("version").get<std::string>();
-    s.room.seed = head->at("seed").get<std::uint64_t>();
-    s.room.segment = head->at("segment").get<std::uint64_t>();
-    auto cfg = parse_match_config(head->at("config").dump());
-    if (auto* err = std::get_if<std::string>(&cfg)) return "line 1: config: " + *err;
-    s.room.config = std::get<sim::MatchConfig>(cfg);
-  } catch (const std::exception& e) {
-    return std::string("line 1: ") + e.what();
+  bool finish = false;
+  {
+    std::lock_guard lock(mu_);
+    finish = finish_;
   }
-  if (!std::getline(in, line) || in.eof()) return std::string("line 2: no complete checkpoint");
-  auto cp = parse_json(line, why);
-  if (!cp) return "line 2: invalid JSON: " + why;
-  try {
-    auto state = match_state_from_json(cp->at("checkpoint"), sim::make_match(s.room.config, s.room.seed));
-    if (auto* err = std::get_if<std::string>(&state)) return "line 2: " + *err;
-    s.now.state = std::move(std::get<sim::MatchState>(state));
-    const std::string want = cp->at("hash").get<std::string>();
-    const std::string got = hex16(sim::match_hash(s.now.state));
-    if (want != got) return "line 2: checkpoint hash " + want + ", read back " + got;
-    if (cp->at("tick").get<std::int64_t>() != s.now.state.tick) return std::string("line 2: tick differs from the state's");
-    s.now.event_seq = cp->at("event_seq").get<std::uint32_t>();
-    for (const json& js : cp->at("sessions")) {
-      JournalSession js2 = session_from(js);
-      s.now.sessions[js2.player] = std::move(js2);
-    }
-  } catch (const std::exception& e) {
-    return std::string("line 2: ") + e.what();
+  if (finish) remove_journal();
+  {
+    std::lock_guard lock(mu_);
+    exited_ = true;
   }
-  s.room.checkpoint_tick = s.now.state.tick;
-  return s;
-}
-
-// A replay's gaps are the journal's empty ticks; more than this is a damaged file.
-constexpr std::int64_t kMaxGapTicks = 10'000'000;
-
-// Replays the lines after the checkpoint into `r`; returns "" or the damage.
-std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r, const WireEventCount& wire_events) {
-  Replay good = now;  // the state at the last hash that matched (or the checkpoint)
-  auto step_one = [&](const sim::TickInputs& inputs) {
-    const std::int64_t tick = now.state.tick;
-    const sim::TickOutput out = sim::step(now.state, inputs);
-    if (wire_events) now.event_seq += wire_events(tick, out);
-    ++r.ticks_replayed;
-  };
-  auto reach = [&](std::int64_t tick, const std::string& where) -> std::string {
-    if (tick < now.state.tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-    if (tick - now.state.tick > kMaxGapTicks) return where + "tick " + std::to_string(tick) + " is too far ahead";
-    while (now.state.tick < tick) step_one({});
-    return {};
-  };
-  std::string line, why;
-  for (std::int64_t no = 3; std::getline(in, line); ++no) {
-    const std::string where = "line " + std::to_string(no) + ": ";
-    if (in.eof()) return where + "torn (no end of line); resumed before it";
-    auto parsed = parse_json(line, why);
-    if (!parsed) return where + "invalid JSON (" + why + "); resumed before it";
-    const json& j = *parsed;
-    try {
-      if (j.contains("hash")) {
-        const std::int64_t tick = j.at("tick").get<std::int64_t>();
-        if (auto err = reach(tick, where); !err.empty()) return err;
-        const std::string got = hex16(sim::match_hash(now.state));
-        const std::string want = j.at("hash").get<std::string>();
-        const auto seq = j.at("event_seq").get<std::uint32_t>();
-        if (got != want || (wire_events && seq != now.event_seq)) {
-          const std::string damage = where + "hash mismatch at tick " + std::to_string(tick) + " (journal " + want +
-                                     ", replay " + got + "); resumed at tick " + std::to_string(good.state.tick);
-          now = std::move(good);
-          return damage;
-        }
-        now.event_seq = seq;
-        ++r.hashes_checked;
-        good = now;
-      } else if (j.contains("session")) {
-        JournalSession s = session_from(j.at("session"));
-        now.sessions[s.player] = std::move(s);
-      } else if (j.contains("released")) {
-        now.sessions.erase(j.at("released").get<std::uint32_t>());
-      } else {
-        auto il = input_line_from_json(j);
-        if (auto* err = std::get_if<std::string>(&il)) return where + *err + "; resumed before it";
-        const auto& input = std::get<InputLine>(il);
-        if (auto err = reach(input.tick, where); !err.empty()) return err;
-        step_one(input.inputs);
-      }
-    } catch (const std::exception& e) {
-      return where + e.what() + "; resumed before it";
-    }
-  }
-  return {};
-}
-
-}  // namespace
-
-std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir,
-                                                    const WireEventCount& wire_events) {
-  const auto segments = list_segments(room_dir);
-  if (segments.empty()) return "no journal segments in " + room_dir.string();
-  std::vector<std::string> skipped;
-  for (auto it = segments.rbegin(); it != segments.rend(); ++it) {
-    std::ifstream in(it->second);
-    const std::string name = it->second.filename().string();
-    if (!in) {
-      skipped.push_back(name + ": cannot read");
-      continue;
-    }
-    auto start = open_segment_file(in);
-    if (auto* err = std::get_if<std::string>(&start)) {
-      skipped.push_back(name + ": " + *err);
-      continue;
-    }
-    auto& s = std::get<SegmentStart>(start);
-    ResumedRoom r = std::move(s.room);
-    Replay now = std::move(s.now);
-    r.damage = replay_lines(in, now, r, wire_events);
-    if (!r.damage.empty()) r.damage = name + ": " + r.damage;
-    r.state = std::move(now.state);
-    r.event_seq = now.event_seq;
-    for (auto& [id, js] : now.sessions) r.sessions.push_back(std::move(js));
-    r.skipped = std::move(skipped);
-    return r;
-  }
-  std::string why = "no usable journal segment in " + room_dir.string() + ":";
-  for (const auto& s : skipped) why += " [" + s + "]";
-  return why;
+  done_.notify_all();
 }
 
 }  // namespace fts::host

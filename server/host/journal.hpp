@@ -4,9 +4,10 @@
 // plus what the inputs do not carry: the sessions (player id, name, a verifier of the
 // reconnect token, never the token) and the event sequence number.
 //
-// One directory per room, one file per segment, one JSON object per line:
+// One directory per room (the host names it after the room's code: DIR/ABCDE/), one file
+// per segment, one JSON object per line:
 //   journal-000001.jsonl
-//   {"fts_journal":1,"version":"0.1.0","room":"main","segment":1,"seed":7,"config":{...}}
+//   {"fts_journal":1,"version":"0.1.0","room":"ABCDE","room_id":3,"private":false,"segment":1,"seed":7,"config":{...}}
 //   {"tick":0,"checkpoint":{...MatchState...},"hash":"9c3e...","event_seq":0,"sessions":[...]}
 //   {"tick":0,"session":{"player":1,"name":"ann","verifier":"5d1f...","quit":false}}
 //   {"tick":0,"joins":[{"player":1,"name":"ann"}]}          <- an input line (record.hpp)
@@ -20,6 +21,9 @@
 // the room to the last record before the drop. A new segment is a checkpoint; once it is
 // durable, segments older than the newest keep_segments are removed, so the disk holds
 // about keep_segments x checkpoint_every_ticks of play per room, whatever the match length.
+// A room that closes finishes its journal (finish()): the directory is renamed to
+// <dir>.closed (one atomic step: a crash before it resumes the room, after it does not)
+// and removed.
 #pragma once
 
 #include <condition_variable>
@@ -39,6 +43,8 @@
 
 namespace fts::host {
 
+inline constexpr int kJournalFormat = 1;  // "fts_journal" in a segment's header
+
 struct JournalSession {
   std::uint32_t player = 0;
   std::string name;
@@ -49,7 +55,9 @@ struct JournalSession {
 
 struct JournalConfig {
   std::filesystem::path dir;  // this room's directory (made if missing)
-  std::string room = "main";
+  std::string room = "main";  // the room's code
+  std::uint32_t room_id = 0;  // the host's id of the room (0: none)
+  bool is_private = false;    // made with "create" (not offered to quick play)
   std::string version;
   std::uint64_t seed = 0;
   std::uint32_t sync_ms = 100;                  // fdatasync at most this often
@@ -68,6 +76,7 @@ struct JournalStats {
   std::uint64_t dropped = 0;           // records dropped for a full queue
   std::int64_t durable_tick = -1;      // the newest tick whose records are durable
   std::string error;                   // the first I/O error; the journal stopped there
+  bool finished = false;               // finish(): the room's directory is removed
 };
 
 // The writer. The tick thread calls inputs() before step() and stepped() after it;
@@ -90,6 +99,11 @@ class JournalWriter {
   void stepped(const sim::MatchState& state, std::uint32_t event_seq);
   // Blocks until everything queued so far is written and synced (tests, shutdown).
   void flush();
+  // The room closed: nothing more is journaled; the writer thread writes what is queued,
+  // then removes the room's directory (rename to <dir>.closed, then delete) and stops.
+  // Returns at once; stopped() says when it is done (the destructor waits for it).
+  void finish();
+  bool stopped() const;
   JournalStats stats() const;
 
  private:
@@ -124,6 +138,7 @@ class JournalWriter {
   std::int64_t write_batch(std::deque<Record>& batch);  // the newest tick written
   bool open_segment();
   void remove_old_segments();
+  void remove_journal();
   void fail(const std::string& what);
 
   JournalConfig cfg_;
@@ -139,6 +154,8 @@ class JournalWriter {
   std::deque<Record> queue_;
   bool stop_ = false;
   bool flush_requested_ = false;
+  bool finish_ = false;   // finish() was called
+  bool exited_ = false;   // the writer thread is done (or never ran)
   bool writer_idle_ = false;      // the writer waits for a first record (push wakes it)  // flush() waits: sync without waiting for sync_ms
   std::uint64_t pushed_ = 0;    // records queued so far
   std::uint64_t synced_ = 0;    // records durable so far
@@ -150,7 +167,7 @@ class JournalWriter {
   std::thread thread_;
 };
 
-// ----- reading -----------------------------------------------------------------------
+// ----- reading (host/journal_read.cpp) -----------------------------------------------------------------------
 
 // The file name of segment n ("journal-000001.jsonl") and the segments in a room's
 // directory, oldest first.
@@ -158,7 +175,9 @@ std::string segment_name(std::uint64_t n);
 std::vector<std::pair<std::uint64_t, std::filesystem::path>> list_segments(const std::filesystem::path& dir);
 
 struct ResumedRoom {
-  std::string room;
+  std::string room;  // the room's code
+  std::uint32_t room_id = 0;
+  bool is_private = false;
   std::string version;
   std::uint64_t seed = 0;
   sim::MatchConfig config;

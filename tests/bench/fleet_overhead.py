@@ -4,29 +4,18 @@ with 4 hunter bots; prints both servers' tick p50/p99 from their last stats reco
 the ratio, and each process's CPU time (the fleet's per-tick work runs right after the
 measured tick, and its HTTP and exposer threads beside it). Figures, never pass/fail.
   FTS_BIN_DIR=build python3 tests/bench/fleet_overhead.py [SECONDS]"""
-import json, os, socket, subprocess, sys, time
+import os, socket, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
 from harness import Server, finish_bots, start_bots, wait_for  # noqa: E402
 from agones_sidecar import Sidecar  # noqa: E402
+from bench_procs import cpu_s, last_stats  # noqa: E402
 
 
 def free_tcp_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
-
-
-def cpu_s(srv):
-    """User + system CPU time of the server process so far (all its threads), seconds."""
-    with open(f"/proc/{srv.proc.pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def last_stats(srv):
-    recs = [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
-    return recs[-1]
 
 
 seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 20

@@ -1,50 +1,50 @@
 #!/usr/bin/env python3
-"""Crash-safe rooms (issue 15), with real processes: bots play, the server is killed
-with SIGKILL at a random moment and restarted with --resume on the same port; every bot
-reconnects with its token and finds its player; each bot's coins equal its ledger (what
-its enemies and interest earned minus what it spent, counting the crashed server's
-events only up to the resumed tick); the resumed state's hash equals a straight replay
-of the journal (as a --record) up to that tick; the play lost is about the sync interval."""
-import json, os, random, re, shutil, signal, subprocess, sys, tempfile, time
+"""Crash-safe rooms (issue 15), with real processes: 4 rooms x 4 bots play, the server
+is killed with SIGKILL at a random moment and restarted with --resume on the same port;
+every room comes back under its code (each journal in DIR/<code>/), every bot reconnects
+with its token into its room and finds its player; each bot's coins equal its ledger
+(what its enemies and interest earned minus what it spent, counting the crashed server's
+events only up to its room's resumed tick); each resumed room's hash equals a straight
+replay of its journal (as a --record) up to that tick; the play lost is about the sync
+interval (measured from the console's tick just before the kill)."""
+import json, os, random, re, shutil, signal, socket, subprocess, sys, tempfile, time
 
 from harness import SERVER, HERE, Failure, Server, check, finish_bots, main, start_bots, wait_for
 
 MANY_LIVES = os.path.join(HERE, "many-lives.json")
 SYNC_MS = 100
 TICK_HZ = 100
-BOTS = 4
+ROOMS = 4
+BOTS = 4  # per room
+GROUPS = ["ann", "bob", "cat", "dan"][:ROOMS]
 
 
-def ledger(text, upto_tick=None):
+def ledger(text, upto=None):
     """Per player: coins earned (defeats, interest) and spent, from a server log; only
-    events of ticks <= upto_tick when given (the crashed server's events past the resumed
-    tick never happened for the resumed match)."""
+    events of ticks <= upto[room] when given (the crashed server's events past a room's
+    resumed tick never happened for the resumed match), and only until the player's bot
+    said goodbye (its report is written then; its last push may still earn later)."""
     earned, spent = {}, {}
-
-    def keep(m):
-        return upto_tick is None or int(m.group("tick")) <= upto_tick
-
-    for m in re.finditer(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+)(?: room=\d+)? tick=(?P<tick>\d+)", text):
-        if keep(m):
-            earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
-    for m in re.finditer(r"interest player=(?P<p>\d+) coins=(?P<c>\d+)(?: room=\d+)? tick=(?P<tick>\d+)", text):
-        if keep(m):
-            earned[m["p"]] = earned.get(m["p"], 0) + int(m["c"])
-    for m in re.finditer(r"purchase player=(?P<p>\d+) item=\w+ ok=true reason=\w* price=(?P<c>\d+) coins=\d+ "
-                         r"(?:room=\d+ )?tick=(?P<tick>\d+)", text):
-        if keep(m):
-            spent[m["p"]] = spent.get(m["p"], 0) + int(m["c"])
+    gone = set()
+    room_tick = r" room=(?P<room>\d+) tick=(?P<tick>\d+)"
+    patterns = [(earned, re.compile(r"enemy_defeated enemy=\d+ player=(?P<p>\d+) coins=(?P<c>\d+)" + room_tick)),
+                (earned, re.compile(r"interest player=(?P<p>\d+) coins=(?P<c>\d+)" + room_tick)),
+                (spent, re.compile(r"purchase player=(?P<p>\d+) item=\w+ ok=true reason=\w* price=(?P<c>\d+) "
+                                   r"coins=\d+" + room_tick))]
+    for line in text.splitlines():
+        bye = re.search(r"disconnect player=(\d+) reason=done", line)
+        if bye:
+            gone.add(bye.group(1))
+        for book, pattern in patterns:
+            m = pattern.search(line)
+            if m and m["p"] not in gone and (upto is None or int(m["tick"]) <= upto.get(m["room"], -1)):
+                book[m["p"]] = book.get(m["p"], 0) + int(m["c"])
     return earned, spent
 
 
 def add(total, part):
     for k, v in part.items():
         total[k] = total.get(k, 0) + v
-
-
-def max_event_tick(text):
-    ticks = [int(t) for t in re.findall(r"(?:enemy_defeated|interest|purchase) .*tick=(\d+)", text)]
-    return max(ticks) if ticks else 0
 
 
 def journal_as_record(segment_path, upto_tick, final_hash):
@@ -73,99 +73,154 @@ def journal_as_record(segment_path, upto_tick, final_hash):
     return path
 
 
-def server_args(journal, checkpoint_s):
+def rooms_now(sock):
+    """The console's rooms (JSON lines on its UNIX socket, spoken here directly: the kill
+    follows the answer within a millisecond, so its ticks bound the ticks at the kill)."""
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as c:
+        c.settimeout(10)
+        c.connect(sock)
+        c.sendall(b'{"cmd":"rooms"}\n')
+        data = b""
+        while not data.endswith(b"\n"):
+            chunk = c.recv(65536)
+            check(chunk, "the console closed without an answer")
+            data += chunk
+    reply = json.loads(data)
+    check(reply.get("ok"), f"console rooms: {reply}")
+    return reply["rooms"]
+
+
+def server_args(journal, checkpoint_s, sock):
     return ["--config", MANY_LIVES, "--log-level", "debug", "--timeout-ms", "2000", "--journal-dir", journal,
-            "--journal-sync-ms", str(SYNC_MS), "--journal-checkpoint-s", str(checkpoint_s)]
+            "--journal-sync-ms", str(SYNC_MS), "--journal-checkpoint-s", str(checkpoint_s), "--console-socket", sock]
 
 
-def resumed_line(srv):
-    return wait_for(lambda: re.search(r"resumed room=main tick=(\d+) level=(\d+) .*sessions=(\d+) event_seq=\d+ "
-                                      r"hash=([0-9a-f]{16}) ms=([0-9.]+)", srv.text()), 30, "the resumed line")
+RESUMED = (r"resumed room=(?P<id>\d+) code=(?P<code>[A-Z]{5}) tick=(?P<tick>\d+) level=\d+ .*sessions=(?P<sessions>\d+) "
+           r"event_seq=\d+ hash=(?P<hash>[0-9a-f]{16}) ms=[0-9.]+")
 
 
-def play_and_crash(kills, seed, checkpoint_s, replay_check):
+def resume_done(srv):
+    return wait_for(lambda: re.search(r"resume_done rooms=(\d+) resumed=(\d+) skipped=(\d+) sessions=(\d+) "
+                                      r"threads=\d+ ms=([0-9.]+) cpu_ms", srv.text()), 30, "the resume_done line")
+
+
+def damage_journals(journal, code):
+    """Tears the last line of room `code`'s newest segment and adds a room directory with
+    nothing usable in it: the resume must go on with both reported."""
+    room = os.path.join(journal, code)
+    newest = os.path.join(room, sorted(f for f in os.listdir(room) if f.startswith("journal-"))[-1])
+    os.truncate(newest, os.path.getsize(newest) - 3)
+    os.makedirs(os.path.join(journal, "ZZZZZ"))
+    with open(os.path.join(journal, "ZZZZZ", "journal-000001.jsonl"), "w") as f:
+        f.write('{"fts_journal":1\n')
+
+
+def play_and_crash(kills, seed, checkpoint_s, replay_check, duration, damage=False):
     rng = random.Random(seed)
     journal = tempfile.mkdtemp(prefix="fts-journal-")
-    runs = []  # (server log text, resumed tick of the next run)
+    sock = os.path.join(journal, "console.sock")
+    runs = []  # (server log text, {room id: resumed tick} of the next run)
+    srv = None
     try:
-        srv = Server(*server_args(journal, checkpoint_s))
+        srv = Server(*server_args(journal, checkpoint_s, sock))
         port = srv.port
-        duration = 12 + kills * 14
-        bots = start_bots("--connect", srv.address, "--name", "jr", "--count", str(BOTS), "--behavior", "shopper",
-                          "--duration", str(duration), "--seed", str(seed))
-        wait_for(lambda: len(re.findall(r"\bconnect player=\d+ name=jr", srv.text())) >= BOTS, 20, "the bots")
-        wait_for(lambda: "level_start level=1" in srv.text(), 30, "level 1 to start")
-        first_ids = dict(re.findall(r"\bconnect player=(\d+) name=(jr\d+)", srv.text()))
+        groups = [start_bots("--connect", srv.address, "--name", g, "--count", str(BOTS), "--behavior", "shopper",
+                             "--room", "create", "--duration", str(duration), "--seed", str(seed * 10 + i))
+                  for i, g in enumerate(GROUPS)]
+        wait_for(lambda: len(re.findall(r"\bconnect player=\d+ name=[a-z]+\d", srv.text())) >= ROOMS * BOTS, 20,
+                 "the bots")
+        wait_for(lambda: len(re.findall(r"level_start level=1 room=", srv.text())) >= ROOMS, 30, "level 1 in every room")
+        first_ids = dict(re.findall(r"\bconnect player=(\d+) name=([a-z]+\d)", srv.text()))
+        codes = dict(re.findall(r"room_open room=(\d+) code=([A-Z]{5})", srv.text()))
+        check(len(codes) == ROOMS, f"rooms opened: {codes}")
+        check(sorted(os.listdir(journal)) == sorted([*codes.values(), "console.sock", "lock"]),
+              f"journal directory: {os.listdir(journal)}")
         resumes = []
         for k in range(kills):
             # Something to lose: a bot has earned coins on this server, then a random moment.
             wait_for(lambda: re.search(r"enemy_defeated enemy=\d+ player=[1-9]", srv.text()), 60,
                      "a bot to defeat an enemy")
             time.sleep(rng.uniform(0.5, 4.0))  # the random kill moment (the event under test)
+            live = {str(r["id"]): r["tick"] for r in rooms_now(sock)}
             srv.proc.send_signal(signal.SIGKILL)
             srv.proc.wait()
             before = srv.text()
-            first_segment = os.path.join(journal, "main", "journal-000001.jsonl")
-            saved = None
+            saved = {}
             if replay_check and k == 0:
-                saved = tempfile.mktemp(prefix="fts-journal-seg1-")
-                shutil.copy(first_segment, saved)
+                for rid, code in codes.items():
+                    saved[rid] = tempfile.mktemp(prefix="fts-journal-seg1-")
+                    shutil.copy(os.path.join(journal, code, "journal-000001.jsonl"), saved[rid])
+            torn = codes[min(codes, key=int)] if damage and k == 0 else None
+            if torn:
+                damage_journals(journal, torn)
             srv.log.close()
-            srv = Server(*server_args(journal, checkpoint_s), "--port", str(port), "--resume")
-            m = resumed_line(srv)
-            tick, sessions, state_hash, ms = int(m.group(1)), int(m.group(3)), m.group(4), float(m.group(5))
-            check(sessions == BOTS, f"resumed {sessions} sessions, not {BOTS}")
+            srv = Server(*server_args(journal, checkpoint_s, sock), "--port", str(port), "--resume")
+            done = resume_done(srv)
+            extra = 1 if damage else 0  # the directory with nothing usable stays (reported each time)
+            check(done.groups()[:4] == (str(ROOMS + extra), str(ROOMS), str(extra), str(ROOMS * BOTS)),
+                  f"resume_done: {done.group(0)}")
+            if torn:
+                check(re.search(r"resume_skipped code=ZZZZZ reason=no usable journal segment", srv.text()),
+                      "the room with nothing usable was not reported")
+                check(re.search(rf"resume_damage code={torn} damage=journal-\d+\.jsonl: line \d+: torn", srv.text()),
+                      f"the torn tail of room {torn} was not reported")
+            resumed = {m["id"]: m for m in re.finditer(RESUMED, srv.text())}
+            check({rid: m["code"] for rid, m in resumed.items()} == codes,
+                  f"resumed rooms {[(k, m['code']) for k, m in resumed.items()]}, had {codes}")
+            check(all(int(m["sessions"]) == BOTS for m in resumed.values()), "a room resumed without its 4 sessions")
             check("resume_damage" not in srv.text() or "torn" in srv.text(),
                   f"resume found damage other than a torn tail: {srv.text()}")
-            lost_ticks = max_event_tick(before) - tick
-            resumes.append({"tick": tick, "ms": ms, "lost_ticks_at_least": lost_ticks})
-            check(lost_ticks * 1000 / TICK_HZ <= 5 * SYNC_MS,
-                  f"the crashed server logged events {lost_ticks} ticks after the resumed tick {tick}")
-            runs.append((before, tick))
-            if saved:
-                record = journal_as_record(saved, tick, state_hash)
+            upto = {rid: int(m["tick"]) for rid, m in resumed.items()}
+            lost_ms = {rid: (live[rid] - upto[rid]) * 1000 / TICK_HZ for rid in upto}
+            resumes.append({"ms": float(done.group(5)), "lost_ms_at_least": lost_ms})
+            check(all(ms <= 2 * SYNC_MS for ms in lost_ms.values()),
+                  f"lost more than the sync interval ({SYNC_MS} ms) plus a write: {lost_ms}")
+            runs.append((before, upto))
+            for rid, path in saved.items():
+                record = journal_as_record(path, upto[rid], resumed[rid]["hash"])
                 p = subprocess.run([SERVER, "--replay", record], capture_output=True, text=True, timeout=120)
-                check(p.returncode == 0, f"straight replay of the journal differs from the resumed state: "
-                                         f"{p.stderr.strip()}")
-                out = json.loads(p.stdout)
-                check(out["ticks"] == tick, f"replayed to tick {out['ticks']}, resumed at {tick}")
+                check(p.returncode == 0, f"room {rid}: straight replay of the journal differs from the resumed "
+                                         f"state: {p.stderr.strip()}")
+                check(json.loads(p.stdout)["ticks"] == upto[rid], f"room {rid}: replayed to another tick")
                 os.unlink(record)
-                os.unlink(saved)
-            wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=jr", srv.text())) >= BOTS, 40,
+                os.unlink(path)
+            wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=[a-z]+\d", srv.text())) >= ROOMS * BOTS, 40,
                      "every bot to reconnect with its token")
-            check(not re.search(r"\bconnect player=\d+ name=jr", srv.text().replace("reconnect", "")),
+            check(not re.search(r"\bconnect player=\d+ name=", srv.text().replace("reconnect", "")),
                   "a bot came back as a new player")
-        rc, report, err = finish_bots(bots, duration + 90)
+        reports = [finish_bots(g, duration + 90) for g in groups]
         check(srv.stop() == 0, "the resumed server did not exit 0 on SIGINT")
         runs.append((srv.text(), None))
-        check(rc == 0, f"bots failed (exit {rc}): {err.strip()}")
         earned, spent = {}, {}
         for text, upto in runs:
             e, s = ledger(text, upto)
             add(earned, e)
             add(spent, s)
-        check(len(report) == BOTS, f"{len(report)} bot reports")
-        for b in report:
-            pid = str(b["player_id"])
-            check(first_ids.get(pid) == b["name"], f"{b['name']} ended as player {pid}, started as another")
-            expected = earned.get(pid, 0) - spent.get(pid, 0)
-            check(b["coins"] == expected, f"{b['name']} (player {pid}): {b['coins']} coins, the ledger says "
-                                          f"{expected} (earned {earned.get(pid, 0)}, spent {spent.get(pid, 0)})")
+        for rc, report, err in reports:
+            check(rc == 0, f"bots failed (exit {rc}): {err.strip()}")
+            check(len(report) == BOTS, f"{len(report)} bot reports")
+            check(len({b["room"] for b in report}) == 1, f"a group split over rooms: {[b['room'] for b in report]}")
+            for b in report:
+                pid = str(b["player_id"])
+                check(first_ids.get(pid) == b["name"], f"{b['name']} ended as player {pid}, started as another")
+                expected = earned.get(pid, 0) - spent.get(pid, 0)
+                check(b["coins"] == expected, f"{b['name']} (player {pid}): {b['coins']} coins, the ledger says "
+                                              f"{expected} (earned {earned.get(pid, 0)}, spent {spent.get(pid, 0)})")
         check(sum(earned.values()) > 0, "nobody earned anything: the test proved nothing")
-        print(f"journal: {kills} kills, resumes {resumes}, earned {earned}, spent {spent}")
+        print(f"journal: {kills} kills, resumes {resumes}, earned {sum(earned.values())}, "
+              f"spent {sum(spent.values())}")
     finally:
-        try:
-            if srv.proc.poll() is None:
-                srv.proc.kill()
-                srv.proc.wait()
-        except NameError:
-            pass
+        if srv and srv.proc.poll() is None:
+            srv.proc.kill()
+            srv.proc.wait()
         shutil.rmtree(journal, ignore_errors=True)
 
 
 def test_kill_resume():
-    """One kill at a random moment; the resumed state checked against a straight replay."""
-    play_and_crash(kills=1, seed=int(os.environ.get("FTS_JOURNAL_SEED", "1")), checkpoint_s=3600, replay_check=True)
+    """4 rooms x 4 bots, one kill at a random moment; each room checked against a straight
+    replay; one room's journal torn at its tail and a fifth room with nothing usable."""
+    play_and_crash(kills=1, seed=int(os.environ.get("FTS_JOURNAL_SEED", "1")), checkpoint_s=3600, replay_check=True,
+                   duration=16, damage=True)
 
 
 def test_soak_kill_resume():
@@ -175,7 +230,8 @@ def test_soak_kill_resume():
     for rep in range(5):
         print(f"round {rep + 1}: seed {base + rep}", flush=True)
         even = rep % 2 == 0
-        play_and_crash(kills=1 if even else 2, seed=base + rep, checkpoint_s=3600 if even else 3, replay_check=even)
+        play_and_crash(kills=1 if even else 2, seed=base + rep, checkpoint_s=3600 if even else 3, replay_check=even,
+                       duration=20 if even else 36)
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <thread>
+#include <chrono>
 
 #include "host/journal.hpp"
 #include "host/match_state_json.hpp"
@@ -304,4 +306,24 @@ TEST_CASE("Journal: a second writer on the same room directory is refused", "[jo
   second.flush();  // returns at once
   first.flush();
   CHECK(host::list_segments(d.path).size() == 1);
+}
+
+TEST_CASE("Journal: finish writes what is queued, then removes the room's directory", "[journal]") {
+  TempDir d;
+  Played p;
+  const fs::path room = d.path / "ABCDE";
+  host::JournalWriter w(config_in(room, 1000), p.cfg, p.state, 0, {});
+  p.play(w, 50);
+  w.flush();
+  REQUIRE(host::list_segments(room).size() == 1);
+  w.finish();
+  w.inputs(p.state.tick, inputs_at(p.state.tick));  // after finish: nothing is queued
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!w.stopped() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  REQUIRE(w.stopped());
+  CHECK(w.stats().finished);
+  CHECK(w.stats().error.empty());
+  CHECK_FALSE(fs::exists(room));
+  CHECK_FALSE(fs::exists(d.path / "ABCDE.closed"));
 }

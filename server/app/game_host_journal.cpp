@@ -1,0 +1,81 @@
+// GameHost's part of the crash-safe journal (issue 15): one journal per room, in the
+// directory named after the room's code; rooms rebuilt from their journals.
+#include <filesystem>
+
+#include "app/game_host.hpp"
+#include "app/room_codes.hpp"
+#include "app/snapshot_build.hpp"
+
+namespace fts::server {
+
+std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutput& out) {
+  std::vector<protocol::Event> wire;
+  append_wire_events(tick + 1, out.events, wire);
+  return static_cast<std::uint32_t>(wire.size());
+}
+
+void GameHost::journal_rooms(host::JournalConfig base) {
+  journal_base_ = std::move(base);
+  for (auto& [id, r] : rooms_)
+    if (!r->journal()) start_journal(*r);
+}
+
+bool GameHost::journal_exists(const std::string& code) const {
+  std::error_code ec;
+  return journal_base_ && std::filesystem::exists(journal_base_->dir / code, ec);
+}
+
+void GameHost::start_journal(Room& r) {
+  if (!journal_base_) return;
+  host::JournalConfig c = *journal_base_;
+  c.dir = journal_base_->dir / r.code();
+  c.room = r.code();
+  c.room_id = r.id();
+  c.is_private = r.is_private();
+  c.seed = r.seed();
+  r.journal_to(std::move(c), endpoint_);
+  // The room plays on without a journal (a full disk must not stop the matches); said once.
+  if (const auto err = r.journal()->stats().error; !err.empty())
+    log_record(spdlog::level::err, "journal_failed", {{"room", r.id()}, {"code", r.code()}, {"error", err}});
+}
+
+void GameHost::finish_journal(Room& r) {
+  if (auto j = r.finish_journal()) closing_journals_.push_back(std::move(j));
+}
+
+bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_ms) {
+  auto refused = [&](const std::string& why) {
+    log_record(spdlog::level::err, "resume_refused", {{"code", resumed.room}, {"reason", why}});
+    return false;
+  };
+  const auto code = normalize_room_code(resumed.room);
+  if (!code || *code != resumed.room) return refused("not a room code");
+  if (room_by_code(*code)) return refused("a room with this code is open already");
+  if (rooms_.size() >= options_.max_rooms) return refused("the server has --max-rooms rooms already");
+  const std::uint32_t id = resumed.room_id != 0 && !rooms_.count(resumed.room_id) ? resumed.room_id : next_room_id_;
+  next_room_id_ = std::max(next_room_id_, id + 1);
+  Room* r = open_room(id, *code, resumed.is_private, resumed.seed, resumed.config);
+  r->resume_from(resumed);
+  endpoint_.set_server_tick(id, static_cast<std::uint32_t>(resumed.state.tick));
+  for (const auto& s : resumed.sessions) {
+    // Each comes back as "disconnected" in the next tick's events: the match marks it away.
+    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms, id, *code))
+      members_[s.player] = {id, false};
+    else
+      log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}, {"room", id}});
+  }
+  start_journal(*r);  // a new segment after the old ones, with the sessions restored
+  return true;
+}
+
+const host::JournalWriter* GameHost::journal(std::uint32_t room_id) const {
+  auto it = rooms_.find(room_id);
+  return it == rooms_.end() ? nullptr : it->second->journal();
+}
+
+host::JournalWriter* GameHost::journal(std::uint32_t room_id) {
+  auto it = rooms_.find(room_id);
+  return it == rooms_.end() ? nullptr : it->second->journal();
+}
+
+}  // namespace fts::server
