@@ -55,13 +55,51 @@ struct Text {
   std::size_t min, max;
   template <class W>
   void put(W& w, const std::string& v) const { w.str(v); }
-  void get(MsgpackReader& r, std::string& v) const {
+  void get(MsgpackReader& r, std::string& v) const { v.assign(view(r)); }
+  // The text in the reader's bytes, checked ("" after a failure).
+  std::string_view view(MsgpackReader& r) const {
     const std::string_view s = r.str(max);
-    if (r.failed()) return;
-    if (s.size() < min) return r.fail(Reject::out_of_range);
+    if (r.failed()) return {};
+    if (s.size() < min) return r.fail(Reject::out_of_range), std::string_view{};
     for (unsigned char c : s)
-      if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range);
+      if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range), std::string_view{};
+    return s;
+  }
+};
+
+// Any string of at most max bytes (the hello's name: the server answers a bad one with
+// an error that says what is wrong, instead of a silent drop).
+struct AnyText {
+  std::size_t max;
+  template <class W>
+  void put(W& w, const std::string& v) const { w.str(v); }
+  void get(MsgpackReader& r, std::string& v) const { v.assign(r.str(max)); }
+};
+
+// "" or exactly `digits` lower-case hex digits ("" refused when `required`).
+struct Hex {
+  std::size_t digits;
+  bool required = false;
+  template <class W>
+  void put(W& w, const std::string& v) const { w.str(v); }
+  void get(MsgpackReader& r, std::string& v) const {
+    const std::string_view s = r.str(kMaxTextBytes);
+    if (r.failed()) return;
+    if (s.empty() ? required : s.size() != digits) return r.fail(Reject::out_of_range);
+    for (char c : s)
+      if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return r.fail(Reject::out_of_range);
     v.assign(s);
+  }
+};
+
+// A one-character key carried as text (a shop item): text of another length reads as 0,
+// so that the receiver answers it (PROTOCOL.md 4.6) instead of dropping the datagram.
+struct Key {
+  template <class W>
+  void put(W& w, char v) const { w.str(std::string_view(&v, 1)); }
+  void get(MsgpackReader& r, char& v) const {
+    const std::string_view s = Text{0, kMaxTextBytes}.view(r);
+    v = s.size() == 1 ? s[0] : char{0};
   }
 };
 
@@ -76,6 +114,22 @@ struct Named {
     for (std::size_t i = 0; i < N; ++i)
       if (s == names[i]) return void(v = static_cast<E>(i));
     if (!r.failed()) r.fail(Reject::out_of_range);
+  }
+};
+
+// An enum carried by name, where a name this side does not know reads as `other`
+// (a command the server answers with "op" instead of dropping it).
+template <class E, std::size_t N>
+struct OpenNamed {
+  std::array<const char*, N> names;
+  E other;
+  template <class W>
+  void put(W& w, E v) const { w.str(names[static_cast<std::size_t>(v) % N]); }
+  void get(MsgpackReader& r, E& v) const {
+    const std::string_view s = Text{0, kMaxTextBytes}.view(r);
+    v = other;
+    for (std::size_t i = 0; i < N; ++i)
+      if (s == names[i]) v = static_cast<E>(i);
   }
 };
 
@@ -126,6 +180,21 @@ struct Field {
   T M::*member;
   K kind;
   Presence presence = Presence::required;
+  const T& of(const M& m) const { return m.*member; }
+  T& of(M& m) const { return m.*member; }
+};
+
+// A field of a struct inside the message, written at the message's level (the welcome's
+// shop terms): the same key space, one more member step.
+template <class M, class S, class T, class K>
+struct SubField {
+  std::string_view key;
+  S M::*outer;
+  T S::*member;
+  K kind;
+  Presence presence = Presence::required;
+  const T& of(const M& m) const { return (m.*outer).*member; }
+  T& of(M& m) const { return (m.*outer).*member; }
 };
 
 template <class T>
@@ -133,27 +202,28 @@ struct is_optional : std::false_type {};
 template <class T>
 struct is_optional<std::optional<T>> : std::true_type {};
 
-template <class M, class T, class K>
-bool present(const Field<M, T, K>& f, const M& m) {
-  const T& v = m.*f.member;
+template <class M, class F>
+bool present(const F& f, const M& m) {
+  using T = std::decay_t<decltype(f.of(m))>;
+  const T& v = f.of(m);
   if constexpr (requires { f.kind.present(v); }) return f.kind.present(v);
   else if constexpr (is_optional<T>::value) return v.has_value();
   else if (f.presence == Presence::nonzero) return !(v == T{});
   else return true;
 }
 
-template <class W, class M, class T, class K>
-void put_field(W& w, const Field<M, T, K>& f, const M& m) {
+template <class W, class M, class F>
+void put_field(W& w, const F& f, const M& m) {
   if (!present(f, m)) return;
   w.key(f.key);
-  if constexpr (is_optional<T>::value) f.kind.put(w, *(m.*f.member));
-  else f.kind.put(w, m.*f.member);
+  if constexpr (is_optional<std::decay_t<decltype(f.of(m))>>::value) f.kind.put(w, *f.of(m));
+  else f.kind.put(w, f.of(m));
 }
 
-template <class M, class T, class K>
-void get_field(MsgpackReader& r, const Field<M, T, K>& f, M& m) {
-  if constexpr (is_optional<T>::value) f.kind.get(r, (m.*f.member).emplace());
-  else f.kind.get(r, m.*f.member);
+template <class M, class F>
+void get_field(MsgpackReader& r, const F& f, M& m) {
+  if constexpr (is_optional<std::decay_t<decltype(f.of(m))>>::value) f.kind.get(r, f.of(m).emplace());
+  else f.kind.get(r, f.of(m));
 }
 
 // ---- maps: a message or a record with named fields ---------------------------------
@@ -206,14 +276,14 @@ template <class W, class M, class... F>
 void write_row(W& w, const M& m, const std::tuple<F...>& table, std::size_t arity = sizeof...(F)) {
   w.array(arity);
   std::size_t index = 0;
-  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.put(w, m.*f.member) : void()), ...); }, table);
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.put(w, f.of(m)) : void()), ...); }, table);
 }
 
 // Reads a positional array of the first `arity` fields of the table.
 template <class M, class... F>
 void read_row(MsgpackReader& r, M& m, const std::tuple<F...>& table, std::size_t arity) {
   std::size_t index = 0;
-  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.get(r, m.*f.member) : void()), ...); }, table);
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.get(r, f.of(m)) : void()), ...); }, table);
 }
 
 // ---- synced fields: a state struct S and its delta entry E ---------------------------

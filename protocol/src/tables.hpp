@@ -274,6 +274,5 @@ inline void check(MsgpackReader& r, const SnapshotMsg& m) {
     for (const auto& b : m.balls)
       if (!b.full) return r.fail(Reject::out_of_range);  // a full snapshot needs full entries
 }
-inline void check(MsgpackReader&, const Input&) {}
 
 }  // namespace fts::protocol::wire

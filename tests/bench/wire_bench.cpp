@@ -1,6 +1,7 @@
 // fts-wire-bench: encode and decode of snapshot messages (full and delta; 1 player and
-// 1 enemy, 8 players and 48 enemies) in both encodings, the field-table codec against
-// the old nlohmann-tree codec in the same run, plus the server's per-client snapshot path.
+// 1 enemy, 8 players and 48 enemies) in both encodings with the field-table codec, plus
+// the server's per-client snapshot path. (The old nlohmann-tree codec it replaced was
+// timed against it in one run before it was removed: BENCHMARKS.md.)
 // Reports ns (Google Benchmark) and bytes (counter "bytes"); never pass/fail.
 //
 //   build/tests/bench/fts-wire-bench --benchmark_min_time=0.2
@@ -36,7 +37,7 @@ void register_codec(const Scene& scene, bool delta, Encoding enc) {
   const std::string tag = std::string(scene.name) + "/" + (delta ? "delta" : "full") + "/" + enc_name(enc);
   const std::vector<Message> messages{message_of(scene, delta)};
 
-  benchmark::RegisterBenchmark(("encode/new/" + tag).c_str(), [messages, enc](benchmark::State& st) {
+  benchmark::RegisterBenchmark(("encode/" + tag).c_str(), [messages, enc](benchmark::State& st) {
     std::vector<std::uint8_t> out;
     for (auto _ : st) {
       out.clear();
@@ -45,17 +46,8 @@ void register_codec(const Scene& scene, bool delta, Encoding enc) {
     }
     st.counters["bytes"] = static_cast<double>(out.size());
   });
-  benchmark::RegisterBenchmark(("encode/old/" + tag).c_str(), [messages, enc](benchmark::State& st) {
-    std::size_t bytes = 0;
-    for (auto _ : st) {
-      auto out = legacy::encode_payload(enc, messages);
-      bytes = out.size();
-      benchmark::DoNotOptimize(out.data());
-    }
-    st.counters["bytes"] = static_cast<double>(bytes);
-  });
   const auto bytes = encode_payload(enc, messages);
-  benchmark::RegisterBenchmark(("decode/new/" + tag).c_str(), [bytes, enc](benchmark::State& st) {
+  benchmark::RegisterBenchmark(("decode/" + tag).c_str(), [bytes, enc](benchmark::State& st) {
     for (auto _ : st) {
       auto d = decode_payload(enc, bytes);
       if (!d.ok()) st.SkipWithError("decode failed");
@@ -63,23 +55,13 @@ void register_codec(const Scene& scene, bool delta, Encoding enc) {
     }
     st.counters["bytes"] = static_cast<double>(bytes.size());
   });
-  // The old codec decodes its own bytes (the old format: motion entries as rows).
-  const auto old_bytes = legacy::encode_payload(enc, messages);
-  benchmark::RegisterBenchmark(("decode/old/" + tag).c_str(), [old_bytes, enc](benchmark::State& st) {
-    for (auto _ : st) {
-      auto d = legacy::decode_payload(enc, old_bytes);
-      if (!d.ok()) st.SkipWithError("decode failed");
-      benchmark::DoNotOptimize(d);
-    }
-    st.counters["bytes"] = static_cast<double>(old_bytes.size());
-  });
 }
 
 // What the server does per client and snapshot: the delta against the acknowledged base
 // (built from a snapshot quantized once per tick), split, and encoded into a datagram.
 void register_sender(const Scene& scene, Encoding enc) {
   const std::string tag = std::string(scene.name) + "/" + enc_name(enc);
-  benchmark::RegisterBenchmark(("per_client_delta/shared/" + tag).c_str(), [scene, enc](benchmark::State& st) {
+  benchmark::RegisterBenchmark(("per_client_delta/" + tag).c_str(), [scene, enc](benchmark::State& st) {
     const Snapshot s0 = test::sample_snapshot(scene.players, scene.enemies);
     const auto q0 = std::make_shared<const Snapshot>(quantize(s0));
     const auto q1 = std::make_shared<const Snapshot>(quantize(test::advance(s0, 5, 0.05)));
@@ -99,20 +81,6 @@ void register_sender(const Scene& scene, Encoding enc) {
       benchmark::DoNotOptimize(out.data());
     }
     st.counters["bytes"] = static_cast<double>(out.size());
-  });
-  benchmark::RegisterBenchmark(("per_client_delta/copy+legacy/" + tag).c_str(), [scene, enc](benchmark::State& st) {
-    const Snapshot s0 = test::sample_snapshot(scene.players, scene.enemies);
-    const Snapshot s1 = test::advance(s0, 5, 0.05);
-    SnapshotSender tx;
-    (void)tx.encode(s0, enc);
-    tx.on_ack(s0.tick);
-    std::size_t bytes = 0;
-    for (auto _ : st) {
-      auto parts = tx.encode(s1, enc);  // quantizes its own copy, as every client did
-      for (const auto& p : parts) bytes = legacy::encode_payload(enc, {p}).size();
-      benchmark::DoNotOptimize(bytes);
-    }
-    st.counters["bytes"] = static_cast<double>(bytes + kHeaderBytes);
   });
 }
 

@@ -43,11 +43,4 @@ Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const 
 // JSON text of a message list, for logs and docs.
 std::string to_json_text(const std::vector<Message>& messages);
 
-// The codec before the field tables (every message through an nlohmann tree), kept only
-// so that tests/bench can time old against new in one run.
-namespace legacy {
-std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);
-Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload);
-}  // namespace legacy
-
 }  // namespace fts::protocol
