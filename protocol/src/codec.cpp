@@ -10,12 +10,14 @@ namespace fts::protocol {
 
 namespace {
 
+template <class W, class M>
+void write_one(W& w, const M& msg) {
+  wire::write_map(w, wire::Spec<M>::type.data(), msg, wire::Spec<M>::fields());
+}
+
 template <class W>
 void write_message(W& w, const Message& m) {
-  std::visit([&w](const auto& msg) {
-    using M = std::decay_t<decltype(msg)>;
-    wire::write_map(w, wire::Spec<M>::type.data(), msg, wire::Spec<M>::fields());
-  }, m);
+  std::visit([&w](const auto& msg) { write_one(w, msg); }, m);
 }
 
 template <class W>
@@ -111,25 +113,53 @@ std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Me
   return out;
 }
 
-void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out) {
+namespace {
+// `write(w)` with the writer of the encoding, appended to `out` / counted.
+template <class Write>
+void append_encoded(Encoding encoding, std::vector<std::uint8_t>& out, Write write) {
   if (encoding == Encoding::msgpack) {
     wire::MsgpackWriter w(out);
-    write_messages(w, messages);
-    return;
+    return write(w);
   }
   std::string text;
   wire::JsonWriter w(text);
-  write_messages(w, messages);
+  write(w);
   out.insert(out.end(), text.begin(), text.end());
+}
+template <class Write>
+std::size_t count_encoded(Encoding encoding, Write write) {
+  if (encoding == Encoding::msgpack) {
+    wire::MsgpackCounter c;
+    write(c);
+    return c.bytes;
+  }
+  std::string text;
+  wire::JsonWriter w(text);
+  write(w);
+  return text.size();
+}
+}  // namespace
+
+void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out) {
+  append_encoded(encoding, out, [&](auto& w) { write_messages(w, messages); });
 }
 
 std::size_t payload_bytes(Encoding encoding, const std::vector<Message>& messages) {
-  if (encoding == Encoding::msgpack) {
-    wire::MsgpackCounter c;
-    write_messages(c, messages);
-    return c.bytes;
-  }
-  return to_json_text(messages).size();
+  return count_encoded(encoding, [&](auto& w) { write_messages(w, messages); });
+}
+
+void append_snapshot_payload(Encoding encoding, const SnapshotMsg& part, std::vector<std::uint8_t>& out) {
+  append_encoded(encoding, out, [&](auto& w) {
+    w.array(1);
+    write_one(w, part);
+  });
+}
+
+std::size_t snapshot_payload_bytes(Encoding encoding, const SnapshotMsg& part) {
+  return count_encoded(encoding, [&](auto& w) {
+    w.array(1);
+    write_one(w, part);
+  });
 }
 
 const char* message_type(const Message& message) {

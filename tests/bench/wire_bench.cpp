@@ -7,7 +7,10 @@
 //   build/tests/bench/fts-wire-bench --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <atomic>
+#include <cstdlib>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "../unit/protocol/samples.hpp"
@@ -16,7 +19,29 @@
 
 using namespace fts::protocol;
 
+// Every allocation of the process is counted, so that a benchmark can report how many
+// its loop makes per iteration (counter "allocs"; the goal for the per-client snapshot
+// path is 0 in the steady state).
 namespace {
+std::atomic<std::uint64_t> g_allocations{0};
+}  // namespace
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+// Allocations per iteration of a benchmark's loop.
+struct AllocCount {
+  std::uint64_t start = g_allocations.load();
+  void report(benchmark::State& st) const {
+    st.counters["allocs"] = static_cast<double>(g_allocations.load() - start) / static_cast<double>(st.iterations());
+  }
+};
 
 struct Scene {
   const char* name;
@@ -39,20 +64,25 @@ void register_codec(const Scene& scene, bool delta, Encoding enc) {
 
   benchmark::RegisterBenchmark(("encode/" + tag).c_str(), [messages, enc](benchmark::State& st) {
     std::vector<std::uint8_t> out;
+    append_payload(enc, messages, out);
+    const AllocCount allocs;
     for (auto _ : st) {
       out.clear();
       append_payload(enc, messages, out);
       benchmark::DoNotOptimize(out.data());
     }
+    allocs.report(st);
     st.counters["bytes"] = static_cast<double>(out.size());
   });
   const auto bytes = encode_payload(enc, messages);
   benchmark::RegisterBenchmark(("decode/" + tag).c_str(), [bytes, enc](benchmark::State& st) {
+    const AllocCount allocs;
     for (auto _ : st) {
       auto d = decode_payload(enc, bytes);
       if (!d.ok()) st.SkipWithError("decode failed");
       benchmark::DoNotOptimize(d);
     }
+    allocs.report(st);
     st.counters["bytes"] = static_cast<double>(bytes.size());
   });
 }
@@ -71,15 +101,21 @@ void register_sender(const Scene& scene, Encoding enc) {
     std::vector<std::uint8_t> out;
     Header h;
     h.encoding = enc;
-    for (auto _ : st) {
-      auto parts = tx.encode(q1, enc);  // the same tick again: replaces itself in the history
-      for (const auto& p : parts) {
+    auto step = [&] {
+      // The same tick again: replaces itself in the history.
+      for (const auto& p : tx.encode(q1, enc)) {
         out.clear();
         write_header(h, out);
-        append_payload(enc, {p}, out);
+        append_snapshot_payload(enc, p, out);
       }
+    };
+    step();  // the reused buffers grow to size
+    const AllocCount allocs;
+    for (auto _ : st) {
+      step();
       benchmark::DoNotOptimize(out.data());
     }
+    allocs.report(st);
     st.counters["bytes"] = static_cast<double>(out.size());
   });
 }
