@@ -27,6 +27,8 @@ struct Int {
   template <class W>
   void put(W& w, const T& v) const { w.integer(static_cast<std::int64_t>(v)); }
   void get(MsgpackReader& r, T& v) const { v = static_cast<T>(r.integer(lo, hi)); }
+  // Into the range (what a sender does before writing: quantize()).
+  void clamp(T& v) const { v = static_cast<T>(std::clamp(static_cast<std::int64_t>(v), lo, hi)); }
 };
 
 // A boolean carried as the integer 0 or 1 (input frames).
@@ -40,6 +42,7 @@ struct Bool {
   template <class W>
   void put(W& w, bool v) const { w.boolean(v); }
   void get(MsgpackReader& r, bool& v) const { v = r.boolean(); }
+  void clamp(bool&) const {}
 };
 
 // A number (integer or float on the wire), finite, in lo..hi.
@@ -48,6 +51,7 @@ struct Num {
   template <class W>
   void put(W& w, double v) const { w.number(std::isfinite(v) ? v : 0.0); }
   void get(MsgpackReader& r, double& v) const { v = r.number(lo, hi); }
+  void clamp(double& v) const { v = std::clamp(std::isfinite(v) ? v : 0.0, lo, hi); }
 };
 
 // Printable ASCII text of min..max bytes.
@@ -64,6 +68,13 @@ struct Text {
     for (unsigned char c : s)
       if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range), std::string_view{};
     return s;
+  }
+  // Cut to max, every other byte '?', filled up to min with '?'.
+  void clamp(std::string& v) const {
+    if (v.size() > max) v.resize(max);
+    for (char& c : v)
+      if (c < 0x20 || c > 0x7E) c = '?';
+    if (v.size() < min) v.resize(min, '?');
   }
 };
 
@@ -145,6 +156,9 @@ struct Fixed {
   void get(MsgpackReader& r, std::array<T, N>& v) const {
     if (r.array(kMaxPayloadValues) != N && !r.failed()) return r.fail(Reject::garbage);
     for (auto& x : v) kind.get(r, x);
+  }
+  void clamp(std::array<T, N>& v) const {
+    for (auto& x : v) kind.clamp(x);
   }
 };
 
@@ -315,6 +329,12 @@ template <class S, class E, class... R>
 void apply(const std::tuple<R...>& table, const E& entry, S& state) {
   std::apply([&](const auto&... f) { ((entry.*f.entry ? void(state.*f.state = *(entry.*f.entry)) : void()), ...); },
              table);
+}
+
+// Every field of `state` into its wire range, as the table states it.
+template <class S, class... R>
+void clamp_all(const std::tuple<R...>& table, S& state) {
+  std::apply([&](const auto&... f) { (f.kind.clamp(state.*f.state), ...); }, table);
 }
 
 template <class... R>

@@ -4,21 +4,20 @@
 #include <cmath>
 
 #include "fts/protocol/codec.hpp"
+#include "quanta.hpp"
 #include "tables.hpp"
 
 namespace fts::protocol {
 namespace {
 
-std::int64_t qv(double v) { return static_cast<std::int64_t>(std::llround(v * kQuantaPerUnit)); }
-// qv of a value a client rebuilt from hostile deltas: kept far from int64's limits.
-std::int64_t qv_clamped(double v) {
-  constexpr double kLim = static_cast<double>(std::int64_t{1} << 50);
-  return static_cast<std::int64_t>(std::llround(std::clamp(v * kQuantaPerUnit, -kLim, kLim)));
-}
-double unq(std::int64_t v) { return static_cast<double>(v) / kQuantaPerUnit; }
+using wire::from_quanta;
+using wire::to_quanta;
+// A value the client rebuilt from deltas, in quanta.
+std::int64_t rebuilt(double v) { return to_quanta(v, wire::kMaxRebuiltQuanta); }
 
 BallEntry full_entry(const BallState& b) {
-  return {b.id, true, qv(b.x), qv(b.y), qv(b.vx), qv(b.vy), qv(b.radius), qv(b.mass), b.kind, b.owner};
+  return {b.id, true, to_quanta(b.x), to_quanta(b.y), to_quanta(b.vx), to_quanta(b.vy),
+          to_quanta(b.radius), to_quanta(b.mass), b.kind, b.owner};
 }
 
 template <class T>
@@ -231,18 +230,18 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   for (const auto& part : parts) {
     for (const auto& e : part.balls) {
       if (e.full) {
-        balls[e.id] = BallState{e.id, unq(e.x), unq(e.y), unq(e.vx), unq(e.vy),
-                                unq(e.radius), unq(e.mass), e.kind, e.owner};
+        balls[e.id] = BallState{e.id, from_quanta(e.x), from_quanta(e.y), from_quanta(e.vx), from_quanta(e.vy),
+                                from_quanta(e.radius), from_quanta(e.mass), e.kind, e.owner};
         continue;
       }
       auto it = balls.find(e.id);
       if (it == balls.end()) return Reject::unknown_base;
       BallState& b = it->second;
       const std::uint32_t ticks = first.base ? first.tick - *first.base : 0;  // decoded: always a delta
-      b.x = unq(qv_clamped(b.x) + predicted_step(qv_clamped(b.vx), ticks, first.tick_rate_hz) + e.x);
-      b.y = unq(qv_clamped(b.y) + predicted_step(qv_clamped(b.vy), ticks, first.tick_rate_hz) + e.y);
-      b.vx = unq(qv_clamped(b.vx) + e.vx);
-      b.vy = unq(qv_clamped(b.vy) + e.vy);
+      b.x = from_quanta(rebuilt(b.x) + predicted_step(rebuilt(b.vx), ticks, first.tick_rate_hz) + e.x);
+      b.y = from_quanta(rebuilt(b.y) + predicted_step(rebuilt(b.vy), ticks, first.tick_rate_hz) + e.y);
+      b.vx = from_quanta(rebuilt(b.vx) + e.vx);
+      b.vy = from_quanta(rebuilt(b.vy) + e.vy);
     }
     for (const auto& e : part.players) {
       auto [it, added] = players.try_emplace(e.id);
