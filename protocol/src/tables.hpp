@@ -189,6 +189,7 @@ struct Motions {
     for (std::uint64_t i = 0; i < count && !br.failed(); ++i) {
       std::array<std::int64_t, kStreams> v{};
       for (std::size_t s = 0; s < kStreams; ++s) v[s] = unzigzag(br.golomb(order[s], 50));
+      if (br.failed()) break;  // garbage, below
       BallEntry b;
       b.full = false;
       const std::int64_t id = prev + 1 + v[0];

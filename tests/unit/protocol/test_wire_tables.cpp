@@ -142,3 +142,16 @@ TEST_CASE("Wire tables: mutated MessagePack never decodes into something that re
   }
   CHECK(decoded > 0);  // some mutations (a changed number) still decode
 }
+
+TEST_CASE("Wire tables: a motion bin that ends inside a code is garbage (regression: fuzz, overflow)",
+          "[protocol][wire][reject]") {
+  // Found by .ci/fuzz.sh: "mv" is a 5-byte bin whose last code runs past its end. The
+  // bits that ran out read as 0 - 2^k, and the id sum overflowed (UBSan).
+  static const char kBytes[] =
+      "\x91\x8b\xa1t\xa4snap\xa4tick\x05\xa4" "base\x04\xa2zzd\xa4part\x00\xa5parts\x01\xa5phase\xa4play\xa5level\x01"
+      "\xa5" "balds\x90\xa2mv\xc4\x05\x90has\x05\xa4" "baseers\x90";
+  const std::vector<std::uint8_t> payload(kBytes, kBytes + sizeof(kBytes) - 1);
+  auto d = decode_payload(Encoding::msgpack, payload);
+  REQUIRE_FALSE(d.ok());
+  CHECK(d.error() == Reject::garbage);
+}
