@@ -16,41 +16,10 @@ BOT=${3:?usage: client_players_tmux.sh FTS_SERVER FTS_CLIENT FTS_BOT}
 command -v tmux >/dev/null || { echo "SKIP: tmux not installed"; exit 77; }
 [[ -x "$BOT" ]] || { echo "SKIP: $BOT is not built"; exit 77; }
 
-WORK=$(mktemp -d /tmp/fts-players.XXXXXX)
-SOCK="fts-players-$$"  # a private tmux server: never touches the user's sessions
-tm() { tmux -L "$SOCK" "$@"; }
-SERVER_PID=""
-BOT_PID=""
-cleanup() {
-  tm kill-server 2>/dev/null || true
-  [[ -n "$BOT_PID" ]] && kill "$BOT_PID" 2>/dev/null || true
-  [[ -n "$SERVER_PID" ]] && kill "$SERVER_PID" 2>/dev/null || true
-  wait 2>/dev/null || true
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/tmux_lib.sh"
+tmux_setup players
+PANES=(ann bob replay)
 
-fail() {
-  echo "FAIL: $*" >&2
-  for s in ann bob replay; do
-    echo "--- pane $s ---" >&2
-    tm capture-pane -p -t "$s" >&2 2>/dev/null || true
-  done
-  echo "--- server log (tail) ---" >&2
-  tail -n 20 "$WORK/server.log" >&2 || true
-  exit 1
-}
-
-pane() { tm capture-pane -p -t "$1"; }
-# wait_for PANE SECONDS REGEX
-wait_for() {
-  local deadline=$((SECONDS + $2))
-  while ((SECONDS < deadline)); do
-    if pane "$1" | grep -qE -- "$3"; then return 0; fi
-    sleep 0.1
-  done
-  fail "no '$3' on $1's screen within $2 s"
-}
 # The SGR colour (30-37, 90-97) the pane draws NAME in (the legend's "@ name" or "O name"
 # entry or the label on the field, whichever comes first).
 colour_of() {
@@ -65,17 +34,7 @@ ball_at() {
 cat >"$WORK/config.json" <<'JSON'
 {"shop_timeout_s": 600}
 JSON
-"$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --record "$WORK/match.record" --log-level info \
-  >"$WORK/server.log" 2>&1 &
-SERVER_PID=$!
-PORT=""
-deadline=$((SECONDS + 10))
-while ((SECONDS < deadline)) && [[ -z "$PORT" ]]; do
-  PORT=$(sed -nE 's/.*ready .*port=([0-9]+).*/\1/p; s/.*"event":"ready".*"port":([0-9]+).*/\1/p' "$WORK/server.log" | head -n 1 || true)
-  [[ -z "$PORT" ]] && sleep 0.1
-done
-[[ -n "$PORT" ]] || fail "the server did not log its port"
-echo "server on port $PORT"
+start_server "$SERVER" --config "$WORK/config.json" --record "$WORK/match.record"
 
 for name in ann bob; do
   cmd="TERM=xterm-256color XDG_STATE_HOME='$WORK/state-$name' '$CLIENT' --connect 127.0.0.1:$PORT --name $name --no-kitty --quick; echo CLIENT_EXIT=\$?; sleep 600"

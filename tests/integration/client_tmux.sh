@@ -15,49 +15,18 @@ BOT=${3:-}
 command -v tmux >/dev/null || { echo "SKIP: tmux not installed"; exit 77; }
 if [[ -n "$BOT" && ! -x "$BOT" ]]; then echo "SKIP: $BOT is not built"; exit 77; fi
 
-WORK=$(mktemp -d /tmp/fts-e2e.XXXXXX)
-SESSION="fts-e2e-$$"
-SOCK="fts-e2e-$$"  # a private tmux server: never touches the user's sessions
-tm() { tmux -L "$SOCK" "$@"; }
-SERVER_PID=""
-BOT_PID=""
-cleanup() {
-  tm kill-server 2>/dev/null || true
-  [[ -n "$BOT_PID" ]] && kill "$BOT_PID" 2>/dev/null || true
-  [[ -n "$SERVER_PID" ]] && kill "$SERVER_PID" 2>/dev/null || true
-  wait 2>/dev/null || true
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
-
-fail() {
-  echo "FAIL: $*" >&2
-  echo "--- pane ---" >&2
-  tm capture-pane -p -t "$SESSION" >&2 2>/dev/null || true
-  echo "--- server log (tail) ---" >&2
-  tail -n 20 "$WORK/server.log" >&2 || true
-  exit 1
-}
-
-pane() { tm capture-pane -p -t "$SESSION"; }
-
-# wait_for SECONDS REGEX: poll the pane until a line matches.
-wait_for() {
-  local deadline=$((SECONDS + $1))
-  while ((SECONDS < deadline)); do
-    if pane | grep -qE -- "$2"; then return 0; fi
-    sleep 0.1
-  done
-  fail "no '$2' on the screen within $1 s"
-}
+source "$(dirname "$0")/tmux_lib.sh"
+tmux_setup e2e
+SESSION=e2e
+PANES=("$SESSION")
 
 # The column of the left edge of our ball ('@'), or -1.
 # (The legend's "@ name" marker is not a ball: a ball is '@' next to '@' or its mass.)
-ball_col() { pane | awk '{ if (match($0, /@[@0-9]/)) { print RSTART; found = 1; exit } } END { if (!found) print -1 }'; }
+ball_col() { pane "$SESSION" | awk '{ if (match($0, /@[@0-9]/)) { print RSTART; found = 1; exit } } END { if (!found) print -1 }'; }
 # Steering from the screen alone: the key that moves our ball ('@' around its mass label)
 # toward the nearest enemy ('#'); rows count double (a cell is twice as tall as wide).
 hunt_key() {
-  pane | awk 'NR > 3 {
+  pane "$SESSION" | awk 'NR > 3 {
       line = $0; off = 0
       while (match(line, /[@#]+[0-9]+/)) {
         c = substr(line, RSTART, 1); col = off + RSTART + RLENGTH - 1
@@ -77,24 +46,14 @@ hunt_key() {
     }'
 }
 # A number after "LABEL: " in the HUD line.
-hud_number() { pane | head -n 1 | sed -nE "s/.*$1: ([0-9,]+).*/\1/p" | tr -d ,; }
+hud_number() { pane "$SESSION" | head -n 1 | sed -nE "s/.*$1: ([0-9,]+).*/\1/p" | tr -d ,; }
 
 # A server that gives every player 200 coins at the start, so the shop has something to
 # sell, and waits for us in the shop. Port 0: the server picks a free one and logs it.
 cat >"$WORK/config.json" <<'EOF'
 {"player_coins": 200, "shop_timeout_s": 600}
 EOF
-: >"$WORK/server.log"
-"$SERVER" --port 0 --bind 127.0.0.1 --config "$WORK/config.json" --log-level info >"$WORK/server.log" 2>&1 &
-SERVER_PID=$!
-PORT=""
-deadline=$((SECONDS + 10))
-while ((SECONDS < deadline)) && [[ -z "$PORT" ]]; do
-  PORT=$(sed -nE 's/.*ready .*port=([0-9]+).*/\1/p; s/.*"event":"ready".*"port":([0-9]+).*/\1/p' "$WORK/server.log" | head -n 1 || true)
-  [[ -z "$PORT" ]] && sleep 0.1
-done
-[[ -n "$PORT" ]] || fail "the server did not log its port"
-echo "server on port $PORT"
+start_server "$SERVER" --config "$WORK/config.json"
 
 if [[ -n "$BOT" && -x "$BOT" ]]; then
   "$BOT" --connect "127.0.0.1:$PORT" --name bot1 --behavior shopper --duration 120 >"$WORK/bot.log" 2>&1 &
@@ -104,11 +63,11 @@ fi
 CLIENT_CMD="NO_COLOR=1 XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name e2e --quick; echo CLIENT_EXIT=\$?; sleep 600"
 tm new-session -d -s "$SESSION" -x 120 -y 40 "$CLIENT_CMD"
 
-wait_for 10 '@ e2e '
+wait_for "$SESSION" 10 '@ e2e '
 echo "connected"
 tm send-keys -t "$SESSION" Enter  # ready: the match starts
-wait_for 15 '^Level: 1 '
-wait_for 10 '@'
+wait_for "$SESSION" 15 '^Level: 1 '
+wait_for "$SESSION" 10 '@'
 start_col=$(ball_col)
 echo "level 1, our ball at column $start_col"
 
@@ -129,26 +88,26 @@ echo "the ball moved to column $col"
 if [[ -z "$BOT_PID" ]]; then
   deadline=$((SECONDS + 60))
   while ((SECONDS < deadline)); do
-    if pane | grep -q 'Level 1 Complete'; then break; fi
+    if pane "$SESSION" | grep -q 'Level 1 Complete'; then break; fi
     tm send-keys -t "$SESSION" d
     sleep 0.08
   done
 else
   deadline=$((SECONDS + 120))
   while ((SECONDS < deadline)); do
-    if pane | grep -q 'Level 1 Complete'; then break; fi
+    if pane "$SESSION" | grep -q 'Level 1 Complete'; then break; fi
     key=$(hunt_key)
     [[ -n "$key" ]] && tm send-keys -t "$SESSION" "$key"
     sleep 0.08
   done
 fi
-wait_for 5 'Press Enter to begin next level\.'
+wait_for "$SESSION" 5 'Press Enter to begin next level\.'
 coins=$(hud_number Coins)
 echo "level 1 complete with $coins coins"
 ((coins > 200)) || [[ -n "$BOT_PID" ]] || fail "the HUD shows $coins coins after a defeat (expected more than 200)"
 
 # Buy max speed: coins fall by its price, and its price rises by x1.2.
-price=$(pane | sed -nE "s/.*To increase Max Speed, press 's' \(([0-9,]+) coins\).*/\1/p" | tr -d ,)
+price=$(pane "$SESSION" | sed -nE "s/.*To increase Max Speed, press 's' \(([0-9,]+) coins\).*/\1/p" | tr -d ,)
 [[ -n "$price" ]] || fail "no max speed price in the shop"
 ((coins >= price)) || fail "not enough coins ($coins) for max speed ($price)"
 new_price=$((price * 12 / 10))
@@ -159,19 +118,19 @@ bought=0
 while ((SECONDS < deadline)) && ((!bought)); do
   tm send-keys -t "$SESSION" s
   for _ in $(seq 15); do
-    if pane | grep -q "To increase Max Speed, press 's' ($new_price coins)"; then bought=1; break; fi
+    if pane "$SESSION" | grep -q "To increase Max Speed, press 's' ($new_price coins)"; then bought=1; break; fi
     sleep 0.1
   done
 done
 ((bought)) || fail "buying max speed did not raise its price to $new_price"
-wait_for 5 "^Level: 1   Coins: $((coins - price)) "
-wait_for 5 'Current Max Speed: 1\.7[89]'
+wait_for "$SESSION" 5 "^Level: 1   Coins: $((coins - price)) "
+wait_for "$SESSION" 5 'Current Max Speed: 1\.7[89]'
 echo "bought max speed: coins $coins -> $((coins - price)), price $price -> $new_price"
 
 # Connection trouble: freeze the server past the client's 10 s time-out. The client says
 # so, then resumes with its session token when the server answers again: same coins.
 kill -STOP "$SERVER_PID"
-wait_for 5 'connection lost, reconnecting\.\.\.'
+wait_for "$SESSION" 5 'connection lost, reconnecting\.\.\.'
 echo "the client noticed the silence"
 stalled_until=$((SECONDS + 11))
 while ((SECONDS < stalled_until)); do sleep 0.5; done  # the frozen server is the point here
@@ -180,7 +139,7 @@ kill -CONT "$SERVER_PID"
 # with our coins intact.
 deadline=$((SECONDS + 20))
 # The level may have moved on meanwhile: an away player does not hold up the shop.
-until ! pane | grep -q 'connection lost' && pane | grep -qE "^Level: [0-9]+   Coins: $((coins - price))   Lives: [0-9]+   Ping:"; do
+until ! pane "$SESSION" | grep -q 'connection lost' && pane "$SESSION" | grep -qE "^Level: [0-9]+   Coins: $((coins - price))   Lives: [0-9]+   Ping:"; do
   ((SECONDS < deadline)) || fail "no resume within 20 s"
   sleep 0.1
 done
@@ -189,10 +148,10 @@ echo "reconnected with the session token"
 
 # Quit: q asks first, a second q quits; the client exits 0 and leaves the alternate screen.
 tm send-keys -t "$SESSION" q
-wait_for 5 'Quit\? Press q again'
+wait_for "$SESSION" 5 'Quit\? Press q again'
 tm send-keys -t "$SESSION" q
-wait_for 5 '^CLIENT_EXIT=0'
-pane | grep -qE '^Level: [0-9]+   Coins' && fail "the game screen is still there after quitting"
+wait_for "$SESSION" 5 '^CLIENT_EXIT=0'
+pane "$SESSION" | grep -qE '^Level: [0-9]+   Coins' && fail "the game screen is still there after quitting"
 deadline=$((SECONDS + 5))
 until grep -qE 'disconnect player=[0-9]+ reason=quit' "$WORK/server.log"; do
   ((SECONDS < deadline)) || fail "the server did not see the quit"
@@ -205,7 +164,7 @@ echo "quit: the server saw the bye"
 [[ $(stat -c %a "$WORK/state/fear-the-sphere/sessions/127.0.0.1_$PORT") == 600 ]] || fail "the session file is not 0600"
 reconnects=$(grep -c 'reconnect player=' "$WORK/server.log" || true)
 tm respawn-pane -k -t "$SESSION" "$CLIENT_CMD"
-wait_for 10 "^Level: [0-9]+   Coins: $((coins - price)) "
+wait_for "$SESSION" 10 "^Level: [0-9]+   Coins: $((coins - price)) "
 deadline=$((SECONDS + 5))
 until (($(grep -c 'reconnect player=' "$WORK/server.log" || true) > reconnects)); do
   ((SECONDS < deadline)) || fail "the restarted client was not taken back by its token"
@@ -213,7 +172,7 @@ until (($(grep -c 'reconnect player=' "$WORK/server.log" || true) > reconnects))
 done
 echo "restarted: the same player, coins $((coins - price))"
 tm send-keys -t "$SESSION" q
-wait_for 5 'Quit\? Press q again'
+wait_for "$SESSION" 5 'Quit\? Press q again'
 tm send-keys -t "$SESSION" y
-wait_for 5 '^CLIENT_EXIT=0'
+wait_for "$SESSION" 5 '^CLIENT_EXIT=0'
 echo "PASS"
