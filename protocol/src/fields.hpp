@@ -256,7 +256,8 @@ void write_map(W& w, const char* type, const M& m, const std::tuple<F...>& table
 }
 
 // Reads a map into m (which starts at its defaults): known keys by the table, any other
-// key (including "t") skipped. A required field missing is garbage.
+// key (including "t") skipped. A required field missing is garbage, and so is a known key
+// given twice (two lists would otherwise merge into something no writer sends).
 template <class M, class... F>
 void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
   static_assert(sizeof...(F) <= 64);
@@ -269,7 +270,8 @@ void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
     std::size_t index = 0;
     std::apply(
         [&](const auto&... f) {
-          ((matched || (k == f.key ? (get_field(r, f, m), seen |= std::uint64_t{1} << index, matched = true)
+          ((matched || (k == f.key ? (seen >> index & 1 ? r.fail(Reject::garbage) : get_field(r, f, m),
+                                      seen |= std::uint64_t{1} << index, matched = true)
                                    : (++index, false))),
            ...);
         },

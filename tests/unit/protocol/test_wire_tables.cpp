@@ -155,3 +155,22 @@ TEST_CASE("Wire tables: a motion bin that ends inside a code is garbage (regress
   REQUIRE_FALSE(d.ok());
   CHECK(d.error() == Reject::garbage);
 }
+
+TEST_CASE("Wire tables: a key given twice is garbage (regression: fuzz, lists merged out of order)",
+          "[protocol][wire][reject]") {
+  // Found by .ci/fuzz.sh: "balls" and "mv" twice each merged into one list that re-encoded
+  // in another order. JSON objects and MessagePack maps alike.
+  const std::string text =
+      R"([{"t":"snap","tick":5,"base":4,"part":0,"parts":1,"phase":"play","level":1,"hz":100,)"
+      R"("balls":[[3,1,2,3,4,1,616,0,0]],"mv":[[1,2,3,4,5]],"players":[],"balls":[[3,1,2,3,4,1,616,0,0]]}])";
+  auto d = decode_payload(Encoding::json, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  REQUIRE_FALSE(d.ok());
+  CHECK(d.error() == Reject::garbage);
+  const std::string bye = R"([{"t":"bye","reason":"a","reason":"b"}])";
+  auto b = decode_payload(Encoding::json, std::span(reinterpret_cast<const std::uint8_t*>(bye.data()), bye.size()));
+  REQUIRE_FALSE(b.ok());
+  CHECK(b.error() == Reject::garbage);
+  // Unknown keys may repeat (they are skipped).
+  const std::string twice = R"([{"t":"bye","zz":1,"zz":2,"reason":"a"}])";
+  CHECK(decode_payload(Encoding::json, std::span(reinterpret_cast<const std::uint8_t*>(twice.data()), twice.size())).ok());
+}
