@@ -6,6 +6,8 @@ second from the server's JSON stats records and /proc. Never passes or fails on 
 usage: FTS_BIN_DIR=build python3 tests/bench/server_load.py [--rooms 1] [--bots 8] [--seconds 60] [--check]
   --rooms R: R fts-bot processes, each putting its B bots in one room of its own
   (--room create); R = 1 without --rooms-create keeps the one-room quick-play run.
+  --pin: the server on CPU 0 alone, this script and the bots on the other CPUs (so
+  that the bots' CPU does not count against the server's tick).
   --check: exit 1 unless the run worked (every bot process exits 0, every client got
   snapshots, the server reported a full house); never on time. --max-skipped N also
   fails a run with more than N skipped ticks (for a quiet machine: it depends on load).
@@ -30,12 +32,21 @@ def main():
     ap.add_argument("--seconds", type=float, default=60)
     ap.add_argument("--behavior", default="shopper")
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--pin", action="store_true")
     ap.add_argument("--max-skipped", type=int, default=None)
     a = ap.parse_args()
     load0 = os.getloadavg()
+    cpus = sorted(os.sched_getaffinity(0))
+    if a.pin:
+        if len(cpus) < 2:
+            print("--pin needs at least 2 CPUs")
+            return 2
+        os.sched_setaffinity(0, set(cpus[1:]))  # the bots inherit this
     clients = a.rooms * a.bots
     with Server("--stats-interval-ms", "10000", "--log-format", "json", "--tick-rate", "100",
                 "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8))) as srv:
+        if a.pin:
+            os.sched_setaffinity(srv.proc.pid, {cpus[0]})
         room = ["--room", "create"] if a.rooms > 1 else []
         groups = [start_bots("--connect", srv.address, "--name", f"r{r}b", "--count", str(a.bots), "--behavior",
                              a.behavior, "--duration", str(a.seconds), "--seed", str(1 + r * a.bots), *room)
@@ -47,7 +58,8 @@ def main():
         stats = [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
     report = [b for _, rep, _ in results for b in rep]
     full = [s for s in stats if s["players"] == clients]
-    print(f"{a.rooms} rooms x {a.bots} bots = {clients} clients, {a.seconds:.0f} s at 100 Hz")
+    print(f"{a.rooms} rooms x {a.bots} bots = {clients} clients, {a.seconds:.0f} s at 100 Hz"
+          + (f"; server pinned to CPU {cpus[0]}, bots on {cpus[1:]}" if a.pin else ""))
     print(f"| interval | players | rooms | tick p50 (µs) | tick p99 (µs) | tick max (µs) | skipped (total) | bytes out/client/s | bytes in/client/s |")
     print("|---|---|---|---|---|---|---|---|---|")
     for i, s in enumerate(full):
