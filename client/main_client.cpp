@@ -366,10 +366,10 @@ class Game {
       hold_.release_all();
     }
     f.fire = fire_;
-    if (const auto send = pacer_.pace(f, now)) {
-      conn_.endpoint().send_input(*send, now);
-      fire_ = false;
-    }
+    // The lean uplink (PROTOCOL.md 4.5), as the bots: a frame on change (at most every
+    // 20 ms; a fire is kept until then) and a keep-alive every 50 ms.
+    conn_.endpoint().hold_input(f, now);
+    fire_ = false;
   }
 
   // Toward the pointer, per axis, from where our ball is drawn; within a cell of it: still.
@@ -522,7 +522,6 @@ class Game {
   term::KeyReader keys_;
   term::Painter painter_;
   HoldTracker hold_;
-  InputPacer pacer_;
   SnapshotBuffer buffer_;
   ServerClock clock_;
   LossMeter loss_;

@@ -29,12 +29,4 @@ std::vector<protocol::Event> EventFeed::fresh(const protocol::Snapshot& s) {
   return out;
 }
 
-std::optional<protocol::InputFrame> InputPacer::pace(const protocol::InputFrame& f, std::uint64_t now_ms) {
-  const bool changed = f.move_x != last_.move_x || f.move_y != last_.move_y || f.fire;
-  if (!changed && now_ms - last_ms_ < kRepeatMs) return std::nullopt;
-  last_ = f;
-  last_ms_ = now_ms;
-  return f;
-}
-
 }  // namespace fts::client

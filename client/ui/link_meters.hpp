@@ -1,5 +1,6 @@
 // The small pieces of the client's game loop that keep state between frames, each with
-// one job: how many snapshots are lost, which events are new, when to send input.
+// one job: how many snapshots are lost, which events are new. (When to send input is
+// the protocol's: ClientEndpoint::hold_input.)
 #pragma once
 
 #include <cstdint>
@@ -34,18 +35,6 @@ class EventFeed {
 
  private:
   std::uint32_t last_seq_ = 0;
-};
-
-// Input is sent when it changes (or fires), and at least every kRepeatMs otherwise.
-class InputPacer {
- public:
-  // The frame to send now, if any.
-  std::optional<protocol::InputFrame> pace(const protocol::InputFrame& f, std::uint64_t now_ms);
-  static constexpr std::uint64_t kRepeatMs = 50;
-
- private:
-  protocol::InputFrame last_;
-  std::uint64_t last_ms_ = 0;
 };
 
 }  // namespace fts::client

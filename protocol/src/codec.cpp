@@ -1,127 +1,23 @@
 #include "fts/protocol/codec.hpp"
 
-#include "mapping.hpp"
-#include "tables.hpp"
+#include <array>
+#include <utility>
+
+#include "json_reader.hpp"
+#include "specs.hpp"
 
 namespace fts::protocol {
 
-using nlohmann::json;
-
 namespace {
 
-json messages_to_json(const std::vector<Message>& messages) {
-  json array = json::array();
-  for (const auto& m : messages) array.push_back(message_to_json(m));
-  return array;
+template <class W, class M>
+void write_one(W& w, const M& msg) {
+  wire::write_map(w, wire::Spec<M>::type.data(), msg, wire::Spec<M>::fields());
 }
-
-std::string dump(const json& j) {
-  return j.dump(-1, ' ', false, json::error_handler_t::replace);
-}
-
-// nlohmann's tree builder behind a gate: parsing stops at the first array or object
-// nested deeper than kMaxNestingDepth, the first container that claims more elements
-// than the payload has bytes (MessagePack states its sizes), or value number
-// kMaxPayloadValues + 1. A hostile payload costs one partial pass over its bytes and
-// never builds a deep tree (PROTOCOL.md 10).
-class BoundedSax {
- public:
-  using number_integer_t = json::number_integer_t;
-  using number_unsigned_t = json::number_unsigned_t;
-  using number_float_t = json::number_float_t;
-  using string_t = json::string_t;
-  using binary_t = json::binary_t;
-
-  BoundedSax(json& root, std::size_t payload_bytes) : dom_(root, /*allow_exceptions=*/false), bytes_(payload_bytes) {}
-
-  bool null() { return value() && dom_.null(); }
-  bool boolean(bool v) { return value() && dom_.boolean(v); }
-  bool number_integer(number_integer_t v) { return value() && dom_.number_integer(v); }
-  bool number_unsigned(number_unsigned_t v) { return value() && dom_.number_unsigned(v); }
-  bool number_float(number_float_t v, const string_t& s) { return value() && dom_.number_float(v, s); }
-  bool string(string_t& v) { return value() && dom_.string(v); }
-  bool binary(binary_t& v) { return value() && dom_.binary(v); }
-  bool start_object(std::size_t n) { return open(n) && dom_.start_object(n); }
-  bool key(string_t& k) { return dom_.key(k); }
-  bool end_object() {
-    --depth_;
-    return dom_.end_object();
-  }
-  bool start_array(std::size_t n) { return open(n) && dom_.start_array(n); }
-  bool end_array() {
-    --depth_;
-    return dom_.end_array();
-  }
-  template <class Exception>
-  bool parse_error(std::size_t position, const std::string& token, const Exception& ex) {
-    return dom_.parse_error(position, token, ex);
-  }
-
-  // Stopped by a bound (out_of_range) rather than by bad syntax (garbage).
-  bool over_bound() const { return over_bound_; }
-
- private:
-  bool value() {
-    if (++values_ <= kMaxPayloadValues) return true;
-    over_bound_ = true;
-    return false;
-  }
-  bool open(std::size_t declared) {
-    if (!value()) return false;
-    const bool unknown = declared == static_cast<std::size_t>(-1);  // JSON text does not say
-    if (++depth_ > kMaxNestingDepth || (!unknown && declared > bytes_)) {
-      over_bound_ = true;
-      return false;
-    }
-    return true;
-  }
-
-  nlohmann::detail::json_sax_dom_parser<json> dom_;
-  std::size_t bytes_;
-  std::size_t depth_ = 0;
-  std::size_t values_ = 0;
-  bool over_bound_ = false;
-};
-
-// The old path, kept for the benchmarks (old against new in one run): every message
-// through an nlohmann tree.
-Decoded<std::vector<Message>> decode_payload_tree(Encoding encoding, std::span<const std::uint8_t> payload) {
-  if (payload.empty()) return Reject::truncated;
-  json j;
-  BoundedSax sax(j, payload.size());
-  const auto format = encoding == Encoding::json ? json::input_format_t::json : json::input_format_t::msgpack;
-  bool parsed = false;
-  try {
-    parsed = json::sax_parse(payload.begin(), payload.end(), &sax, format, /*strict=*/true);
-  } catch (const json::exception&) {
-    parsed = false;  // the tree builder refuses sizes beyond max_size() by throwing
-  }
-  if (sax.over_bound()) return Reject::out_of_range;
-  if (!parsed || !j.is_array() || j.empty()) return Reject::garbage;
-  if (j.size() > kMaxMessagesPerDatagram) return Reject::out_of_range;
-  std::vector<Message> messages;
-  messages.reserve(j.size());
-  try {
-    for (const auto& item : j) messages.push_back(message_from_json(item));
-  } catch (const detail::DecodeFail& e) {
-    return e.reason;
-  } catch (const json::exception&) {
-    return Reject::garbage;
-  }
-  return messages;
-}
-
-// Messages that have a field table are written by it; the others (converted last) still
-// go through their nlohmann mapping, spliced in as already-encoded bytes.
-void put_legacy(wire::MsgpackWriter& w, const Message& m) { w.raw(json::to_msgpack(message_to_json(m))); }
-void put_legacy(wire::MsgpackCounter& w, const Message& m) { w.raw(json::to_msgpack(message_to_json(m))); }
-void put_legacy(wire::JsonWriter& w, const Message& m) { w.raw(dump(message_to_json(m))); }
 
 template <class W>
 void write_message(W& w, const Message& m) {
-  if (const auto* snap = std::get_if<SnapshotMsg>(&m)) return wire::write_map(w, "snap", *snap, wire::kSnapFields);
-  if (const auto* input = std::get_if<Input>(&m)) return wire::write_map(w, "input", *input, wire::kInputFields);
-  put_legacy(w, m);
+  std::visit([&w](const auto& msg) { write_one(w, msg); }, m);
 }
 
 template <class W>
@@ -130,36 +26,35 @@ void write_messages(W& w, const std::vector<Message>& messages) {
   for (const auto& m : messages) write_message(w, m);
 }
 
-template <class M, class Table>
-Decoded<Message> read_table(wire::MsgpackReader& r, const Table& table) {
+template <class M>
+Decoded<Message> read_as(wire::MsgpackReader& r) {
   M m;
-  wire::read_map(r, m, table);
+  wire::read_map(r, m, wire::Spec<M>::fields());
   wire::check(r, m);
   if (r.failed()) return r.reason();
   return Message{std::move(m)};
 }
 
-// One message (a map) at the reader's position: its "t" first, then the table of that
-// type reads it from the start.
+// One reader per message type, in variant order, found by its wire name.
+struct Reader {
+  std::string_view type;
+  Decoded<Message> (*read)(wire::MsgpackReader&);
+};
+template <std::size_t... I>
+constexpr auto make_readers(std::index_sequence<I...>) {
+  return std::array<Reader, sizeof...(I)>{
+      Reader{wire::Spec<std::variant_alternative_t<I, Message>>::type, &read_as<std::variant_alternative_t<I, Message>>}...};
+}
+constexpr auto kReaders = make_readers(std::make_index_sequence<std::variant_size_v<Message>>{});
+
+// One message (a map) at the reader's position: its "t" first (our writers put it first,
+// so usually the first key), then the table of that type reads it from the start.
 Decoded<Message> read_message(wire::MsgpackReader& r) {
   const std::size_t start = r.pos();
   const std::size_t n = r.map(kMaxPayloadValues);
   std::string_view type;
   bool typed = false;
-  // Our writers put "t" first: then the type is known without a pass over the rest.
-  if (n > 0 && r.str(kMaxTextBytes) == "t" && !r.failed()) {
-    type = r.str(kMaxTextBytes);
-    if (!r.failed() && (type == "snap" || type == "input")) {
-      r.seek(start);
-      Decoded<Message> out = type == "snap" ? read_table<SnapshotMsg>(r, wire::kSnapFields)
-                                            : read_table<Input>(r, wire::kInputFields);
-      return out;
-    }
-  }
-  if (r.failed()) return Reject::garbage;
-  r.seek(start);
-  r.map(kMaxPayloadValues);
-  for (std::size_t i = 0; i < n && !r.failed(); ++i) {
+  for (std::size_t i = 0; i < n && !r.failed() && !typed; ++i) {
     const std::string_view key = r.str(kMaxTextBytes);
     if (key == "t" && !r.failed()) {
       type = r.str(kMaxTextBytes);
@@ -169,22 +64,12 @@ Decoded<Message> read_message(wire::MsgpackReader& r) {
     }
   }
   if (r.failed() || !typed) return Reject::garbage;
-  const std::size_t end = r.pos();
-  r.seek(start);
-  Decoded<Message> out = Reject::unknown_type;
-  if (type == "snap") out = read_table<SnapshotMsg>(r, wire::kSnapFields);
-  else if (type == "input") out = read_table<Input>(r, wire::kInputFields);
-  else {
-    try {
-      out = message_from_json(json::from_msgpack(r.bytes(start, end)));
-    } catch (const detail::DecodeFail& e) {
-      out = e.reason;
-    } catch (const json::exception&) {
-      out = Reject::garbage;
-    }
+  for (const Reader& reader : kReaders) {
+    if (reader.type != type) continue;
+    r.seek(start);
+    return reader.read(r);
   }
-  r.seek(end);
-  return out;
+  return Reject::unknown_type;
 }
 
 Decoded<std::vector<Message>> decode_msgpack(std::span<const std::uint8_t> payload) {
@@ -206,21 +91,14 @@ Decoded<std::vector<Message>> decode_msgpack(std::span<const std::uint8_t> paylo
   return messages;
 }
 
-// JSON text: nlohmann's bounded parser, then the same table readers over its MessagePack.
+// JSON text: nlohmann's SAX parser writes it as MessagePack, which the tables read.
 Decoded<std::vector<Message>> decode_json(std::span<const std::uint8_t> payload) {
   if (payload.empty()) return Reject::truncated;
-  json j;
-  BoundedSax sax(j, payload.size());
-  bool parsed = false;
-  try {
-    parsed = json::sax_parse(payload.begin(), payload.end(), &sax, json::input_format_t::json, /*strict=*/true);
-  } catch (const json::exception&) {
-    parsed = false;
-  }
-  if (sax.over_bound()) return Reject::out_of_range;
-  if (!parsed || !j.is_array() || j.empty()) return Reject::garbage;
-  if (j.size() > kMaxMessagesPerDatagram) return Reject::out_of_range;
-  return decode_msgpack(json::to_msgpack(j));
+  std::vector<std::uint8_t> packed;
+  packed.reserve(payload.size());
+  Reject why = Reject::garbage;
+  if (!wire::json_to_msgpack(payload, packed, why)) return why;
+  return decode_msgpack(packed);
 }
 
 }  // namespace
@@ -235,25 +113,57 @@ std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Me
   return out;
 }
 
-void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out) {
+namespace {
+// `write(w)` with the writer of the encoding, appended to `out` / counted.
+template <class Write>
+void append_encoded(Encoding encoding, std::vector<std::uint8_t>& out, Write write) {
   if (encoding == Encoding::msgpack) {
     wire::MsgpackWriter w(out);
-    write_messages(w, messages);
-    return;
+    return write(w);
   }
   std::string text;
   wire::JsonWriter w(text);
-  write_messages(w, messages);
+  write(w);
   out.insert(out.end(), text.begin(), text.end());
+}
+template <class Write>
+std::size_t count_encoded(Encoding encoding, Write write) {
+  if (encoding == Encoding::msgpack) {
+    wire::MsgpackCounter c;
+    write(c);
+    return c.bytes;
+  }
+  std::string text;
+  wire::JsonWriter w(text);
+  write(w);
+  return text.size();
+}
+}  // namespace
+
+void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out) {
+  append_encoded(encoding, out, [&](auto& w) { write_messages(w, messages); });
 }
 
 std::size_t payload_bytes(Encoding encoding, const std::vector<Message>& messages) {
-  if (encoding == Encoding::msgpack) {
-    wire::MsgpackCounter c;
-    write_messages(c, messages);
-    return c.bytes;
-  }
-  return to_json_text(messages).size();
+  return count_encoded(encoding, [&](auto& w) { write_messages(w, messages); });
+}
+
+void append_snapshot_payload(Encoding encoding, const SnapshotMsg& part, std::vector<std::uint8_t>& out) {
+  append_encoded(encoding, out, [&](auto& w) {
+    w.array(1);
+    write_one(w, part);
+  });
+}
+
+std::size_t snapshot_payload_bytes(Encoding encoding, const SnapshotMsg& part) {
+  return count_encoded(encoding, [&](auto& w) {
+    w.array(1);
+    write_one(w, part);
+  });
+}
+
+const char* message_type(const Message& message) {
+  return std::visit([](const auto& m) { return wire::Spec<std::decay_t<decltype(m)>>::type.data(); }, message);
 }
 
 std::string to_json_text(const std::vector<Message>& messages) {
@@ -270,18 +180,6 @@ std::vector<std::uint8_t> encode_datagram(const Header& header, const std::vecto
   append_payload(header.encoding, messages, out);
   return out;
 }
-
-namespace legacy {
-std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages) {
-  const json j = messages_to_json(messages);
-  if (encoding == Encoding::msgpack) return json::to_msgpack(j);
-  const std::string text = dump(j);
-  return {text.begin(), text.end()};
-}
-Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload) {
-  return decode_payload_tree(encoding, payload);
-}
-}  // namespace legacy
 
 Decoded<Datagram> decode_datagram(std::span<const std::uint8_t> bytes, std::uint16_t expected_version) {
   auto header = read_header(bytes, expected_version);

@@ -27,6 +27,8 @@ struct Int {
   template <class W>
   void put(W& w, const T& v) const { w.integer(static_cast<std::int64_t>(v)); }
   void get(MsgpackReader& r, T& v) const { v = static_cast<T>(r.integer(lo, hi)); }
+  // Into the range (what a sender does before writing: quantize()).
+  void clamp(T& v) const { v = static_cast<T>(std::clamp(static_cast<std::int64_t>(v), lo, hi)); }
 };
 
 // A boolean carried as the integer 0 or 1 (input frames).
@@ -40,6 +42,7 @@ struct Bool {
   template <class W>
   void put(W& w, bool v) const { w.boolean(v); }
   void get(MsgpackReader& r, bool& v) const { v = r.boolean(); }
+  void clamp(bool&) const {}
 };
 
 // A number (integer or float on the wire), finite, in lo..hi.
@@ -48,6 +51,7 @@ struct Num {
   template <class W>
   void put(W& w, double v) const { w.number(std::isfinite(v) ? v : 0.0); }
   void get(MsgpackReader& r, double& v) const { v = r.number(lo, hi); }
+  void clamp(double& v) const { v = std::clamp(std::isfinite(v) ? v : 0.0, lo, hi); }
 };
 
 // Printable ASCII text of min..max bytes.
@@ -55,13 +59,58 @@ struct Text {
   std::size_t min, max;
   template <class W>
   void put(W& w, const std::string& v) const { w.str(v); }
-  void get(MsgpackReader& r, std::string& v) const {
+  void get(MsgpackReader& r, std::string& v) const { v.assign(view(r)); }
+  // The text in the reader's bytes, checked ("" after a failure).
+  std::string_view view(MsgpackReader& r) const {
     const std::string_view s = r.str(max);
-    if (r.failed()) return;
-    if (s.size() < min) return r.fail(Reject::out_of_range);
+    if (r.failed()) return {};
+    if (s.size() < min) return r.fail(Reject::out_of_range), std::string_view{};
     for (unsigned char c : s)
-      if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range);
+      if (c < 0x20 || c > 0x7E) return r.fail(Reject::out_of_range), std::string_view{};
+    return s;
+  }
+  // Cut to max, every other byte '?', filled up to min with '?'.
+  void clamp(std::string& v) const {
+    if (v.size() > max) v.resize(max);
+    for (char& c : v)
+      if (c < 0x20 || c > 0x7E) c = '?';
+    if (v.size() < min) v.resize(min, '?');
+  }
+};
+
+// Any string of at most max bytes (the hello's name: the server answers a bad one with
+// an error that says what is wrong, instead of a silent drop).
+struct AnyText {
+  std::size_t max;
+  template <class W>
+  void put(W& w, const std::string& v) const { w.str(v); }
+  void get(MsgpackReader& r, std::string& v) const { v.assign(r.str(max)); }
+};
+
+// "" or exactly `digits` lower-case hex digits ("" refused when `required`).
+struct Hex {
+  std::size_t digits;
+  bool required = false;
+  template <class W>
+  void put(W& w, const std::string& v) const { w.str(v); }
+  void get(MsgpackReader& r, std::string& v) const {
+    const std::string_view s = r.str(kMaxTextBytes);
+    if (r.failed()) return;
+    if (s.empty() ? required : s.size() != digits) return r.fail(Reject::out_of_range);
+    for (char c : s)
+      if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return r.fail(Reject::out_of_range);
     v.assign(s);
+  }
+};
+
+// A one-character key carried as text (a shop item): text of another length reads as 0,
+// so that the receiver answers it (PROTOCOL.md 4.6) instead of dropping the datagram.
+struct Key {
+  template <class W>
+  void put(W& w, char v) const { w.str(std::string_view(&v, 1)); }
+  void get(MsgpackReader& r, char& v) const {
+    const std::string_view s = Text{0, kMaxTextBytes}.view(r);
+    v = s.size() == 1 ? s[0] : char{0};
   }
 };
 
@@ -79,6 +128,22 @@ struct Named {
   }
 };
 
+// An enum carried by name, where a name this side does not know reads as `other`
+// (a command the server answers with "op" instead of dropping it).
+template <class E, std::size_t N>
+struct OpenNamed {
+  std::array<const char*, N> names;
+  E other;
+  template <class W>
+  void put(W& w, E v) const { w.str(names[static_cast<std::size_t>(v) % N]); }
+  void get(MsgpackReader& r, E& v) const {
+    const std::string_view s = Text{0, kMaxTextBytes}.view(r);
+    v = other;
+    for (std::size_t i = 0; i < N; ++i)
+      if (s == names[i]) v = static_cast<E>(i);
+  }
+};
+
 // A fixed-length array of one kind.
 template <class T, std::size_t N, class K>
 struct Fixed {
@@ -91,6 +156,9 @@ struct Fixed {
   void get(MsgpackReader& r, std::array<T, N>& v) const {
     if (r.array(kMaxPayloadValues) != N && !r.failed()) return r.fail(Reject::garbage);
     for (auto& x : v) kind.get(r, x);
+  }
+  void clamp(std::array<T, N>& v) const {
+    for (auto& x : v) kind.clamp(x);
   }
 };
 
@@ -126,6 +194,21 @@ struct Field {
   T M::*member;
   K kind;
   Presence presence = Presence::required;
+  const T& of(const M& m) const { return m.*member; }
+  T& of(M& m) const { return m.*member; }
+};
+
+// A field of a struct inside the message, written at the message's level (the welcome's
+// shop terms): the same key space, one more member step.
+template <class M, class S, class T, class K>
+struct SubField {
+  std::string_view key;
+  S M::*outer;
+  T S::*member;
+  K kind;
+  Presence presence = Presence::required;
+  const T& of(const M& m) const { return (m.*outer).*member; }
+  T& of(M& m) const { return (m.*outer).*member; }
 };
 
 template <class T>
@@ -133,27 +216,28 @@ struct is_optional : std::false_type {};
 template <class T>
 struct is_optional<std::optional<T>> : std::true_type {};
 
-template <class M, class T, class K>
-bool present(const Field<M, T, K>& f, const M& m) {
-  const T& v = m.*f.member;
+template <class M, class F>
+bool present(const F& f, const M& m) {
+  using T = std::decay_t<decltype(f.of(m))>;
+  const T& v = f.of(m);
   if constexpr (requires { f.kind.present(v); }) return f.kind.present(v);
   else if constexpr (is_optional<T>::value) return v.has_value();
   else if (f.presence == Presence::nonzero) return !(v == T{});
   else return true;
 }
 
-template <class W, class M, class T, class K>
-void put_field(W& w, const Field<M, T, K>& f, const M& m) {
+template <class W, class M, class F>
+void put_field(W& w, const F& f, const M& m) {
   if (!present(f, m)) return;
   w.key(f.key);
-  if constexpr (is_optional<T>::value) f.kind.put(w, *(m.*f.member));
-  else f.kind.put(w, m.*f.member);
+  if constexpr (is_optional<std::decay_t<decltype(f.of(m))>>::value) f.kind.put(w, *f.of(m));
+  else f.kind.put(w, f.of(m));
 }
 
-template <class M, class T, class K>
-void get_field(MsgpackReader& r, const Field<M, T, K>& f, M& m) {
-  if constexpr (is_optional<T>::value) f.kind.get(r, (m.*f.member).emplace());
-  else f.kind.get(r, m.*f.member);
+template <class M, class F>
+void get_field(MsgpackReader& r, const F& f, M& m) {
+  if constexpr (is_optional<std::decay_t<decltype(f.of(m))>>::value) f.kind.get(r, f.of(m).emplace());
+  else f.kind.get(r, f.of(m));
 }
 
 // ---- maps: a message or a record with named fields ---------------------------------
@@ -172,7 +256,8 @@ void write_map(W& w, const char* type, const M& m, const std::tuple<F...>& table
 }
 
 // Reads a map into m (which starts at its defaults): known keys by the table, any other
-// key (including "t") skipped. A required field missing is garbage.
+// key (including "t") skipped. A required field missing is garbage, and so is a known key
+// given twice (two lists would otherwise merge into something no writer sends).
 template <class M, class... F>
 void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
   static_assert(sizeof...(F) <= 64);
@@ -185,7 +270,8 @@ void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
     std::size_t index = 0;
     std::apply(
         [&](const auto&... f) {
-          ((matched || (k == f.key ? (get_field(r, f, m), seen |= std::uint64_t{1} << index, matched = true)
+          ((matched || (k == f.key ? (seen >> index & 1 ? r.fail(Reject::garbage) : get_field(r, f, m),
+                                      seen |= std::uint64_t{1} << index, matched = true)
                                    : (++index, false))),
            ...);
         },
@@ -206,14 +292,14 @@ template <class W, class M, class... F>
 void write_row(W& w, const M& m, const std::tuple<F...>& table, std::size_t arity = sizeof...(F)) {
   w.array(arity);
   std::size_t index = 0;
-  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.put(w, m.*f.member) : void()), ...); }, table);
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.put(w, f.of(m)) : void()), ...); }, table);
 }
 
 // Reads a positional array of the first `arity` fields of the table.
 template <class M, class... F>
 void read_row(MsgpackReader& r, M& m, const std::tuple<F...>& table, std::size_t arity) {
   std::size_t index = 0;
-  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.get(r, m.*f.member) : void()), ...); }, table);
+  std::apply([&](const auto&... f) { ((index++ < arity ? f.kind.get(r, f.of(m)) : void()), ...); }, table);
 }
 
 // ---- synced fields: a state struct S and its delta entry E ---------------------------
@@ -245,6 +331,12 @@ template <class S, class E, class... R>
 void apply(const std::tuple<R...>& table, const E& entry, S& state) {
   std::apply([&](const auto&... f) { ((entry.*f.entry ? void(state.*f.state = *(entry.*f.entry)) : void()), ...); },
              table);
+}
+
+// Every field of `state` into its wire range, as the table states it.
+template <class S, class... R>
+void clamp_all(const std::tuple<R...>& table, S& state) {
+  std::apply([&](const auto&... f) { (f.kind.clamp(state.*f.state), ...); }, table);
 }
 
 template <class... R>

@@ -4,21 +4,20 @@
 #include <cmath>
 
 #include "fts/protocol/codec.hpp"
+#include "quanta.hpp"
 #include "tables.hpp"
 
 namespace fts::protocol {
 namespace {
 
-std::int64_t qv(double v) { return static_cast<std::int64_t>(std::llround(v * kQuantaPerUnit)); }
-// qv of a value a client rebuilt from hostile deltas: kept far from int64's limits.
-std::int64_t qv_clamped(double v) {
-  constexpr double kLim = static_cast<double>(std::int64_t{1} << 50);
-  return static_cast<std::int64_t>(std::llround(std::clamp(v * kQuantaPerUnit, -kLim, kLim)));
-}
-double unq(std::int64_t v) { return static_cast<double>(v) / kQuantaPerUnit; }
+using wire::from_quanta;
+using wire::to_quanta;
+// A value the client rebuilt from deltas, in quanta.
+std::int64_t rebuilt(double v) { return to_quanta(v, wire::kMaxRebuiltQuanta); }
 
 BallEntry full_entry(const BallState& b) {
-  return {b.id, true, qv(b.x), qv(b.y), qv(b.vx), qv(b.vy), qv(b.radius), qv(b.mass), b.kind, b.owner};
+  return {b.id, true, to_quanta(b.x), to_quanta(b.y), to_quanta(b.vx), to_quanta(b.vy),
+          to_quanta(b.radius), to_quanta(b.mass), b.kind, b.owner};
 }
 
 template <class T>
@@ -42,9 +41,20 @@ std::size_t item_bytes(Encoding encoding, const K& kind, const T& item, std::str
   return scratch.size() + 1;  // the comma
 }
 
-// The delta of two quantized snapshots (the per-client part of the work).
-SnapshotMsg make_delta(const Snapshot& current, const Snapshot* base, std::uint32_t hz) {
-  SnapshotMsg m;
+// The delta of two quantized snapshots (the per-client part of the work), into `m`,
+// whose lists keep their capacity from the last time (no allocation in the steady state).
+void make_delta(const Snapshot& current, const Snapshot* base, std::uint32_t hz, SnapshotMsg& m,
+                std::vector<BallEntry>& motions) {
+  m.base.reset();
+  m.part = 0;
+  m.parts = 1;
+  m.tick_rate_hz = 0;
+  m.balls.clear();
+  m.gone.clear();
+  m.players.clear();
+  m.left.clear();
+  m.events.clear();
+  motions.clear();
   m.tick = current.tick;
   m.phase = current.phase;
   m.level = current.level;
@@ -57,8 +67,6 @@ SnapshotMsg make_delta(const Snapshot& current, const Snapshot* base, std::uint3
   }
   const std::uint32_t ticks = base ? current.tick - base->tick : 0;
   // Full entries first, then motion entries (the order the wire keeps them in).
-  std::vector<BallEntry> motions;
-  m.balls.reserve(current.balls.size());
   for (const auto& b : current.balls) {
     const BallState* old = base ? find_by_id(base->balls, b.id) : nullptr;
     BallEntry e = full_entry(b);
@@ -95,7 +103,6 @@ SnapshotMsg make_delta(const Snapshot& current, const Snapshot* base, std::uint3
   const std::uint32_t base_seq = base && !base->events.empty() ? base->events.back().seq : 0;
   for (const auto& e : current.events)
     if (!base || e.seq > base_seq) m.events.push_back(e);
-  return m;
 }
 
 }  // namespace
@@ -110,13 +117,28 @@ std::int64_t predicted_step(std::int64_t v_q, std::uint32_t ticks, std::uint32_t
 SnapshotMsg make_snapshot_msg(const Snapshot& current, const Snapshot* base, std::uint32_t tick_rate_hz) {
   std::optional<Snapshot> base_q;
   if (base) base_q = quantize(*base);
-  return make_delta(quantize(current), base_q ? &*base_q : nullptr, tick_rate_hz);
+  SnapshotMsg m;
+  std::vector<BallEntry> motions;
+  make_delta(quantize(current), base_q ? &*base_q : nullptr, tick_rate_hz, m, motions);
+  return m;
 }
 
 std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, std::size_t budget) {
-  if (message.balls.size() <= kMaxBallsPerMessage && message.players.size() <= kMaxPlayersPerMessage &&
-      message.events.size() <= kMaxEventsPerMessage && payload_bytes(encoding, {message}) <= budget)
-    return {message};
+  std::vector<SnapshotMsg> out;
+  split_snapshot_into(message, encoding, budget, out);
+  return out;
+}
+
+void split_snapshot_into(const SnapshotMsg& whole, Encoding encoding, std::size_t budget,
+                         std::vector<SnapshotMsg>& parts) {
+  // The usual case, one part: copied into the reused part (its lists keep their capacity).
+  if (whole.balls.size() <= kMaxBallsPerMessage && whole.players.size() <= kMaxPlayersPerMessage &&
+      whole.events.size() <= kMaxEventsPerMessage && snapshot_payload_bytes(encoding, whole) <= budget) {
+    parts.resize(1);
+    parts[0] = whole;
+    return;
+  }
+  SnapshotMsg message = whole;
   if (message.events.size() > kMaxEventsPerMessage)
     message.events.erase(message.events.begin(), message.events.end() - kMaxEventsPerMessage);
   // Each entry is measured once; a part's size is bounded by its skeleton (measured with
@@ -171,13 +193,14 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, 
         out[k].part = static_cast<std::uint32_t>(k);
         out[k].parts = static_cast<std::uint32_t>(out.size());
       }
-      return out;
+      parts = std::move(out);
+      return;
     }
     if (message.events.empty()) break;
     // Reduced: the oldest half of the events goes.
     message.events.erase(message.events.begin(), message.events.begin() + (message.events.size() + 1) / 2);
   }
-  return {};  // cannot fit: the caller sends nothing (never an oversize datagram)
+  parts.clear();  // cannot fit: the caller sends nothing (never an oversize datagram)
 }
 
 Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Snapshot* base) {
@@ -207,18 +230,18 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   for (const auto& part : parts) {
     for (const auto& e : part.balls) {
       if (e.full) {
-        balls[e.id] = BallState{e.id, unq(e.x), unq(e.y), unq(e.vx), unq(e.vy),
-                                unq(e.radius), unq(e.mass), e.kind, e.owner};
+        balls[e.id] = BallState{e.id, from_quanta(e.x), from_quanta(e.y), from_quanta(e.vx), from_quanta(e.vy),
+                                from_quanta(e.radius), from_quanta(e.mass), e.kind, e.owner};
         continue;
       }
       auto it = balls.find(e.id);
       if (it == balls.end()) return Reject::unknown_base;
       BallState& b = it->second;
       const std::uint32_t ticks = first.base ? first.tick - *first.base : 0;  // decoded: always a delta
-      b.x = unq(qv_clamped(b.x) + predicted_step(qv_clamped(b.vx), ticks, first.tick_rate_hz) + e.x);
-      b.y = unq(qv_clamped(b.y) + predicted_step(qv_clamped(b.vy), ticks, first.tick_rate_hz) + e.y);
-      b.vx = unq(qv_clamped(b.vx) + e.vx);
-      b.vy = unq(qv_clamped(b.vy) + e.vy);
+      b.x = from_quanta(rebuilt(b.x) + predicted_step(rebuilt(b.vx), ticks, first.tick_rate_hz) + e.x);
+      b.y = from_quanta(rebuilt(b.y) + predicted_step(rebuilt(b.vy), ticks, first.tick_rate_hz) + e.y);
+      b.vx = from_quanta(rebuilt(b.vx) + e.vx);
+      b.vy = from_quanta(rebuilt(b.vy) + e.vy);
     }
     for (const auto& e : part.players) {
       auto [it, added] = players.try_emplace(e.id);
@@ -234,22 +257,25 @@ Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Sn
   return s;
 }
 
-std::vector<SnapshotMsg> SnapshotSender::encode(const Snapshot& current, Encoding encoding, std::size_t budget) {
+const std::vector<SnapshotMsg>& SnapshotSender::encode(const Snapshot& current, Encoding encoding,
+                                                       std::size_t budget) {
   return encode(std::make_shared<const Snapshot>(quantize(current)), encoding, budget);
 }
 
-std::vector<SnapshotMsg> SnapshotSender::encode(SharedSnapshot current, Encoding encoding, std::size_t budget) {
+const std::vector<SnapshotMsg>& SnapshotSender::encode(SharedSnapshot current, Encoding encoding,
+                                                       std::size_t budget) {
   const Snapshot* base = nullptr;
   // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
   if (acked_ && *acked_ + max_base_age_ticks_ >= current->tick) {
     for (const auto& h : history_)
       if (h->tick == *acked_ && h->tick < current->tick) base = h.get();
   }
-  auto parts = split_snapshot(make_delta(*current, base, tick_rate_hz_), encoding, budget);
+  make_delta(*current, base, tick_rate_hz_, delta_, motions_);
+  split_snapshot_into(delta_, encoding, budget, parts_);
   std::erase_if(history_, [&](const SharedSnapshot& h) { return h->tick == current->tick; });
+  if (history_.size() >= kHistory) history_.erase(history_.begin());
   history_.push_back(std::move(current));
-  if (history_.size() > kHistory) history_.pop_front();
-  return parts;
+  return parts_;
 }
 
 void SnapshotSender::on_ack(std::uint32_t tick) {

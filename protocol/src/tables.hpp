@@ -189,6 +189,7 @@ struct Motions {
     for (std::uint64_t i = 0; i < count && !br.failed(); ++i) {
       std::array<std::int64_t, kStreams> v{};
       for (std::size_t s = 0; s < kStreams; ++s) v[s] = unzigzag(br.golomb(order[s], 50));
+      if (br.failed()) break;  // garbage, below
       BallEntry b;
       b.full = false;
       const std::int64_t id = prev + 1 + v[0];
@@ -274,6 +275,5 @@ inline void check(MsgpackReader& r, const SnapshotMsg& m) {
     for (const auto& b : m.balls)
       if (!b.full) return r.fail(Reject::out_of_range);  // a full snapshot needs full entries
 }
-inline void check(MsgpackReader&, const Input&) {}
 
 }  // namespace fts::protocol::wire

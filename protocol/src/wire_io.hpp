@@ -495,6 +495,9 @@ class BitReader {
       if (byte != 0) break;
     }
     const std::uint64_t m = bits(zeros + k + 1);
+    // Bits that run out inside the code read as 0, not as 0 - 2^k (a huge value that
+    // would overflow the caller's sums).
+    if (failed_) return 0;
     return m - (std::uint64_t{1} << k);
   }
   // Only zero padding may follow the last value.

@@ -32,19 +32,3 @@ TEST_CASE("Event feed: each event passes once, however many snapshots repeat it"
   s.events = {{2, 9, protocol::EventKind::level_started, 0, 0, 1}};  // an old window
   CHECK(feed.fresh(s).empty());
 }
-
-TEST_CASE("Input pacing: on change or fire at once, else every 50 ms", "[client][link]") {
-  InputPacer p;
-  protocol::InputFrame still;
-  protocol::InputFrame right;
-  right.move_x = 1;
-  CHECK(p.pace(still, 100));  // the first
-  CHECK_FALSE(p.pace(still, 120));
-  CHECK(p.pace(right, 121));  // a change
-  CHECK_FALSE(p.pace(right, 140));
-  CHECK(p.pace(right, 121 + InputPacer::kRepeatMs));
-  protocol::InputFrame fire = right;
-  fire.fire = true;
-  CHECK(p.pace(fire, 172));
-  CHECK(p.pace(fire, 173));  // fire is never held back
-}

@@ -56,6 +56,7 @@ TEST_CASE("example exchange", "[.example]") {
   pump();
   for (auto& pc : server.take_commands())
     server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass: 41 -> 42", now);
+  server.update(now);  // results go out with the next update, batched
   pump();
   now += 40;
   s = advance(s, 5, 0.05);

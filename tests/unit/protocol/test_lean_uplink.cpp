@@ -13,9 +13,10 @@ struct Uplink {
   std::uint64_t datagrams = 0, bytes = 0, frames_at_server = 0;
 };
 
-// One client holding `input_at(tick)` for 10 s at 100 Hz; counts what went up.
+// One client holding `input_at(frame)` for 10 s, called every `frame_ms` (10: a bot's
+// 100 Hz tick; 16: the terminal client's 60 fps frame); counts what went up.
 template <class InputAt>
-Uplink run(InputAt input_at) {
+Uplink run(InputAt input_at, std::uint64_t frame_ms = 10) {
   Harness h;
   ClientConfig cc;
   cc.name = "lean";
@@ -26,9 +27,9 @@ Uplink run(InputAt input_at) {
   const ClientStats before = c.stats();
   Uplink u;
   const std::uint64_t start = h.now;
-  for (std::uint64_t t = 0; t < 1000; ++t) {
-    c.hold_input(input_at(t), start + 10 * t);
-    h.step(start + 10 * t);
+  for (std::uint64_t t = 0; t * frame_ms < 10'000; ++t) {
+    c.hold_input(input_at(t), start + frame_ms * t);
+    h.step(start + frame_ms * t);
     u.frames_at_server += h.server.take_inputs().size();
   }
   const ClientStats after = c.stats();
@@ -52,9 +53,23 @@ TEST_CASE("Lean uplink: steering every tick stays under 3 kB/s", "[protocol][upl
   const Uplink u = run([](std::uint64_t t) {
     return InputFrame{0, static_cast<std::int8_t>(t % 3 - 1), static_cast<std::int8_t>(t / 3 % 3 - 1), false};
   });
+  INFO("steering every tick: " << u.bytes / 10 << " B/s, " << u.datagrams / 10 << " datagrams/s");
   CHECK(u.datagrams <= 505);  // at most 50 a second
   CHECK(u.bytes / 10 <= 3000);
-  UNSCOPED_INFO("steering every tick: " << u.bytes / 10 << " B/s, " << u.datagrams / 10 << " datagrams/s");
+}
+
+TEST_CASE("Lean uplink: the terminal client steering at every 60 fps frame stays under 3 kB/s",
+          "[protocol][uplink]") {
+  // fts-client passes its held input to hold_input once per drawn frame (--fps 60).
+  const Uplink u = run(
+      [](std::uint64_t t) {
+        return InputFrame{0, static_cast<std::int8_t>(t % 3 - 1), static_cast<std::int8_t>(t / 3 % 3 - 1), t % 7 == 0};
+      },
+      16);
+  INFO("client at 60 fps, steering and firing: " << u.bytes / 10 << " B/s, " << u.datagrams / 10
+                                                 << " datagrams/s");
+  CHECK(u.datagrams <= 505);
+  CHECK(u.bytes / 10 <= 3000);
 }
 
 TEST_CASE("Lean uplink: a fire between two sends is kept for the next one", "[protocol][uplink]") {

@@ -71,7 +71,7 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
   SECTION("command in JSON") {
     const auto bytes = encode_datagram(h, {Command{1, CommandOp::buy, 'm', {}}});
     const std::string payload(bytes.begin() + kHeaderBytes, bytes.end());
-    CHECK(payload == R"([{"item":"m","op":"buy","rid":1,"t":"cmd"}])");
+    CHECK(payload == R"([{"t":"cmd","rid":1,"op":"buy","item":"m"}])");
   }
   SECTION("input in MessagePack") {
     h.encoding = Encoding::msgpack;
@@ -86,5 +86,5 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
 }
 
 TEST_CASE("to_json_text is the JSON payload", "[protocol][messages]") {
-  CHECK(to_json_text({Bye{"quit"}}) == R"([{"reason":"quit","t":"bye"}])");
+  CHECK(to_json_text({Bye{"quit"}}) == R"([{"t":"bye","reason":"quit"}])");
 }

@@ -38,16 +38,13 @@ std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Me
 void append_payload(Encoding encoding, const std::vector<Message>& messages, std::vector<std::uint8_t>& out);
 // The payload's size without encoding it (MessagePack: counted by the same table code).
 std::size_t payload_bytes(Encoding encoding, const std::vector<Message>& messages);
+// The same two for a payload of one snapshot part, the server's per-client path: no
+// message list is built (MessagePack allocates nothing once `out` has grown to size).
+void append_snapshot_payload(Encoding encoding, const SnapshotMsg& part, std::vector<std::uint8_t>& out);
+std::size_t snapshot_payload_bytes(Encoding encoding, const SnapshotMsg& part);
 // Parses a payload alone (no header); never throws, never reads past `payload`.
 Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload);
 // JSON text of a message list, for logs and docs.
 std::string to_json_text(const std::vector<Message>& messages);
-
-// The codec before the field tables (every message through an nlohmann tree), kept only
-// so that tests/bench can time old against new in one run.
-namespace legacy {
-std::vector<std::uint8_t> encode_payload(Encoding encoding, const std::vector<Message>& messages);
-Decoded<std::vector<Message>> decode_payload(Encoding encoding, std::span<const std::uint8_t> payload);
-}  // namespace legacy
 
 }  // namespace fts::protocol

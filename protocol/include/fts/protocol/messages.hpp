@@ -1,6 +1,6 @@
-// Every message of the protocol, declared once. Each has one nlohmann-json mapping
-// (messages.cpp, snapshot_msg.cpp) from which both encodings, JSON text and MessagePack,
-// are produced (codec.hpp). Field units are in the names or comments.
+// Every message of the protocol, declared once. Each has one field table
+// (src/control_tables.hpp, src/tables.hpp) from which both encodings, JSON text and
+// MessagePack, are written and read (codec.hpp). Field units are in the names or comments.
 #pragma once
 
 #include <array>

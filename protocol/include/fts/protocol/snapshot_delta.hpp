@@ -5,7 +5,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -34,6 +33,10 @@ std::int64_t predicted_step(std::int64_t v_q, std::uint32_t ticks, std::uint32_t
 // events are dropped if even that does not fit).
 std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding,
                                         std::size_t budget = kMaxPayloadBytes);
+// The same into `parts`, reused: a message that fits in one part is copied into parts[0]
+// without allocating once the lists have grown to size.
+void split_snapshot_into(const SnapshotMsg& message, Encoding encoding, std::size_t budget,
+                         std::vector<SnapshotMsg>& parts);
 
 // Rebuilds a snapshot from all its parts and its base (nullptr for a full snapshot).
 Decoded<Snapshot> apply_snapshot(const std::vector<SnapshotMsg>& parts, const Snapshot* base);
@@ -53,12 +56,14 @@ class SnapshotSender {
       : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {}
 
   // The parts to send for `current` (delta against the acknowledged snapshot if it is
-  // still in the history, else full).
-  std::vector<SnapshotMsg> encode(const Snapshot& current, Encoding encoding,
-                                  std::size_t budget = kMaxPayloadBytes);
+  // still in the history, else full). The parts live in this sender until the next call.
+  const std::vector<SnapshotMsg>& encode(const Snapshot& current, Encoding encoding,
+                                         std::size_t budget = kMaxPayloadBytes);
   // The same for a snapshot quantized once for all clients (no copy, no re-quantizing).
-  std::vector<SnapshotMsg> encode(SharedSnapshot quantized, Encoding encoding,
-                                  std::size_t budget = kMaxPayloadBytes);
+  // In the steady state (a delta of one part, MessagePack) this allocates nothing: the
+  // delta, its parts and the history reuse their storage (fts-wire-bench counts it).
+  const std::vector<SnapshotMsg>& encode(SharedSnapshot quantized, Encoding encoding,
+                                         std::size_t budget = kMaxPayloadBytes);
   // The client reports the latest complete snapshot it has.
   void on_ack(std::uint32_t tick);
   std::optional<std::uint32_t> acked_tick() const { return acked_; }
@@ -67,8 +72,12 @@ class SnapshotSender {
  private:
   std::uint32_t max_base_age_ticks_;
   std::uint32_t tick_rate_hz_;
-  std::deque<SharedSnapshot> history_;
+  std::vector<SharedSnapshot> history_;  // at most kHistory, oldest first
   std::optional<std::uint32_t> acked_;
+  // Reused storage of the per-client work.
+  SnapshotMsg delta_;
+  std::vector<BallEntry> motions_;
+  std::vector<SnapshotMsg> parts_;
 };
 
 // Client side: assembles parts, applies deltas, keeps recent complete snapshots as bases.

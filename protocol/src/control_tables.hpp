@@ -1,0 +1,94 @@
+// The field tables of the handshake and control messages (internal); the snapshot's and
+// the input's are in tables.hpp. One row per wire key, documented in PROTOCOL.md 4.
+#pragma once
+
+#include <tuple>
+
+#include "fields.hpp"
+#include "fts/protocol/messages.hpp"
+
+namespace fts::protocol::wire {
+
+inline constexpr std::size_t kTokenHex = 32;
+inline constexpr std::size_t kCookieHex = 48;
+inline constexpr std::size_t kNonceHex = 16;
+inline constexpr std::size_t kRoomBytes = 16;
+inline constexpr std::size_t kCodeBytes = 32;
+inline constexpr std::int64_t kAnyU32 = 0xFFFFFFFF;
+
+template <class M, class T, class K>
+using F = Field<M, T, K>;
+using U32 = Int<std::uint32_t>;
+
+// ---- hello (PROTOCOL.md 4.1)
+inline const auto kHelloFields = std::make_tuple(
+    F<Hello, std::string, AnyText>{"name", &Hello::name, {kMaxTextBytes}},
+    F<Hello, std::string, Hex>{"token", &Hello::token, {kTokenHex}},
+    F<Hello, std::string, Hex>{"cookie", &Hello::cookie, {kCookieHex}},
+    F<Hello, std::string, Text>{"pad", &Hello::pad, {0, kMaxDatagramBytes}},
+    F<Hello, std::string, Hex>{"nonce", &Hello::nonce, {kNonceHex, true}},
+    F<Hello, std::string, Text>{"join", &Hello::join, {0, kRoomBytes}, Presence::nonzero},
+    F<Hello, std::string, Text>{"room", &Hello::room, {0, kRoomBytes}, Presence::nonzero});
+
+// ---- challenge (4.2)
+inline const auto kChallengeFields =
+    std::make_tuple(F<Challenge, std::string, Hex>{"cookie", &Challenge::cookie, {kCookieHex, true}});
+
+// ---- welcome (4.3)
+inline const auto kWelcomeFields = std::make_tuple(
+    F<Welcome, std::uint32_t, U32>{"player_id", &Welcome::player_id, {1, kAnyU32}},
+    F<Welcome, std::string, Hex>{"token", &Welcome::token, {kTokenHex}},
+    F<Welcome, std::uint32_t, U32>{"tick_rate_hz", &Welcome::tick_rate_hz, {0, 10000}},
+    F<Welcome, std::uint32_t, U32>{"snapshot_rate_hz", &Welcome::snapshot_rate_hz, {0, 10000}},
+    F<Welcome, double, Num>{"arena_width_u", &Welcome::arena_width_u, {0, 1e6}},
+    F<Welcome, double, Num>{"arena_height_u", &Welcome::arena_height_u, {0, 1e6}},
+    F<Welcome, std::uint32_t, U32>{"max_players", &Welcome::max_players, {0, 64}},
+    F<Welcome, std::uint32_t, U32>{"timeout_ms", &Welcome::timeout_ms, {0, kAnyU32}},
+    F<Welcome, std::uint32_t, U32>{"reconnect_window_ms", &Welcome::reconnect_window_ms, {0, kAnyU32}},
+    F<Welcome, std::uint32_t, U32>{"input_redundancy", &Welcome::input_redundancy, {0, kMaxInputFrames}},
+    F<Welcome, std::uint32_t, U32>{"server_tick", &Welcome::server_tick, {0, kAnyU32}},
+    F<Welcome, bool, Bool>{"reconnected", &Welcome::reconnected, {}},
+    SubField<Welcome, sim::ShopTerms, double, Num>{"frame_s", &Welcome::shop, &sim::ShopTerms::frame_s, {1e-6, 1e6}},
+    SubField<Welcome, sim::ShopTerms, double, Num>{"multiplier_upgrade_factor", &Welcome::shop,
+                                                   &sim::ShopTerms::multiplier_upgrade_factor, {0, 1e6}},
+    SubField<Welcome, sim::ShopTerms, double, Num>{"bank_interest_factor", &Welcome::shop,
+                                                   &sim::ShopTerms::bank_interest_factor, {0, 1e6}},
+    F<Welcome, std::string, Text>{"room", &Welcome::room, {0, kRoomBytes}, Presence::nonzero},
+    F<Welcome, bool, Bool>{"spectator", &Welcome::spectator, {}, Presence::nonzero});
+
+// ---- error (4.4)
+inline const auto kErrorFields =
+    std::make_tuple(F<Error, std::string, Text>{"code", &Error::code, {0, kCodeBytes}},
+                    F<Error, std::string, Text>{"msg", &Error::message, {0, kMaxTextBytes}});
+
+// ---- cmd (4.6): lenient on purpose: an op or item the server cannot apply still reads,
+// so that the command is consumed and answered instead of blocking the reliable channel.
+inline const auto kCommandFields = std::make_tuple(
+    F<Command, std::uint32_t, U32>{"rid", &Command::rid, {0, kAnyU32}},
+    F<Command, CommandOp, OpenNamed<CommandOp, 6>>{
+        "op", &Command::op, {{"buy", "ready", "again", "unknown", "chat", "rooms"}, CommandOp::unknown}},
+    F<Command, char, Key>{"item", &Command::item, {}, Presence::nonzero},
+    F<Command, std::string, Text>{"text", &Command::text, {0, kMaxTextBytes}, Presence::nonzero});
+
+// ---- result (4.7)
+inline const auto kResultFields = std::make_tuple(
+    F<Result, std::uint32_t, U32>{"rid", &Result::rid, {1, kAnyU32}},
+    F<Result, std::uint32_t, U32>{"cmd", &Result::command_rid, {0, kAnyU32}},
+    F<Result, bool, Bool>{"ok", &Result::ok, {}},
+    F<Result, std::string, Text>{"code", &Result::code, {0, kCodeBytes}},
+    F<Result, std::string, Text>{"msg", &Result::message, {0, kMaxTextBytes}});
+
+// ---- chat (4.7b)
+inline const auto kChatFields = std::make_tuple(
+    F<Chat, std::uint32_t, U32>{"rid", &Chat::rid, {1, kAnyU32}},
+    F<Chat, std::uint32_t, U32>{"from", &Chat::from, {0, kAnyU32}},
+    F<Chat, std::string, Text>{"name", &Chat::name, {0, kMaxNameBytes}},
+    F<Chat, std::string, Text>{"text", &Chat::text, {0, kMaxTextBytes}});
+
+// ---- ping (4.8): no fields
+inline const std::tuple<> kPingFields{};
+
+// ---- bye (4.9)
+inline const auto kByeFields = std::make_tuple(F<Bye, std::string, Text>{"reason", &Bye::reason, {0, kMaxTextBytes}});
+
+}  // namespace fts::protocol::wire
