@@ -11,6 +11,8 @@ using namespace detail;
 namespace {
 constexpr std::size_t kTokenHex = 32;
 constexpr std::size_t kCookieHex = 48;
+constexpr std::size_t kSealedTokenHex = 96;
+constexpr std::size_t kKeyHex = 64;
 constexpr std::size_t kNonceHex = 16;
 
 const char* op_name(CommandOp op) {
@@ -30,6 +32,7 @@ void to_json(json& j, const Hello& m) {
   j = json{{"name", m.name}, {"token", m.token}, {"cookie", m.cookie}, {"pad", m.pad}, {"nonce", m.nonce}};
   if (!m.join.empty()) j["join"] = m.join;
   if (!m.room.empty()) j["room"] = m.room;
+  if (!m.key.empty()) j["key"] = m.key;
 }
 void from_json(const json& j, Hello& m) {
   // Any string up to kMaxTextBytes: the server checks the name itself, so that a bad one
@@ -40,7 +43,7 @@ void from_json(const json& j, Hello& m) {
   if (m.name.size() > kMaxTextBytes) fail(Reject::out_of_range);
   m.nonce = as_hex(field(j, "nonce"), kNonceHex);
   if (m.nonce.empty()) fail(Reject::out_of_range);
-  m.token = as_hex(field(j, "token"), kTokenHex);
+  m.token = as_hex(field(j, "token"), kSealedTokenHex);
   m.cookie = as_hex(field(j, "cookie"), kCookieHex);
   m.pad = as_text(field(j, "pad"), kMaxDatagramBytes);
   // Optional (older clients send neither); the server checks the values and answers a
@@ -48,12 +51,15 @@ void from_json(const json& j, Hello& m) {
   m.join = m.room = "";
   if (const json* join = optional_field(j, "join")) m.join = as_text(*join, 16);
   if (const json* room = optional_field(j, "room")) m.room = as_text(*room, 16);
+  m.key = "";
+  if (const json* key = optional_field(j, "key")) m.key = as_hex(*key, kKeyHex);
 }
 
-void to_json(json& j, const Challenge& m) { j = json{{"cookie", m.cookie}}; }
+void to_json(json& j, const Challenge& m) { j = json{{"cookie", m.cookie}, {"key", m.key}}; }
 void from_json(const json& j, Challenge& m) {
   m.cookie = as_hex(field(j, "cookie"), kCookieHex);
-  if (m.cookie.empty()) fail(Reject::out_of_range);
+  m.key = as_hex(field(j, "key"), kKeyHex);
+  if (m.cookie.empty() || m.key.empty()) fail(Reject::out_of_range);
 }
 
 void to_json(json& j, const Welcome& m) {

@@ -4,7 +4,10 @@
 
 namespace fts::protocol {
 
-ServerEndpoint::ServerEndpoint(ServerConfig config) : config_(std::move(config)) {}
+ServerEndpoint::ServerEndpoint(ServerConfig config)
+    : config_(std::move(config)),
+      kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
+      kx_hex_(public_key_hex(kx_.public_key)) {}
 
 void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > kMaxDatagramBytes) return;  // never sent; the limits make it unreachable
@@ -44,22 +47,25 @@ ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view hos
   if (auto it = addresses_.find(host); it != addresses_.end()) return &it->second;
   if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
   AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
-                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms)};
+                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms),
+                 TokenBucket(config_.takeovers_per_s, config_.takeover_burst, now_ms)};
   return &addresses_.emplace(std::string(host), a).first->second;
 }
 
 // A host whose buckets are full again has been quiet for a while: nothing to remember.
 void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
   std::erase_if(addresses_, [&](const auto& kv) {
-    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms);
+    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms) && kv.second.takeovers.full(now_ms);
   });
 }
 
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
   observe_time(now_ms);
-  // Cheapest checks first: the sender's rate, the header, the session and its rate; the
-  // payload is parsed only for a datagram that passed them all.
+  // Cheapest checks first: the sender's rate, the header, the session, the replay window
+  // and the tag (PROTOCOL.md 5.7), then the session's rate; the payload is parsed only
+  // for a datagram that passed them all, and nothing of the session changes before the
+  // tag verified.
   AddressState* host = address_state(host_of(from), now_ms);
   if (host && !host->datagrams.take(now_ms)) return rejects_.add(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
@@ -84,10 +90,14 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
     if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
     Session& s = sessions_.at(sid->second);
     if (s.address != from) return rejects_.add(Reject::address_mismatch);
+    if (!s.connected) return rejects_.add(Reject::unknown_session);
+    auto d = open_sealed(s.seal, bytes, config_.version, plain_);
+    if (!d) return rejects_.add(d.error());
     if (!s.datagrams.take(now_ms)) {
       ++s.rate_limited;
       return rejects_.add(Reject::rate_limited);
     }
+    return handle_session(s, *d, now_ms);
   }
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
@@ -101,15 +111,16 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
     }
     return;
   }
-  if (d->header.session != 0) return handle_session(from, *d, now_ms);
   if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0]))
     return rejects_.add(Reject::unexpected);
   if (bytes.size() < kMinHelloBytes) return rejects_.add(Reject::unpadded_hello);
   handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
 }
 
-void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding encoding,
-                                  bool reconnected, std::size_t request_bytes) {
+// The welcome is the session's first sealed datagram (it carries the token); like every
+// reply before the handshake completes, it is never larger than the hello.
+void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t request_bytes,
+                                  std::uint64_t now_ms) {
   Welcome w = config_.settings;
   w.player_id = s.player_id;
   w.token = s.token;
@@ -120,11 +131,17 @@ void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding 
   w.max_players = config_.max_players;
   w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
   w.reconnect_window_ms = static_cast<std::uint32_t>(config_.reconnect_window_ms);
-  reply_unconnected(to, encoding, s.session_id, w, request_bytes);
+  Header h;
+  h.version = config_.version;
+  h.encoding = s.encoding;
+  h.session = s.session_id;
+  s.acks.stamp(h, now_ms);
+  auto bytes = encode_sealed(s.seal, h, {w});
+  if (bytes.size() <= request_bytes) emit(s.address, std::move(bytes));
 }
 
-void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding,
-                                   const std::string& nonce, std::uint64_t now_ms) {
+void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
+                                   const SessionKeys& keys, std::uint64_t now_ms) {
   if (s.session_id != 0) by_session_id_.erase(s.session_id);
   if (!s.address.empty()) by_address_.erase(s.address);
   ++sessions_made_;
@@ -135,7 +152,8 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.encoding = encoding;
   s.connected = true;
   s.quit = false;
-  s.nonce = nonce;
+  s.nonce = hello.nonce;
+  s.seal = SealedChannel(keys, SealDirection::server_to_client, SealDirection::client_to_server);
   s.welcomed_as_reconnect = false;
   s.last_receive_ms = now_ms;
   s.last_send_ms = now_ms;
@@ -156,14 +174,14 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
                                   std::size_t request_bytes, std::uint64_t now_ms) {
   const Encoding enc = header.encoding;
   if (hello.cookie.empty()) {
-    reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
+    reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms), kx_hex_}, request_bytes);
     return;
   }
   switch (check_cookie(config_.key, from, hello.cookie, now_ms, config_.cookie_lifetime_ms)) {
     case CookieCheck::forged: return rejects_.add(Reject::bad_cookie);
     case CookieCheck::expired:
       rejects_.add(Reject::bad_cookie);
-      reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
+      reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms), kx_hex_}, request_bytes);
       return;
     case CookieCheck::ok: break;
   }
@@ -172,23 +190,44 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, Error{"bad_name", why}, request_bytes);
     return;
   }
+  Session* here = nullptr;
   if (auto it = by_address_.find(from); it != by_address_.end()) {
-    Session& s = sessions_.at(it->second);
+    here = &sessions_.at(it->second);
     // The same connection attempt again (a lost welcome, a duplicated or resent hello):
     // the same welcome, whatever was heard on the session since. Idempotent.
-    if (s.connected && s.nonce == hello.nonce) {
-      send_welcome(s, from, s.encoding, s.welcomed_as_reconnect, request_bytes);
+    if (here->connected && here->nonce == hello.nonce) {
+      send_welcome(*here, here->welcomed_as_reconnect, request_bytes, now_ms);
       return;
     }
-    // A new attempt from the address of a live session: the client there restarted.
-    // With that session's token it is taken back below; otherwise the old client is gone.
-    if (s.connected && hello.token != s.token) drop_connection(s, "replaced by a new connection", now_ms);
   }
+  // The session's keys (PROTOCOL.md 5.7), and the token, which travels sealed with them.
+  const auto client_key = parse_public_key(hello.key);
+  const auto keys = client_key ? server_session_keys(kx_, *client_key) : std::nullopt;
+  if (!keys) {
+    rejects_.add(Reject::bad_key);
+    reply_unconnected(from, enc, 0, Error{"bad_key", "the hello has no usable key (PROTOCOL.md 5.7)"}, request_bytes);
+    return;
+  }
+  std::string token;
   if (!hello.token.empty()) {
+    // Reconnects are rate limited per host: a token cannot be tried, or a player taken
+    // back and forth, faster than this.
+    if (AddressState* host = address_state(host_of(from), now_ms); host && !host->takeovers.take(now_ms)) {
+      rejects_.add(Reject::takeover_limited);
+      reply_unconnected(from, enc, 0, Error{"rate_limited", "too many reconnects from this address; try again soon"},
+                        request_bytes);
+      return;
+    }
+    token = open_hello_token(*keys, *client_key, hello.token).value_or("-");
+  }
+  // A new attempt from the address of a live session: the client there restarted.
+  // With that session's token it is taken back below; otherwise the old client is gone.
+  if (here && here->connected && token != here->token) drop_connection(*here, "replaced by a new connection", now_ms);
+  if (!token.empty()) {
     // A restored session knows only its token's verifier (compared once per hello).
-    const std::string verifier = token_verifier(hello.token);
+    const std::string verifier = token_verifier(token);
     auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == hello.token;
+      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == token;
     });
     if (it == sessions_.end()) {
       rejects_.add(Reject::bad_token);
@@ -198,7 +237,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       return;
     }
     Session& s = it->second;
-    s.token = hello.token;
+    s.token = token;
     // A player who quit gave its seat up: it comes back only to a free one.
     if (s.quit && !s.spectator &&
         (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
@@ -212,10 +251,10 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     // The token from another address takes the session over; the old address is told.
     if (s.connected && s.address != from)
       send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
-    start_session(s, from, enc, hello.nonce, now_ms);
+    start_session(s, from, enc, hello, *keys, now_ms);
     s.welcomed_as_reconnect = true;
     events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
-    send_welcome(s, from, enc, true, request_bytes);
+    send_welcome(s, true, request_bytes, now_ms);
     return;
   }
   if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
@@ -251,9 +290,9 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   s.room = admission.room;
   s.room_code = admission.code;
   s.spectator = admission.spectator;
-  start_session(s, from, enc, hello.nonce, now_ms);
+  start_session(s, from, enc, hello, *keys, now_ms);
   events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator});
-  send_welcome(s, from, enc, false, request_bytes);
+  send_welcome(s, false, request_bytes, now_ms);
 }
 
 void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
@@ -303,12 +342,7 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
   return out;
 }
 
-void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms) {
-  auto sid = by_session_id_.find(d.header.session);
-  if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
-  Session& s = sessions_.at(sid->second);
-  if (s.address != from) return rejects_.add(Reject::address_mismatch);
-  if (!s.connected) return rejects_.add(Reject::unknown_session);
+void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t now_ms) {
   // Validate every message before any state changes.
   for (const auto& m : d.messages) {
     if (!std::holds_alternative<Input>(m) && !std::holds_alternative<Command>(m) &&
@@ -382,7 +416,7 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
   }
   if (messages.empty()) messages.push_back(Ping{});
   s.last_send_ms = now_ms;
-  emit(s.address, encode_datagram(h, messages));
+  emit(s.address, encode_sealed(s.seal, h, messages));
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
@@ -553,7 +587,7 @@ std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
   for (const auto& [id, s] : sessions_)
     out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
-                   s.rate_limited, s.room, s.spectator});
+                   s.rate_limited, s.room, s.spectator, s.seal.drops()});
   return out;
 }
 

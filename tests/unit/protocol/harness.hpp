@@ -17,6 +17,25 @@ inline ServerKey test_key() {
   return k;
 }
 
+// A datagram from the server to this client, opened with the client's keys (a fresh
+// replay window each time: any datagram, any number of times). A handshake datagram
+// (session 0) is decoded as it is.
+inline Decoded<Datagram> peek(const ClientEndpoint& client, std::span<const std::uint8_t> bytes) {
+  auto h = read_header_any_version(bytes);
+  if (!h || h->session == 0) return decode_datagram(bytes);
+  SealedChannel channel(client.session_keys(), SealDirection::client_to_server, SealDirection::server_to_client);
+  std::vector<std::uint8_t> plain;
+  return open_sealed(channel, bytes, kProtocolVersion, plain);
+}
+
+// A datagram on the client's session with a header a script chose, sealed with the
+// client's keys as a hostile but keyed client would (extended sequence = header.sequence).
+inline std::vector<std::uint8_t> seal_as(const ClientEndpoint& client, const Header& header,
+                                         const std::vector<Message>& messages) {
+  SealedChannel channel(client.session_keys(), SealDirection::client_to_server, SealDirection::server_to_client);
+  return encode_sealed(channel, header, messages);
+}
+
 inline ServerConfig test_server_config() {
   ServerConfig c;
   c.key = test_key();
