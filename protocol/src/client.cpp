@@ -159,6 +159,9 @@ void ClientEndpoint::receive(std::span<const std::uint8_t> bytes, std::uint64_t 
   // A datagram of a session is sealed: it is opened (replay window, tag) before any parse.
   const auto header = read_header_any_version(bytes);
   const bool sealed = header && header->session != 0 && header->version == config_.version;
+  // Another session's datagram is not opened (a welcome resent for a hello that crossed
+  // ours is opened by the attempt that asked for it, in connecting).
+  if (sealed && state_ == ClientState::connected && header->session != session_) return reject(Reject::unknown_session);
   auto d = sealed ? open_sealed(seal_, bytes, config_.version, plain_) : decode_datagram(bytes, config_.version);
   if (!d) {
     reject(d.error());
