@@ -6,53 +6,42 @@ address_full: 8 scripted sessions from one host (127.0.0.2) get 4 welcomes and 4
 command_flood: a scripted session sends 150 datagrams/s of 24 commands each and never
               acknowledges; it is dropped with `overflow`, the server's memory stays flat
               and a real bot plays on.
-Scripted sessions speak PROTOCOL.md directly (JSON encoding) from Python sockets."""
+forged:       a scripted session's address and session id with unsealed commands, tampered
+              and replayed datagrams: each dropped and counted (forged, replayed), no
+              command answered, and the session goes on.
+Scripted sessions speak PROTOCOL.md directly (JSON encoding, sealed with PyNaCl as in
+sealed.py) from Python sockets."""
 import json, os, socket, struct, sys, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import Failure, Server, check, main, run_bots, start_bots, finish_bots, wait_for  # noqa: E402
+import sealed  # noqa: E402
 
 FLOOD_HOST = "127.0.0.2"  # another host than the real bots (127.0.0.1)
 
 
-def header(session=0, seq=0, ack=0, ack_bits=0):
-    return b"FTSP" + struct.pack(">HBIHHIH", 2, 0, session, seq, ack, ack_bits, 0)
-
-
-def parse(data):
-    if len(data) < 21 or data[:4] != b"FTSP":
-        return None, []
-    session = struct.unpack(">I", data[7:11])[0]
-    try:
-        return session, json.loads(data[21:].decode())
-    except ValueError:
-        return session, []
-
-
-def hello(nonce, cookie=""):
-    msg = {"t": "hello", "name": f"script{nonce % 100}", "token": "", "cookie": cookie,
-           "nonce": f"{nonce:016x}", "pad": ""}
-    body = json.dumps([msg]).encode()
-    msg["pad"] = "." * max(0, 512 - 21 - len(body))
-    return header() + json.dumps([msg]).encode()
-
-
 class Script:
-    """One handshake from its own port; resends its hello every 250 ms like a client."""
+    """One handshake from its own port (sealed.Handshake, PROTOCOL.md 5 and 5.7); resends
+    its hello every 250 ms like a client. Once welcomed, `session` seals what it sends."""
 
     def __init__(self, port, nonce):
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.sock.bind((FLOOD_HOST, 0))
         self.sock.setblocking(False)
         self.server = ("127.0.0.1", port)
-        self.nonce = nonce
-        self.cookie = ""
-        self.session = 0
-        self.error = None
+        self.hs = sealed.Handshake(f"script{nonce % 100}", nonce)
         self.last_hello = 0.0
 
+    @property
+    def session(self):
+        return self.hs.session
+
+    @property
+    def error(self):
+        return self.hs.error
+
     def done(self):
-        return self.session != 0 or self.error is not None
+        return self.session is not None or self.error is not None
 
     def pump(self):
         while True:
@@ -60,18 +49,21 @@ class Script:
                 data = self.sock.recv(2048)
             except BlockingIOError:
                 break
-            session, msgs = parse(data)
-            for m in msgs:
-                if m.get("t") == "challenge" and not self.cookie:
-                    self.cookie = m["cookie"]
-                    self.last_hello = 0.0
-                elif m.get("t") == "welcome" and not self.done():
-                    self.session = session
-                elif m.get("t") == "error" and not self.done():
-                    self.error = m["code"]
+            if self.hs.receive(data):
+                self.last_hello = 0.0
         if not self.done() and time.monotonic() - self.last_hello >= 0.25:
-            self.sock.sendto(hello(self.nonce, self.cookie), self.server)
+            self.sock.sendto(self.hs.hello(), self.server)
             self.last_hello = time.monotonic()
+
+    def received(self):
+        """The messages of every sealed datagram waiting (those that open)."""
+        out = []
+        while True:
+            try:
+                data = self.sock.recv(2048)
+            except BlockingIOError:
+                return out
+            out.extend(self.session.open(data) or [])
 
 
 def handshake_all(scripts, timeout_s):
@@ -113,7 +105,7 @@ def test_address_full():
         while time.monotonic() < deadline:
             seq += 1
             for s in welcomed:
-                s.sock.sendto(header(s.session, seq) + b'[{"t":"input","ack":0,"f":[]}]', s.server)
+                s.sock.sendto(s.session.datagram([{"t": "input", "ack": 0, "f": []}]), s.server)
             time.sleep(0.1)
         rc, report, err = finish_bots(bot, 60)
         check(rc == 0, f"the real bot failed: rc {rc} {err}")
@@ -126,7 +118,7 @@ def test_command_flood():
         real = start_bots("--connect", srv.address, "--name", "real", "--behavior", "shopper", "--duration", "8")
         script = Script(srv.port, 0xf100d)
         handshake_all([script], 10)
-        check(script.session != 0, f"the flooder was refused: {script.error}")
+        check(script.session is not None, f"the flooder was refused: {script.error}")
         rss_before = rss_kb(srv.proc.pid)
         rid = 0
         seq = 0
@@ -140,17 +132,11 @@ def test_command_flood():
             for _ in range(24):  # as many as fit in 1200 bytes of JSON
                 rid += 1
                 cmds.append({"t": "cmd", "rid": rid, "op": "buy", "item": "m"})
-            script.sock.sendto(header(script.session, seq) + json.dumps(cmds, separators=(",", ":")).encode(),
-                               script.server)
+            script.sock.sendto(script.session.datagram(cmds), script.server)
             sent += 1
-            try:
-                while True:
-                    _, msgs = parse(script.sock.recv(2048))
-                    for m in msgs:
-                        if m.get("t") == "error" and dropped_with is None:
-                            dropped_with = m["code"]
-            except BlockingIOError:
-                pass
+            for m in script.received():
+                if m.get("t") == "error" and dropped_with is None:
+                    dropped_with = m["code"]
             time.sleep(1 / 150)
         elapsed = time.monotonic() - start
         rss_after = rss_kb(srv.proc.pid)
@@ -165,5 +151,56 @@ def test_command_flood():
         check(report and report[0].get("snapshots_received", 0) > 0, f"the real bot got no snapshots: {report}")
 
 
+def drops_logged(srv):
+    """The server's drop counts by reason, summed over its stats lines so far."""
+    total = {}
+    for line in srv.text().splitlines():
+        if '"event":"stats"' not in line:
+            continue
+        for reason, n in json.loads(line).get("drops", {}).items():
+            total[reason] = total.get(reason, 0) + n
+    return total
+
+
+def test_forged():
+    with Server("--stats-interval-ms", "200", "--log-format", "json") as srv:
+        script = Script(srv.port, 0xf0f0)
+        handshake_all([script], 10)
+        check(script.session is not None, f"the script was refused: {script.error}")
+        s = script.session
+        # A real sealed heartbeat, sent once and then replayed three times.
+        real = s.datagram([{"t": "input", "ack": 0, "f": []}])
+        for _ in range(4):
+            script.sock.sendto(real, script.server)
+        # Tampered: one bit of the ciphertext, one bit of the header (associated data).
+        for at in (sealed.HEADER_BYTES + 3, 14):
+            bad = bytearray(s.datagram([{"t": "input", "ack": 0, "f": []}]))
+            bad[at] ^= 1
+            script.sock.sendto(bytes(bad), script.server)
+        # Forged: the victim's address and session id, a buy and a ready in clear (what
+        # changed coins and started the match before), one with a sequence 30 000 ahead.
+        cmds = json.dumps([{"t": "cmd", "rid": 1, "op": "buy", "item": "m"},
+                           {"t": "cmd", "rid": 2, "op": "ready"}]).encode()
+        for seq in (s.seq + 1, s.seq + 30000):
+            script.sock.sendto(sealed.header(s.id, seq % 65536) + cmds + bytes(16), script.server)
+        want = {"replayed": 3, "forged": 4}
+        wait_for(lambda: all(drops_logged(srv).get(k, 0) >= n for k, n in want.items()), 5,
+                 f"the server's stats to count {want}")
+        drops = drops_logged(srv)
+        print(f"drops logged: {drops}")
+        check(drops.get("replayed") == 3 and drops.get("forged") == 4, f"drops: {drops}")
+        # Nothing forged was applied: no command was answered. The session goes on: a
+        # sealed command of its own (rid 1) is answered, and its sequence is not stale.
+        results = [m for m in script.received() if m.get("t") == "result"]
+        check(not results, f"a forged command was answered: {results}")
+        script.sock.sendto(s.datagram([{"t": "cmd", "rid": 1, "op": "buy", "item": "m"}]), script.server)
+        answered = []
+        wait_for(lambda: answered.extend(m for m in script.received() if m.get("t") == "result") or answered,
+                 5, "the result of the script's own sealed command")
+        print(f"own command answered: {answered[0]}")
+        check(answered[0]["rid"] == 1, f"result: {answered[0]}")
+
+
 if __name__ == "__main__":
-    sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood}))
+    sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood,
+                   "forged": test_forged}))
