@@ -48,7 +48,10 @@ ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view hos
   if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
   AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
                  TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms),
-                 TokenBucket(config_.takeovers_per_s, config_.takeover_burst, now_ms)};
+                 TokenBucket(config_.takeovers_per_s,
+                             config_.takeover_burst != 0 ? config_.takeover_burst
+                                                         : static_cast<std::uint32_t>(config_.max_sessions_per_address),
+                             now_ms)};
   return &addresses_.emplace(std::string(host), a).first->second;
 }
 

@@ -201,6 +201,69 @@ def test_forged():
         check(answered[0]["rid"] == 1, f"result: {answered[0]}")
 
 
+def stats_lines(srv):
+    return [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
+
+
+def test_soak_flood():
+    """Issue 12's "Done when": 500 datagrams/s of commands, never acknowledged, for 60 s.
+    Each time the flooder is dropped it shakes hands again and goes on."""
+    seconds = float(os.environ.get("FTS_SOAK_SECONDS", "60"))
+    with Server("--stats-interval-ms", "1000", "--log-format", "json") as srv:
+        real = start_bots("--connect", srv.address, "--name", "real", "--behavior", "hunter",
+                          "--duration", str(int(seconds + 6)))
+        nonce = 0x50a4000
+        script = Script(srv.port, nonce)
+        handshake_all([script], 10)
+        time.sleep(1)  # the server's steady state: the real bot plays, a room is open
+        rss_before = rss_kb(srv.proc.pid)
+        sent = sessions = rid = 0
+        errors = {}
+        start = time.monotonic()
+        while True:
+            now = time.monotonic()
+            if now - start >= seconds:
+                break
+            if script.session is None or script.error is not None:
+                if script.error:
+                    errors[script.error] = errors.get(script.error, 0) + 1
+                nonce += 1
+                script.sock.close()
+                script = Script(srv.port, nonce)
+                handshake_all([script], 10)
+                continue
+            cmds = []
+            for _ in range(24):
+                rid += 1
+                cmds.append({"t": "cmd", "rid": rid, "op": "buy", "item": "m"})
+            script.sock.sendto(script.session.datagram(cmds), script.server)
+            sent += 1
+            for m in script.received():
+                if m.get("t") == "error":
+                    errors[m["code"]] = errors.get(m["code"], 0) + 1
+                    sessions += 1
+                    script.hs.session = None  # dropped: shake hands again
+                    rid = 0
+            # 500 a second on a schedule (no drift from the work in between).
+            delay = start + sent / 500.0 - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+        elapsed = time.monotonic() - start
+        rss_after = rss_kb(srv.proc.pid)
+        wait_for(lambda: len(stats_lines(srv)) >= 3, 5, "stats lines")
+        skipped = stats_lines(srv)[-1].get("ticks_skipped_total")
+        drops = drops_logged(srv)
+        print(f"soak: {sent} datagrams ({sent / elapsed:.0f}/s) in {elapsed:.1f} s, flooder dropped "
+              f"{sessions} times {errors}; server RSS {rss_before} -> {rss_after} kB "
+              f"({rss_after - rss_before:+d} kB); ticks skipped {skipped}; drops {drops}")
+        rc, report, err = finish_bots(real, 60)
+        check(rc == 0, f"the real bot failed: rc {rc} {err}")
+        check(report and report[0].get("snapshots_received", 0) > 0, f"the real bot got no snapshots: {report}")
+        if not sanitized(srv.proc.pid):
+            check(rss_after - rss_before < 2048, f"server RSS grew by {rss_after - rss_before} kB")
+        check(skipped == 0, f"{skipped} ticks skipped")
+
+
 if __name__ == "__main__":
     sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood,
-                   "forged": test_forged}))
+                   "forged": test_forged, "soak_flood": test_soak_flood}))

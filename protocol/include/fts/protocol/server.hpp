@@ -102,9 +102,11 @@ struct ServerConfig {
   std::uint32_t hellos_per_s = 10;
   std::uint32_t hello_burst = 10;
   // Hellos with a token (a reconnect takes its player over) per host; over it the hello
-  // is refused with error "rate_limited" (counted as takeover_limited).
+  // is refused with error "rate_limited" (counted as takeover_limited). The burst lets
+  // every player of a household come back at once after an outage (0: as many as
+  // max_sessions_per_address).
   std::uint32_t takeovers_per_s = 1;
-  std::uint32_t takeover_burst = 4;
+  std::uint32_t takeover_burst = 0;
   // A connected session that sends no real input (a frame with a key down, or a
   // command) for this long is dropped with error "idle"; never while the host says the
   // players cannot act (set_idle_paused: lobby, shop, game over). 0: never.
