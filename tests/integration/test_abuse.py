@@ -189,6 +189,12 @@ def test_forged():
         drops = drops_logged(srv)
         print(f"drops logged: {drops}")
         check(drops.get("replayed") == 3 and drops.get("forged") == 4, f"drops: {drops}")
+        # Per session: the victim's counts (the server logs sessions with drops).
+        wait_for(lambda: any(l.get("session_drops") for l in stats_lines(srv)), 5, "per-session drops in the stats")
+        per_session = [l["session_drops"] for l in stats_lines(srv) if l.get("session_drops")][-1]
+        print(f"per session: {per_session}")
+        check(list(per_session.values()) == [{"rate_limited": 0, "forged": 4, "replayed": 3}],
+              f"per-session drops: {per_session}")
         # Nothing forged was applied: no command was answered. The session goes on: a
         # sealed command of its own (rid 1) is answered, and its sequence is not stale.
         results = [m for m in script.received() if m.get("t") == "result"]
