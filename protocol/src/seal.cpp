@@ -35,22 +35,28 @@ KxKeyPair kx_random_keypair() {
   return k;
 }
 
-std::optional<SessionKeys> client_session_keys(const KxKeyPair& client, const KxPublicKey& server) {
+namespace {
+
+// crypto_kx_client_session_keys and crypto_kx_server_session_keys have one signature.
+using KxDerive = int (*)(unsigned char*, unsigned char*, const unsigned char*, const unsigned char*,
+                         const unsigned char*);
+
+std::optional<SessionKeys> derive_session_keys(KxDerive derive, const KxKeyPair& own, const KxPublicKey& peer) {
   ensure_sodium();
   SessionKeys k;
-  if (crypto_kx_client_session_keys(k.rx.data(), k.tx.data(), client.public_key.data(), client.secret_key.data(),
-                                    server.data()) != 0)
+  if (derive(k.rx.data(), k.tx.data(), own.public_key.data(), own.secret_key.data(), peer.data()) != 0)
     return std::nullopt;
   return k;
 }
 
+}  // namespace
+
+std::optional<SessionKeys> client_session_keys(const KxKeyPair& client, const KxPublicKey& server) {
+  return derive_session_keys(crypto_kx_client_session_keys, client, server);
+}
+
 std::optional<SessionKeys> server_session_keys(const KxKeyPair& server, const KxPublicKey& client) {
-  ensure_sodium();
-  SessionKeys k;
-  if (crypto_kx_server_session_keys(k.rx.data(), k.tx.data(), server.public_key.data(), server.secret_key.data(),
-                                    client.data()) != 0)
-    return std::nullopt;
-  return k;
+  return derive_session_keys(crypto_kx_server_session_keys, server, client);
 }
 
 SealNonce seal_nonce(SealDirection direction, std::uint64_t sequence) {
