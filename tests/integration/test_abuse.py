@@ -101,9 +101,7 @@ def test_address_full():
         # The welcomed scripts keep their sessions alive while a real player joins.
         bot = start_bots("--connect", srv.address, "--name", "real", "--behavior", "hunter", "--duration", "4")
         deadline = time.monotonic() + 4
-        seq = 0
         while time.monotonic() < deadline:
-            seq += 1
             for s in welcomed:
                 s.sock.sendto(s.session.datagram([{"t": "input", "ack": 0, "f": []}]), s.server)
             time.sleep(0.1)
@@ -121,13 +119,11 @@ def test_command_flood():
         check(script.session is not None, f"the flooder was refused: {script.error}")
         rss_before = rss_kb(srv.proc.pid)
         rid = 0
-        seq = 0
         sent = 0
         dropped_with = None
         start = time.monotonic()
         # The flood goes on after the drop: what follows is refused as an unknown session.
         while time.monotonic() - start < 6:
-            seq = seq % 65535 + 1
             cmds = []
             for _ in range(24):  # as many as fit in 1200 bytes of JSON
                 rid += 1
