@@ -23,6 +23,7 @@ ClientEndpoint::ClientEndpoint(ClientConfig config) : config_(std::move(config))
 void ClientEndpoint::connect(std::uint64_t now_ms) {
   const ClientConfig config = config_;
   *this = ClientEndpoint(config);
+  kx_ = kx_random_keypair();
   state_ = ClientState::connecting;
   connect_start_ms_ = now_ms;
   std::uint64_t nonce = config_.nonce;
@@ -36,8 +37,9 @@ void ClientEndpoint::connect(std::uint64_t now_ms) {
   send_hello(now_ms);
 }
 
+// Before the welcome (session 0) in clear, after it sealed (PROTOCOL.md 5.7).
 void ClientEndpoint::emit(const Header& header, const std::vector<Message>& messages) {
-  auto bytes = encode_datagram(header, messages);
+  auto bytes = header.session != 0 ? encode_sealed(seal_, header, messages) : encode_datagram(header, messages);
   if (bytes.size() > kMaxDatagramBytes) return;  // never happens with our limits; never send it
   ++stats_.datagrams_sent;
   stats_.bytes_sent += bytes.size();
@@ -48,7 +50,11 @@ void ClientEndpoint::send_hello(std::uint64_t now_ms) {
   Header h;
   h.version = config_.version;
   h.encoding = config_.encoding;
-  Hello hello{config_.name, config_.token, cookie_, "", nonce_, config_.join, config_.room};
+  // The token goes only in a hello with a cookie, sealed with this attempt's keys.
+  const std::string token = seal_.ready() && !config_.token.empty()
+                                ? seal_hello_token(keys_, kx_.public_key, config_.token)
+                                : std::string();
+  Hello hello{config_.name, token, cookie_, "", nonce_, config_.join, config_.room, public_key_hex(kx_.public_key)};
   // Pad to kMinHelloBytes (a longer pad may need a longer length prefix: loop).
   for (;;) {
     const std::size_t size = kHeaderBytes + encode_payload(config_.encoding, {hello}).size();
@@ -150,7 +156,13 @@ void ClientEndpoint::update(std::uint64_t now_ms) {
 void ClientEndpoint::receive(std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   ++stats_.datagrams_received;
   stats_.bytes_received += bytes.size();
-  auto d = decode_datagram(bytes, config_.version);
+  // A datagram of a session is sealed: it is opened (replay window, tag) before any parse.
+  const auto header = read_header_any_version(bytes);
+  const bool sealed = header && header->session != 0 && header->version == config_.version;
+  // Another session's datagram is not opened (a welcome resent for a hello that crossed
+  // ours is opened by the attempt that asked for it, in connecting).
+  if (sealed && state_ == ClientState::connected && header->session != session_) return reject(Reject::unknown_session);
+  auto d = sealed ? open_sealed(seal_, bytes, config_.version, plain_) : decode_datagram(bytes, config_.version);
   if (!d) {
     reject(d.error());
     if (d.error() == Reject::bad_version && state_ == ClientState::connecting) {
@@ -161,31 +173,41 @@ void ClientEndpoint::receive(std::span<const std::uint8_t> bytes, std::uint64_t 
     }
     return;
   }
-  if (state_ == ClientState::connecting) {
-    for (const auto& m : d->messages) {
-      if (const auto* c = std::get_if<Challenge>(&m); c && d->header.session == 0) {
-        cookie_ = c->cookie;
-        send_hello(now_ms);
-      } else if (const auto* w = std::get_if<Welcome>(&m); w && d->header.session != 0) {
-        welcome_ = *w;
-        session_ = d->header.session;
-        timeout_ms_ = std::max<std::uint64_t>(w->timeout_ms, 1);
-        config_.input_redundancy = std::max<std::size_t>(config_.input_redundancy, w->input_redundancy);
-        config_.token = w->token;
-        state_ = ClientState::connected;
-        last_receive_ms_ = now_ms;
-        send_packet(now_ms);  // first ack: the server knows the welcome arrived
-      } else if (const auto* e = std::get_if<Error>(&m)) {
-        error_ = *e;
-        state_ = ClientState::refused;
-      } else {
-        reject(Reject::unexpected);
-      }
-    }
-    return;
-  }
+  if (state_ == ClientState::connecting) return handle_connecting(*d, now_ms);
   if (state_ == ClientState::connected) handle_connected(*d, now_ms);
   else reject(Reject::unexpected);
+}
+
+void ClientEndpoint::handle_connecting(const Datagram& d, std::uint64_t now_ms) {
+  for (const auto& m : d.messages) {
+    if (const auto* c = std::get_if<Challenge>(&m); c && d.header.session == 0) {
+      // The server's key gives this attempt's session keys (the same server key each time).
+      const auto server_key = parse_public_key(c->key);
+      const auto keys = server_key ? client_session_keys(kx_, *server_key) : std::nullopt;
+      if (!keys) {
+        reject(Reject::bad_key);
+        continue;
+      }
+      keys_ = *keys;
+      seal_ = SealedChannel(keys_, SealDirection::client_to_server, SealDirection::server_to_client);
+      cookie_ = c->cookie;
+      send_hello(now_ms);
+    } else if (const auto* w = std::get_if<Welcome>(&m); w && d.header.session != 0) {
+      welcome_ = *w;
+      session_ = d.header.session;
+      timeout_ms_ = std::max<std::uint64_t>(w->timeout_ms, 1);
+      config_.input_redundancy = std::max<std::size_t>(config_.input_redundancy, w->input_redundancy);
+      config_.token = w->token;
+      state_ = ClientState::connected;
+      last_receive_ms_ = now_ms;
+      send_packet(now_ms);  // first ack: the server knows the welcome arrived
+    } else if (const auto* e = std::get_if<Error>(&m)) {
+      error_ = *e;
+      state_ = ClientState::refused;
+    } else {
+      reject(Reject::unexpected);
+    }
+  }
 }
 
 void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {

@@ -10,6 +10,8 @@
 namespace fts::protocol::wire {
 
 inline constexpr std::size_t kTokenHex = 32;
+inline constexpr std::size_t kSealedTokenHex = 96;  // a token sealed in a hello (PROTOCOL.md 5.7.3)
+inline constexpr std::size_t kKeyHex = 64;          // a crypto_kx public key (5.7.1)
 inline constexpr std::size_t kCookieHex = 48;
 inline constexpr std::size_t kNonceHex = 16;
 inline constexpr std::size_t kRoomBytes = 16;
@@ -23,16 +25,18 @@ using U32 = Int<std::uint32_t>;
 // ---- hello (PROTOCOL.md 4.1)
 inline const auto kHelloFields = std::make_tuple(
     F<Hello, std::string, AnyText>{"name", &Hello::name, {kMaxTextBytes}},
-    F<Hello, std::string, Hex>{"token", &Hello::token, {kTokenHex}},
+    F<Hello, std::string, Hex>{"token", &Hello::token, {kSealedTokenHex}},
     F<Hello, std::string, Hex>{"cookie", &Hello::cookie, {kCookieHex}},
     F<Hello, std::string, Text>{"pad", &Hello::pad, {0, kMaxDatagramBytes}},
     F<Hello, std::string, Hex>{"nonce", &Hello::nonce, {kNonceHex, true}},
     F<Hello, std::string, Text>{"join", &Hello::join, {0, kRoomBytes}, Presence::nonzero},
-    F<Hello, std::string, Text>{"room", &Hello::room, {0, kRoomBytes}, Presence::nonzero});
+    F<Hello, std::string, Text>{"room", &Hello::room, {0, kRoomBytes}, Presence::nonzero},
+    F<Hello, std::string, Hex>{"key", &Hello::key, {kKeyHex}, Presence::nonzero});
 
 // ---- challenge (4.2)
 inline const auto kChallengeFields =
-    std::make_tuple(F<Challenge, std::string, Hex>{"cookie", &Challenge::cookie, {kCookieHex, true}});
+    std::make_tuple(F<Challenge, std::string, Hex>{"cookie", &Challenge::cookie, {kCookieHex, true}},
+                    F<Challenge, std::string, Hex>{"key", &Challenge::key, {kKeyHex, true}});
 
 // ---- welcome (4.3)
 inline const auto kWelcomeFields = std::make_tuple(

@@ -40,6 +40,17 @@ int hex_value(char c) {
 
 }  // namespace
 
+bool from_hex(std::string_view hex, std::span<std::uint8_t> out) {
+  if (hex.size() != 2 * out.size()) return false;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const int hi = hex_value(hex[2 * i]);
+    const int lo = hex_value(hex[2 * i + 1]);
+    if (hi < 0 || lo < 0) return false;
+    out[i] = static_cast<std::uint8_t>(hi * 16 + lo);
+  }
+  return true;
+}
+
 std::string to_hex(const std::uint8_t* data, std::size_t size) {
   static constexpr char kDigits[] = "0123456789abcdef";
   std::string s;
@@ -67,14 +78,8 @@ std::string make_cookie(const ServerKey& key, std::string_view address, std::uin
 
 CookieCheck check_cookie(const ServerKey& key, std::string_view address, std::string_view cookie,
                          std::uint64_t now_ms, std::uint64_t lifetime_ms) {
-  if (cookie.size() != 2 * (8 + kMacBytes)) return CookieCheck::forged;
   std::uint8_t bytes[8 + kMacBytes];
-  for (std::size_t i = 0; i < sizeof bytes; ++i) {
-    const int hi = hex_value(cookie[2 * i]);
-    const int lo = hex_value(cookie[2 * i + 1]);
-    if (hi < 0 || lo < 0) return CookieCheck::forged;
-    bytes[i] = static_cast<std::uint8_t>(hi * 16 + lo);
-  }
+  if (!from_hex(cookie, bytes)) return CookieCheck::forged;
   std::uint64_t issued_ms = 0;
   for (int i = 0; i < 8; ++i) issued_ms = (issued_ms << 8) | bytes[i];
   const auto mac = keyed_hash(key, "cookie", issued_ms, address, kMacBytes);
@@ -87,6 +92,8 @@ std::string derive_token(const ServerKey& key, std::uint64_t n) {
   const auto h = keyed_hash(key, "token", n, {}, 16);
   return to_hex(h.data(), 16);
 }
+
+std::array<std::uint8_t, 32> derive_kx_seed(const ServerKey& key) { return keyed_hash(key, "kx", 0, {}, 32); }
 
 std::string token_verifier(std::string_view token) {
   ensure_sodium();

@@ -26,6 +26,10 @@ std::string_view to_string(Reject reason) {
     case Reject::address_full: return "address_full";
     case Reject::idle: return "idle";
     case Reject::join_refused: return "join_refused";
+    case Reject::forged: return "forged";
+    case Reject::replayed: return "replayed";
+    case Reject::bad_key: return "bad_key";
+    case Reject::takeover_limited: return "takeover_limited";
     case Reject::count_: break;
   }
   return "unknown";

@@ -4,23 +4,14 @@
 
 namespace fts::protocol {
 
-ServerEndpoint::ServerEndpoint(ServerConfig config) : config_(std::move(config)) {}
+ServerEndpoint::ServerEndpoint(ServerConfig config)
+    : config_(std::move(config)),
+      kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
+      kx_hex_(public_key_hex(kx_.public_key)) {}
 
 void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > kMaxDatagramBytes) return;  // never sent; the limits make it unreachable
   out_.push_back({to, std::move(bytes)});
-}
-
-// Before the handshake completes, a reply is never larger than its request.
-void ServerEndpoint::reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
-                                       const Message& message, std::size_t request_bytes) {
-  Header h;
-  h.version = config_.version;
-  h.encoding = encoding;
-  h.session = session;
-  auto bytes = encode_datagram(h, {message});
-  if (bytes.size() > request_bytes) return;
-  emit(to, std::move(bytes));
 }
 
 // The server's own stall (a hitch, a debugger, swap) is not the clients' silence: a gap
@@ -44,22 +35,28 @@ ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view hos
   if (auto it = addresses_.find(host); it != addresses_.end()) return &it->second;
   if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
   AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
-                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms)};
+                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms),
+                 TokenBucket(config_.takeovers_per_s,
+                             config_.takeover_burst != 0 ? config_.takeover_burst
+                                                         : static_cast<std::uint32_t>(config_.max_sessions_per_address),
+                             now_ms)};
   return &addresses_.emplace(std::string(host), a).first->second;
 }
 
 // A host whose buckets are full again has been quiet for a while: nothing to remember.
 void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
   std::erase_if(addresses_, [&](const auto& kv) {
-    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms);
+    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms) && kv.second.takeovers.full(now_ms);
   });
 }
 
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
   observe_time(now_ms);
-  // Cheapest checks first: the sender's rate, the header, the session and its rate; the
-  // payload is parsed only for a datagram that passed them all.
+  // Cheapest checks first: the sender's rate, the header, the session, the replay window
+  // and the tag (PROTOCOL.md 5.7), then the session's rate; the payload is parsed only
+  // for a datagram that passed them all, and nothing of the session changes before the
+  // tag verified.
   AddressState* host = address_state(host_of(from), now_ms);
   if (host && !host->datagrams.take(now_ms)) return rejects_.add(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
@@ -84,10 +81,14 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
     if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
     Session& s = sessions_.at(sid->second);
     if (s.address != from) return rejects_.add(Reject::address_mismatch);
+    if (!s.connected) return rejects_.add(Reject::unknown_session);
+    auto d = open_sealed(s.seal, bytes, config_.version, plain_);
+    if (!d) return rejects_.add(d.error());
     if (!s.datagrams.take(now_ms)) {
       ++s.rate_limited;
       return rejects_.add(Reject::rate_limited);
     }
+    return handle_session(s, *d, now_ms);
   }
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
@@ -101,171 +102,10 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
     }
     return;
   }
-  if (d->header.session != 0) return handle_session(from, *d, now_ms);
   if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0]))
     return rejects_.add(Reject::unexpected);
   if (bytes.size() < kMinHelloBytes) return rejects_.add(Reject::unpadded_hello);
   handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
-}
-
-void ServerEndpoint::send_welcome(const Session& s, const Address& to, Encoding encoding,
-                                  bool reconnected, std::size_t request_bytes) {
-  Welcome w = config_.settings;
-  w.player_id = s.player_id;
-  w.token = s.token;
-  if (auto it = room_ticks_.find(s.room); it != room_ticks_.end()) w.server_tick = it->second;
-  w.room = s.room_code;
-  w.spectator = s.spectator;
-  w.reconnected = reconnected;
-  w.max_players = config_.max_players;
-  w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
-  w.reconnect_window_ms = static_cast<std::uint32_t>(config_.reconnect_window_ms);
-  reply_unconnected(to, encoding, s.session_id, w, request_bytes);
-}
-
-void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding,
-                                   const std::string& nonce, std::uint64_t now_ms) {
-  if (s.session_id != 0) by_session_id_.erase(s.session_id);
-  if (!s.address.empty()) by_address_.erase(s.address);
-  ++sessions_made_;
-  s.session_id = derive_session_id(config_.key, sessions_made_);
-  while (by_session_id_.count(s.session_id))
-    s.session_id = derive_session_id(config_.key, ++sessions_made_);
-  s.address = from;
-  s.encoding = encoding;
-  s.connected = true;
-  s.quit = false;
-  s.nonce = nonce;
-  s.welcomed_as_reconnect = false;
-  s.last_receive_ms = now_ms;
-  s.last_send_ms = now_ms;
-  s.last_input_seq = 0;
-  s.unanswered = 0;
-  s.last_active_ms = now_ms;
-  s.datagrams = TokenBucket(config_.session_datagrams_per_s, config_.session_datagram_burst, now_ms);
-  s.acks = AckWindow{};
-  s.results = ReliableSender<Result>{};
-  s.chats = ReliableSender<Chat>{};
-  s.commands = ReliableReceiver<Command>{};
-  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz);
-  by_session_id_[s.session_id] = s.player_id;
-  by_address_[from] = s.player_id;
-}
-
-void ServerEndpoint::handle_hello(const Address& from, const Header& header, const Hello& hello,
-                                  std::size_t request_bytes, std::uint64_t now_ms) {
-  const Encoding enc = header.encoding;
-  if (hello.cookie.empty()) {
-    reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
-    return;
-  }
-  switch (check_cookie(config_.key, from, hello.cookie, now_ms, config_.cookie_lifetime_ms)) {
-    case CookieCheck::forged: return rejects_.add(Reject::bad_cookie);
-    case CookieCheck::expired:
-      rejects_.add(Reject::bad_cookie);
-      reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms)}, request_bytes);
-      return;
-    case CookieCheck::ok: break;
-  }
-  if (const std::string why = name_problem(hello.name); !why.empty()) {
-    rejects_.add(Reject::out_of_range);
-    reply_unconnected(from, enc, 0, Error{"bad_name", why}, request_bytes);
-    return;
-  }
-  if (auto it = by_address_.find(from); it != by_address_.end()) {
-    Session& s = sessions_.at(it->second);
-    // The same connection attempt again (a lost welcome, a duplicated or resent hello):
-    // the same welcome, whatever was heard on the session since. Idempotent.
-    if (s.connected && s.nonce == hello.nonce) {
-      send_welcome(s, from, s.encoding, s.welcomed_as_reconnect, request_bytes);
-      return;
-    }
-    // A new attempt from the address of a live session: the client there restarted.
-    // With that session's token it is taken back below; otherwise the old client is gone.
-    if (s.connected && hello.token != s.token) drop_connection(s, "replaced by a new connection", now_ms);
-  }
-  if (!hello.token.empty()) {
-    // A restored session knows only its token's verifier (compared once per hello).
-    const std::string verifier = token_verifier(hello.token);
-    auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == hello.token;
-    });
-    if (it == sessions_.end()) {
-      rejects_.add(Reject::bad_token);
-      reply_unconnected(from, enc, 0,
-                        Error{"bad_token", "unknown or expired session token; connect again without one"},
-                        request_bytes);
-      return;
-    }
-    Session& s = it->second;
-    s.token = hello.token;
-    // A player who quit gave its seat up: it comes back only to a free one.
-    if (s.quit && !s.spectator &&
-        (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
-      if (!config_.admit) return refuse_full(from, enc, request_bytes);
-      rejects_.add(Reject::join_refused);
-      reply_unconnected(from, enc, 0,
-                        Error{"room_full", "room " + s.room_code + " has no free seat; try again later"},
-                        request_bytes);
-      return;
-    }
-    // The token from another address takes the session over; the old address is told.
-    if (s.connected && s.address != from)
-      send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
-    start_session(s, from, enc, hello.nonce, now_ms);
-    s.welcomed_as_reconnect = true;
-    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
-    send_welcome(s, from, enc, true, request_bytes);
-    return;
-  }
-  if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
-    return refuse_full(from, enc, request_bytes);
-  if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
-    rejects_.add(Reject::address_full);
-    const std::string text = "this address has " + std::to_string(config_.max_sessions_per_address) +
-                             " players already; no more from it";
-    reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
-    return;
-  }
-  // The host picks the room last: a refused hello above creates no room.
-  Admission admission;
-  if (config_.admit) {
-    admission = config_.admit(JoinAsk{hello.join, hello.room, from});
-    if (!admission.error.empty() || admission.room == 0) {
-      rejects_.add(Reject::join_refused);
-      reply_unconnected(from, enc, 0,
-                        Error{admission.error.empty() ? "refused" : admission.error.substr(0, 32),
-                              admission.message.substr(0, kMaxTextBytes)},
-                        request_bytes);
-      return;
-    }
-    room_ticks_[admission.room] = admission.server_tick;
-  }
-  std::uint32_t player_id = 1;
-  while (sessions_.count(player_id)) ++player_id;
-  Session& s = sessions_[player_id];
-  s.player_id = player_id;
-  s.name = hello.name;
-  s.token = derive_token(config_.key, sessions_made_ + 1);
-  s.verifier = token_verifier(s.token);
-  s.room = admission.room;
-  s.room_code = admission.code;
-  s.spectator = admission.spectator;
-  start_session(s, from, enc, hello.nonce, now_ms);
-  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator});
-  send_welcome(s, from, enc, false, request_bytes);
-}
-
-void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
-  rejects_.add(Reject::server_full);
-  if (config_.admit) {
-    reply_unconnected(to, encoding, 0, Error{"server_full", "the server has no room for more players; try again later"},
-                      request_bytes);
-    return;
-  }
-  const std::string text = "the server is full (" + std::to_string(config_.max_players) +
-                           " players); try again later";
-  reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
 }
 
 std::size_t ServerEndpoint::seats_taken_from(std::string_view host) const {
@@ -303,12 +143,7 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
   return out;
 }
 
-void ServerEndpoint::handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms) {
-  auto sid = by_session_id_.find(d.header.session);
-  if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
-  Session& s = sessions_.at(sid->second);
-  if (s.address != from) return rejects_.add(Reject::address_mismatch);
-  if (!s.connected) return rejects_.add(Reject::unknown_session);
+void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t now_ms) {
   // Validate every message before any state changes.
   for (const auto& m : d.messages) {
     if (!std::holds_alternative<Input>(m) && !std::holds_alternative<Command>(m) &&
@@ -382,7 +217,7 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
   }
   if (messages.empty()) messages.push_back(Ping{});
   s.last_send_ms = now_ms;
-  emit(s.address, encode_datagram(h, messages));
+  emit(s.address, encode_sealed(s.seal, h, messages));
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
@@ -553,7 +388,7 @@ std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
   for (const auto& [id, s] : sessions_)
     out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
-                   s.rate_limited, s.room, s.spectator});
+                   s.rate_limited, s.room, s.spectator, s.seal.drops()});
   return out;
 }
 

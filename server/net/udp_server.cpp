@@ -207,6 +207,15 @@ class Loop {
         if (delta) drops[std::string(protocol::to_string(r))] = delta;
       }
       last_rejects_ = rejects;
+      // Per session, the datagrams dropped since it started: over its rate, and sealed
+      // ones that did not open (PROTOCOL.md 5.7). Only sessions with drops are listed.
+      nlohmann::ordered_json session_drops = nlohmann::ordered_json::object();
+      for (const auto& info : host_.endpoint().sessions()) {
+        if (info.rate_limited + info.sealed_drops.total() == 0) continue;
+        session_drops[std::to_string(info.player_id)] = {{"rate_limited", info.rate_limited},
+                                                         {"forged", info.sealed_drops.forged},
+                                                         {"replayed", info.sealed_drops.replayed}};
+      }
       log_record(spdlog::level::info, "stats",
                  {{"players", host_.endpoint().connected_players().size()},
                   {"tick", host_.match().tick}, {"rooms", host_.room_ids().size()},
@@ -214,7 +223,7 @@ class Loop {
                   {"ticks_skipped_total", clock_.skipped()},
                   {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
                   {"bytes_in", s.bytes_in}, {"bytes_out", s.bytes_out},
-                  {"send_errors", socket_.send_errors()}, {"drops", drops}});
+                  {"send_errors", socket_.send_errors()}, {"drops", drops}, {"session_drops", session_drops}});
       s.reset_interval();
       schedule_stats();
     });

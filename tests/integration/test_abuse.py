@@ -6,53 +6,42 @@ address_full: 8 scripted sessions from one host (127.0.0.2) get 4 welcomes and 4
 command_flood: a scripted session sends 150 datagrams/s of 24 commands each and never
               acknowledges; it is dropped with `overflow`, the server's memory stays flat
               and a real bot plays on.
-Scripted sessions speak PROTOCOL.md directly (JSON encoding) from Python sockets."""
+forged:       a scripted session's address and session id with unsealed commands, tampered
+              and replayed datagrams: each dropped and counted (forged, replayed), no
+              command answered, and the session goes on.
+Scripted sessions speak PROTOCOL.md directly (JSON encoding, sealed with PyNaCl as in
+sealed.py) from Python sockets."""
 import json, os, socket, struct, sys, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import Failure, Server, check, main, run_bots, start_bots, finish_bots, wait_for  # noqa: E402
+import sealed  # noqa: E402
 
 FLOOD_HOST = "127.0.0.2"  # another host than the real bots (127.0.0.1)
 
 
-def header(session=0, seq=0, ack=0, ack_bits=0):
-    return b"FTSP" + struct.pack(">HBIHHIH", 2, 0, session, seq, ack, ack_bits, 0)
-
-
-def parse(data):
-    if len(data) < 21 or data[:4] != b"FTSP":
-        return None, []
-    session = struct.unpack(">I", data[7:11])[0]
-    try:
-        return session, json.loads(data[21:].decode())
-    except ValueError:
-        return session, []
-
-
-def hello(nonce, cookie=""):
-    msg = {"t": "hello", "name": f"script{nonce % 100}", "token": "", "cookie": cookie,
-           "nonce": f"{nonce:016x}", "pad": ""}
-    body = json.dumps([msg]).encode()
-    msg["pad"] = "." * max(0, 512 - 21 - len(body))
-    return header() + json.dumps([msg]).encode()
-
-
 class Script:
-    """One handshake from its own port; resends its hello every 250 ms like a client."""
+    """One handshake from its own port (sealed.Handshake, PROTOCOL.md 5 and 5.7); resends
+    its hello every 250 ms like a client. Once welcomed, `session` seals what it sends."""
 
     def __init__(self, port, nonce):
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.sock.bind((FLOOD_HOST, 0))
         self.sock.setblocking(False)
         self.server = ("127.0.0.1", port)
-        self.nonce = nonce
-        self.cookie = ""
-        self.session = 0
-        self.error = None
+        self.hs = sealed.Handshake(f"script{nonce % 100}", nonce)
         self.last_hello = 0.0
 
+    @property
+    def session(self):
+        return self.hs.session
+
+    @property
+    def error(self):
+        return self.hs.error
+
     def done(self):
-        return self.session != 0 or self.error is not None
+        return self.session is not None or self.error is not None
 
     def pump(self):
         while True:
@@ -60,18 +49,21 @@ class Script:
                 data = self.sock.recv(2048)
             except BlockingIOError:
                 break
-            session, msgs = parse(data)
-            for m in msgs:
-                if m.get("t") == "challenge" and not self.cookie:
-                    self.cookie = m["cookie"]
-                    self.last_hello = 0.0
-                elif m.get("t") == "welcome" and not self.done():
-                    self.session = session
-                elif m.get("t") == "error" and not self.done():
-                    self.error = m["code"]
+            if self.hs.receive(data):
+                self.last_hello = 0.0
         if not self.done() and time.monotonic() - self.last_hello >= 0.25:
-            self.sock.sendto(hello(self.nonce, self.cookie), self.server)
+            self.sock.sendto(self.hs.hello(), self.server)
             self.last_hello = time.monotonic()
+
+    def received(self):
+        """The messages of every sealed datagram waiting (those that open)."""
+        out = []
+        while True:
+            try:
+                data = self.sock.recv(2048)
+            except BlockingIOError:
+                return out
+            out.extend(self.session.open(data) or [])
 
 
 def handshake_all(scripts, timeout_s):
@@ -109,11 +101,9 @@ def test_address_full():
         # The welcomed scripts keep their sessions alive while a real player joins.
         bot = start_bots("--connect", srv.address, "--name", "real", "--behavior", "hunter", "--duration", "4")
         deadline = time.monotonic() + 4
-        seq = 0
         while time.monotonic() < deadline:
-            seq += 1
             for s in welcomed:
-                s.sock.sendto(header(s.session, seq) + b'[{"t":"input","ack":0,"f":[]}]', s.server)
+                s.sock.sendto(s.session.datagram([{"t": "input", "ack": 0, "f": []}]), s.server)
             time.sleep(0.1)
         rc, report, err = finish_bots(bot, 60)
         check(rc == 0, f"the real bot failed: rc {rc} {err}")
@@ -126,31 +116,23 @@ def test_command_flood():
         real = start_bots("--connect", srv.address, "--name", "real", "--behavior", "shopper", "--duration", "8")
         script = Script(srv.port, 0xf100d)
         handshake_all([script], 10)
-        check(script.session != 0, f"the flooder was refused: {script.error}")
+        check(script.session is not None, f"the flooder was refused: {script.error}")
         rss_before = rss_kb(srv.proc.pid)
         rid = 0
-        seq = 0
         sent = 0
         dropped_with = None
         start = time.monotonic()
         # The flood goes on after the drop: what follows is refused as an unknown session.
         while time.monotonic() - start < 6:
-            seq = seq % 65535 + 1
             cmds = []
             for _ in range(24):  # as many as fit in 1200 bytes of JSON
                 rid += 1
                 cmds.append({"t": "cmd", "rid": rid, "op": "buy", "item": "m"})
-            script.sock.sendto(header(script.session, seq) + json.dumps(cmds, separators=(",", ":")).encode(),
-                               script.server)
+            script.sock.sendto(script.session.datagram(cmds), script.server)
             sent += 1
-            try:
-                while True:
-                    _, msgs = parse(script.sock.recv(2048))
-                    for m in msgs:
-                        if m.get("t") == "error" and dropped_with is None:
-                            dropped_with = m["code"]
-            except BlockingIOError:
-                pass
+            for m in script.received():
+                if m.get("t") == "error" and dropped_with is None:
+                    dropped_with = m["code"]
             time.sleep(1 / 150)
         elapsed = time.monotonic() - start
         rss_after = rss_kb(srv.proc.pid)
@@ -165,5 +147,125 @@ def test_command_flood():
         check(report and report[0].get("snapshots_received", 0) > 0, f"the real bot got no snapshots: {report}")
 
 
+def drops_logged(srv):
+    """The server's drop counts by reason, summed over its stats lines so far."""
+    total = {}
+    for line in srv.text().splitlines():
+        if '"event":"stats"' not in line:
+            continue
+        for reason, n in json.loads(line).get("drops", {}).items():
+            total[reason] = total.get(reason, 0) + n
+    return total
+
+
+def test_forged():
+    with Server("--stats-interval-ms", "200", "--log-format", "json") as srv:
+        script = Script(srv.port, 0xf0f0)
+        handshake_all([script], 10)
+        check(script.session is not None, f"the script was refused: {script.error}")
+        s = script.session
+        # A real sealed heartbeat, sent once and then replayed three times.
+        real = s.datagram([{"t": "input", "ack": 0, "f": []}])
+        for _ in range(4):
+            script.sock.sendto(real, script.server)
+        # Tampered: one bit of the ciphertext, one bit of the header (associated data).
+        for at in (sealed.HEADER_BYTES + 3, 14):
+            bad = bytearray(s.datagram([{"t": "input", "ack": 0, "f": []}]))
+            bad[at] ^= 1
+            script.sock.sendto(bytes(bad), script.server)
+        # Forged: the victim's address and session id, a buy and a ready in clear (what
+        # changed coins and started the match before), one with a sequence 30 000 ahead.
+        cmds = json.dumps([{"t": "cmd", "rid": 1, "op": "buy", "item": "m"},
+                           {"t": "cmd", "rid": 2, "op": "ready"}]).encode()
+        for seq in (s.seq + 1, s.seq + 30000):
+            script.sock.sendto(sealed.header(s.id, seq % 65536) + cmds + bytes(16), script.server)
+        want = {"replayed": 3, "forged": 4}
+        wait_for(lambda: all(drops_logged(srv).get(k, 0) >= n for k, n in want.items()), 5,
+                 f"the server's stats to count {want}")
+        drops = drops_logged(srv)
+        print(f"drops logged: {drops}")
+        check(drops.get("replayed") == 3 and drops.get("forged") == 4, f"drops: {drops}")
+        # Per session: the victim's counts (the server logs sessions with drops).
+        wait_for(lambda: any(l.get("session_drops") for l in stats_lines(srv)), 5, "per-session drops in the stats")
+        per_session = [l["session_drops"] for l in stats_lines(srv) if l.get("session_drops")][-1]
+        print(f"per session: {per_session}")
+        check(list(per_session.values()) == [{"rate_limited": 0, "forged": 4, "replayed": 3}],
+              f"per-session drops: {per_session}")
+        # Nothing forged was applied: no command was answered. The session goes on: a
+        # sealed command of its own (rid 1) is answered, and its sequence is not stale.
+        results = [m for m in script.received() if m.get("t") == "result"]
+        check(not results, f"a forged command was answered: {results}")
+        script.sock.sendto(s.datagram([{"t": "cmd", "rid": 1, "op": "buy", "item": "m"}]), script.server)
+        answered = []
+        wait_for(lambda: answered.extend(m for m in script.received() if m.get("t") == "result") or answered,
+                 5, "the result of the script's own sealed command")
+        print(f"own command answered: {answered[0]}")
+        check(answered[0]["rid"] == 1, f"result: {answered[0]}")
+
+
+def stats_lines(srv):
+    return [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
+
+
+def test_soak_flood():
+    """Issue 12's "Done when": 500 datagrams/s of commands, never acknowledged, for 60 s.
+    Each time the flooder is dropped it shakes hands again and goes on."""
+    seconds = float(os.environ.get("FTS_SOAK_SECONDS", "60"))
+    with Server("--stats-interval-ms", "1000", "--log-format", "json") as srv:
+        real = start_bots("--connect", srv.address, "--name", "real", "--behavior", "hunter",
+                          "--duration", str(int(seconds + 6)))
+        nonce = 0x50a4000
+        script = Script(srv.port, nonce)
+        handshake_all([script], 10)
+        time.sleep(1)  # the server's steady state: the real bot plays, a room is open
+        rss_before = rss_kb(srv.proc.pid)
+        sent = rid = 0
+        errors = {}
+        fresh = None  # the next session, shaking hands while the flood goes on
+        start = time.monotonic()
+        while time.monotonic() - start < seconds:
+            if fresh is None and script.error is not None:
+                nonce += 1
+                fresh = Script(srv.port, nonce)
+            if fresh is not None:
+                fresh.pump()
+                if fresh.session is not None:
+                    script.sock.close()
+                    script, fresh, rid = fresh, None, 0
+                elif fresh.error is not None:
+                    fresh = None
+            cmds = []
+            for _ in range(24):
+                rid += 1
+                cmds.append({"t": "cmd", "rid": rid, "op": "buy", "item": "m"})
+            # Dropped or not, the flood goes on at 500 a second.
+            script.sock.sendto(script.session.datagram(cmds), script.server)
+            sent += 1
+            for m in script.received():
+                if m.get("t") == "error" and script.hs.error is None:
+                    errors[m["code"]] = errors.get(m["code"], 0) + 1
+                    script.hs.error = m["code"]
+            # 500 a second on a schedule (no drift from the work in between).
+            delay = start + sent / 500.0 - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+        sessions = sum(errors.values())
+        elapsed = time.monotonic() - start
+        rss_after = rss_kb(srv.proc.pid)
+        wait_for(lambda: len(stats_lines(srv)) >= 3, 5, "stats lines")
+        skipped = stats_lines(srv)[-1].get("ticks_skipped_total")
+        drops = drops_logged(srv)
+        print(f"soak: {sent} datagrams ({sent / elapsed:.0f}/s) in {elapsed:.1f} s, flooder dropped "
+              f"{sessions} times {errors}; server RSS {rss_before} -> {rss_after} kB "
+              f"({rss_after - rss_before:+d} kB); ticks skipped {skipped}; drops {drops}")
+        rc, report, err = finish_bots(real, 60)
+        check(rc == 0, f"the real bot failed: rc {rc} {err}")
+        check(report and report[0].get("snapshots_received", 0) > 0, f"the real bot got no snapshots: {report}")
+        if not sanitized(srv.proc.pid):
+            check(rss_after - rss_before < 2048, f"server RSS grew by {rss_after - rss_before} kB")
+        check(skipped == 0, f"{skipped} ticks skipped")
+
+
 if __name__ == "__main__":
-    sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood}))
+    sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood,
+                   "forged": test_forged, "soak_flood": test_soak_flood}))

@@ -115,8 +115,8 @@ inline std::vector<Message> all_messages() {
   delta.left = {2};
   return {
       Hello{"ann", "", "", "....", "0123456789abcdef"},
-      Hello{"bob", std::string(32, 'a'), std::string(48, '0'), "", "fedcba9876543210"},
-      Challenge{"00000000000003e8" + std::string(32, 'f')},
+      Hello{"bob", std::string(96, 'a'), std::string(48, '0'), "", "fedcba9876543210", "", "", std::string(64, 'c')},
+      Challenge{"00000000000003e8" + std::string(32, 'f'), std::string(64, 'd')},
       Welcome{3, std::string(32, 'b'), 100, 20, 500, 300, 8, 10000, 60000, 8, 12345, true, {0.02, 1.25, 1.2}},
       Error{"version", "protocol version 2 is not supported; this server speaks version 1"},
       Input{41, {{10, -1, 1, false}, {9, 0, 0, true}}},

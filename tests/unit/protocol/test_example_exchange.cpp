@@ -10,14 +10,24 @@ using namespace fts::protocol;
 using namespace fts::protocol::test;
 
 namespace {
-void print(const char* direction, const std::vector<std::uint8_t>& bytes) {
-  auto d = decode_datagram(bytes);
-  REQUIRE(d.ok());
-  const Header& h = d->header;
-  std::printf("%s %zu bytes  header{version %u, encoding %s, session %u, seq %u, ack %u, ack_bits %08x, ack_delay %u}\n",
+// A session's datagram is sealed (PROTOCOL.md 5.7): printed as its opened payload.
+void print(const char* direction, const std::vector<std::uint8_t>& bytes, const ClientEndpoint& client) {
+  const auto header = read_header(bytes);
+  REQUIRE(header.ok());
+  const bool sealed = header->session != 0;
+  std::string payload(bytes.begin() + kHeaderBytes, bytes.end());
+  if (sealed) {
+    SealedChannel channel = channel_of(client, direction[0] == 'C');
+    std::vector<std::uint8_t> plain;
+    REQUIRE(!channel.open(*header, bytes, plain));
+    payload.assign(plain.begin(), plain.end());
+  }
+  const Header& h = *header;
+  std::printf("%s %zu bytes  header{version %u, encoding %s, session %u, seq %u, ack %u, ack_bits %08x, ack_delay %u}%s\n",
               direction, bytes.size(), h.version, h.encoding == Encoding::json ? "json" : "msgpack",
-              h.session, h.sequence, h.ack, h.ack_bits, h.ack_delay_ms);
-  std::printf("%s\n\n", std::string(bytes.begin() + kHeaderBytes, bytes.end()).c_str());
+              h.session, h.sequence, h.ack, h.ack_bits, h.ack_delay_ms,
+              sealed ? "  sealed, opened:" : "");
+  std::printf("%s\n\n", payload.c_str());
 }
 }  // namespace
 
@@ -33,11 +43,11 @@ TEST_CASE("example exchange", "[.example]") {
   std::uint64_t now = 1000;
   auto pump = [&] {
     for (auto& b : client.take_datagrams()) {
-      print("C->S", b);
+      print("C->S", b, client);
       server.receive(addr, b, now);
     }
     for (auto& o : server.take_datagrams()) {
-      print("S->C", o.bytes);
+      print("S->C", o.bytes, client);
       client.receive(o.bytes, now);
     }
   };

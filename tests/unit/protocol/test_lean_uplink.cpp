@@ -55,12 +55,15 @@ TEST_CASE("Lean uplink: steering every tick stays under 3 kB/s", "[protocol][upl
   });
   INFO("steering every tick: " << u.bytes / 10 << " B/s, " << u.datagrams / 10 << " datagrams/s");
   CHECK(u.datagrams <= 505);  // at most 50 a second
-  CHECK(u.bytes / 10 <= 3000);
+  // 3 kB/s of header and payload (issue 14), plus the 16-byte tag that seals each
+  // datagram (issue 12, PROTOCOL.md 5.7): 800 B/s at 50 datagrams a second.
+  CHECK(u.bytes / 10 - u.datagrams * kSealTagBytes / 10 <= 3000);
 }
 
 TEST_CASE("Lean uplink: the terminal client steering at every 60 fps frame stays under 3 kB/s",
           "[protocol][uplink]") {
-  // fts-client passes its held input to hold_input once per drawn frame (--fps 60).
+  // fts-client passes its held input to hold_input once per drawn frame (--fps 60);
+  // sealed datagrams, tags included.
   const Uplink u = run(
       [](std::uint64_t t) {
         return InputFrame{0, static_cast<std::int8_t>(t % 3 - 1), static_cast<std::int8_t>(t / 3 % 3 - 1), t % 7 == 0};

@@ -33,7 +33,7 @@ struct Flooder {
     Header hd;
     hd.session = session;
     hd.sequence = ++sequence;
-    h.server.receive(peer->address, encode_datagram(hd, messages), h.now);
+    h.server.receive(peer->address, seal_as(peer->client, hd, messages), h.now);
   }
 
   bool released_for(const std::string& reason) {
@@ -45,7 +45,7 @@ struct Flooder {
   std::vector<Error> errors_sent() {
     std::vector<Error> out;
     for (const auto& o : h.server.take_datagrams()) {
-      auto d = decode_datagram(o.bytes);
+      auto d = peek(peer->client, o.bytes);
       REQUIRE(d);
       for (const auto& m : d->messages)
         if (const auto* e = std::get_if<Error>(&m)) out.push_back(*e);
@@ -54,10 +54,10 @@ struct Flooder {
   }
 };
 
-std::size_t results_in(const std::vector<Outgoing>& out) {
+std::size_t results_in(const ClientEndpoint& client, const std::vector<Outgoing>& out) {
   std::size_t n = 0;
   for (const auto& o : out) {
-    auto d = decode_datagram(o.bytes);
+    auto d = peek(client, o.bytes);
     REQUIRE(d);
     for (const auto& m : d->messages) n += std::holds_alternative<Result>(m) ? 1 : 0;
   }
@@ -94,11 +94,11 @@ TEST_CASE("Limits: results ride the next update, batched", "[protocol][limits]")
   f.h.server.update(f.h.now + 1);
   auto first = f.h.server.take_datagrams();
   CHECK(first.size() == 1);
-  CHECK(results_in(first) == 3);
+  CHECK(results_in(f.peer->client, first) == 3);
   f.h.server.update(f.h.now + 2);
   auto second = f.h.server.take_datagrams();
   CHECK(second.size() == 1);
-  CHECK(results_in(second) == 2);
+  CHECK(results_in(f.peer->client, second) == 2);
 }
 
 TEST_CASE("Limits: unacknowledged results past the cap drop the session", "[protocol][limits]") {

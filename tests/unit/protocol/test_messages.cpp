@@ -59,7 +59,7 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
   SECTION("header") {
     std::vector<std::uint8_t> out;
     write_header(h, out);
-    const std::vector<std::uint8_t> golden = {'F', 'T', 'S', 'P', 0, 2, 0, 1, 2, 3, 4,
+    const std::vector<std::uint8_t> golden = {'F', 'T', 'S', 'P', 0, 3, 0, 1, 2, 3, 4,
                                               0, 5, 0, 4, 0, 0, 0, 3, 1, 2};
     CHECK(out == golden);
   }

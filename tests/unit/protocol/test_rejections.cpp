@@ -23,10 +23,14 @@ std::vector<std::uint8_t> datagram(const std::string& payload, Encoding enc = En
   return out;
 }
 
+// The hellos' key pair (fixed: the test can open what the server seals for it).
+KxKeyPair hello_keys() { return kx_keypair_from_seed(std::array<std::uint8_t, 32>{7}); }
+
 std::vector<std::uint8_t> padded_hello(const std::string& cookie, const std::string& token = "") {
   Header h;
   h.encoding = Encoding::json;
-  return encode_datagram(h, {Hello{"ann", token, cookie, std::string(600, '.'), "00000000000000a1"}});
+  return encode_datagram(h, {Hello{"ann", token, cookie, std::string(600, '.'), "00000000000000a1", "", "",
+                                   public_key_hex(hello_keys().public_key)}});
 }
 
 Reject decode_error(const std::vector<std::uint8_t>& bytes) {
@@ -141,8 +145,15 @@ TEST_CASE("server rejections change nothing", "[protocol][reject]") {
   SECTION("decoder failures are counted") {
     c.expect_rejected({1, 2, 3}, Reject::truncated, from);
     c.expect_rejected(std::vector<std::uint8_t>(1300, 0), Reject::oversize, from);
-    c.expect_rejected(datagram("[{\"t\":\"zap\"}]", Encoding::json, c.session, 50), Reject::unknown_type, from);
-    c.expect_rejected(datagram("{{{{", Encoding::json, c.session, 50), Reject::garbage, from);
+    Header h;
+    h.encoding = Encoding::json;
+    h.session = c.session;
+    h.sequence = 50;
+    c.expect_rejected(seal_raw(c.peer->client, h, "[{\"t\":\"zap\"}]"), Reject::unknown_type, from);
+    h.sequence = 51;
+    c.expect_rejected(seal_raw(c.peer->client, h, "{{{{"), Reject::garbage, from);
+    // The same without the keys: not even parsed.
+    c.expect_rejected(datagram("[{\"t\":\"zap\"}]", Encoding::json, c.session, 52), Reject::forged, from);
   }
   SECTION("bad version: small requests get no answer") {
     auto bytes = c.valid;
@@ -165,7 +176,14 @@ TEST_CASE("server rejections change nothing", "[protocol][reject]") {
   }
   SECTION("bad token") {
     const std::string cookie = make_cookie(test_key(), "6.6.6.6:1", c.h.now);
-    c.expect_rejected(padded_hello(cookie, std::string(32, '0')), Reject::bad_token, "6.6.6.6:1");
+    c.expect_rejected(padded_hello(cookie, std::string(96, '0')), Reject::bad_token, "6.6.6.6:1");
+  }
+  SECTION("bad key") {
+    const std::string cookie = make_cookie(test_key(), "6.6.6.6:1", c.h.now);
+    Header h;
+    h.encoding = Encoding::json;
+    c.expect_rejected(encode_datagram(h, {Hello{"ann", "", cookie, std::string(600, '.'), "00000000000000a1"}}),
+                      Reject::bad_key, "6.6.6.6:1");
   }
   SECTION("unknown session") {
     auto bytes = c.valid;
@@ -182,14 +200,14 @@ TEST_CASE("server rejections change nothing", "[protocol][reject]") {
     h.sequence = 77;
     Welcome w;
     w.player_id = 1;
-    c.expect_rejected(encode_datagram(h, {w}), Reject::unexpected, from);
+    c.expect_rejected(seal_as(c.peer->client, h, {w}), Reject::unexpected, from);
     h.session = 0;
     c.expect_rejected(encode_datagram(h, {Ping{}}), Reject::unexpected, from);
   }
-  SECTION("stale: a duplicate datagram") {
+  SECTION("replayed: a duplicate datagram") {
     c.h.server.receive(from, c.valid, c.h.now);
     REQUIRE(c.h.server.take_inputs().size() == 1);
-    c.expect_rejected(c.valid, Reject::stale, from);
+    c.expect_rejected(c.valid, Reject::replayed, from);
   }
   SECTION("server full") {
     ServerConfig config = test_server_config();
@@ -226,8 +244,15 @@ TEST_CASE("before the handshake no reply is larger than its request", "[protocol
   out = server.take_datagrams();
   REQUIRE(out.size() == 1);
   CHECK(out[0].bytes.size() <= hello2.size());
-  REQUIRE(decode_datagram(out[0].bytes).ok());
-  CHECK(std::holds_alternative<Welcome>(decode_datagram(out[0].bytes)->messages[0]));
+  // The welcome is sealed: it opens with the keys of the hello's key pair.
+  const auto server_key = parse_public_key(std::get<Challenge>(challenge->messages[0]).key);
+  REQUIRE(server_key);
+  SealedChannel channel(*client_session_keys(hello_keys(), *server_key), SealDirection::client_to_server,
+                        SealDirection::server_to_client);
+  std::vector<std::uint8_t> plain;
+  auto welcome = open_sealed(channel, out[0].bytes, kProtocolVersion, plain);
+  REQUIRE(welcome.ok());
+  CHECK(std::holds_alternative<Welcome>(welcome->messages[0]));
 }
 
 TEST_CASE("client rejections", "[protocol][reject]") {
@@ -246,11 +271,15 @@ TEST_CASE("client rejections", "[protocol][reject]") {
     Header h;
     h.session = read_header(c.valid)->session;
     h.sequence = 999;
-    client.receive(encode_datagram(h, {Command{1, CommandOp::ready, 0, {}}}), c.h.now);
+    client.receive(seal_as(client, h, {Command{1, CommandOp::ready, 0, {}}}, true), c.h.now);
     CHECK(client.rejects()[Reject::unexpected] == 1);
   }
   SECTION("garbage") {
-    client.receive(datagram("]]", Encoding::json, c.session, 5), c.h.now);
+    Header h;
+    h.encoding = Encoding::json;
+    h.session = c.session;
+    h.sequence = 500;
+    client.receive(seal_raw(client, h, "]]", true), c.h.now);
     CHECK(client.rejects()[Reject::garbage] == 1);
     CHECK(client.state() == ClientState::connected);
   }

@@ -41,13 +41,15 @@ TEST_CASE("Wire tables: every message round-trips in both encodings", "[protocol
 
 TEST_CASE("Wire tables: messages from another writer (keys sorted, \"t\" last) decode the same",
           "[protocol][wire]") {
-  // What nlohmann's writer made of them before the tables (PROTOCOL.md 12, version 2):
+  // What nlohmann's writer made of them before the tables (PROTOCOL.md 12; the challenge of version 3 with its key):
   // an independent client may order keys any way.
   const std::vector<std::pair<std::string, Message>> vectors = {
       {R"([{"cookie":"","name":"ann","nonce":"5eed0fa11c0ffee5","pad":"..","t":"hello","token":""}])",
        Hello{"ann", "", "", "..", "5eed0fa11c0ffee5"}},
-      {R"([{"cookie":"00000000000003e83c15b96815ccf35a8bb078310802c3e0","t":"challenge"}])",
-       Challenge{"00000000000003e83c15b96815ccf35a8bb078310802c3e0"}},
+      {R"([{"cookie":"00000000000003e83c15b96815ccf35a8bb078310802c3e0",)"
+       R"("key":"cbf675d41f5be72261a95fc8d20be95cba50466d152bdb04791f6991effc1f49","t":"challenge"}])",
+       Challenge{"00000000000003e83c15b96815ccf35a8bb078310802c3e0",
+                 "cbf675d41f5be72261a95fc8d20be95cba50466d152bdb04791f6991effc1f49"}},
       {R"([{"arena_height_u":300.0,"arena_width_u":500.0,"bank_interest_factor":1.1,"frame_s":0.02,)"
        R"("input_redundancy":3,"max_players":8,"multiplier_upgrade_factor":1.1,"player_id":1,)"
        R"("reconnect_window_ms":60000,"reconnected":false,"server_tick":0,"snapshot_rate_hz":20,"t":"welcome",)"

@@ -73,12 +73,16 @@ TEST_CASE("Host sessions: a command that cannot be applied is answered, and the 
   rig.client.send_input({0, 0, 0, false}, rig.now);
   auto real = rig.client.take_datagrams();
   REQUIRE(real.size() == 1);
-  auto d = protocol::decode_datagram(real[0]);
-  REQUIRE(d);
-  d->messages.push_back(protocol::Command{1, protocol::CommandOp::unknown, 0, {}});
-  d->messages.push_back(protocol::Command{2, protocol::CommandOp::buy, 'z', {}});
-  d->messages.push_back(protocol::Command{3, protocol::CommandOp::buy, 0, {}});
-  rig.host->receive(rig.address, protocol::encode_datagram(d->header, d->messages), rig.now);
+  auto header = protocol::read_header(real[0]);
+  REQUIRE(header);
+  const std::vector<protocol::Message> messages = {protocol::Input{0, {}},
+                                                   protocol::Command{1, protocol::CommandOp::unknown, 0, {}},
+                                                   protocol::Command{2, protocol::CommandOp::buy, 'z', {}},
+                                                   protocol::Command{3, protocol::CommandOp::buy, 0, {}}};
+  // Sealed with the client's keys in place of its own datagram (same header).
+  protocol::SealedChannel channel(rig.client.session_keys(), protocol::SealDirection::client_to_server,
+                                  protocol::SealDirection::server_to_client);
+  rig.host->receive(rig.address, protocol::encode_sealed(channel, *header, messages), rig.now);
   rig.ticks(20);
   auto results = rig.client.take_results();
   REQUIRE(results.size() == 3);

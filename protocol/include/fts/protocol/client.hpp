@@ -14,6 +14,7 @@
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/reliable.hpp"
+#include "fts/protocol/seal.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
 namespace fts::protocol {
@@ -21,7 +22,7 @@ namespace fts::protocol {
 struct ClientConfig {
   Encoding encoding = Encoding::msgpack;
   std::string name = "player";  // 1..16 printable ASCII
-  std::string token;            // a previous welcome's token, to take a player back
+  std::string token;            // a previous welcome's token, to take a player back (sent sealed)
   std::string join;             // Hello::join: "" (quick), "quick", "create", "join", "spectate"
   std::string room;             // Hello::room: the code for join and spectate
   // Names one connection attempt in its hellos (Hello::nonce). 0: a random one, new at
@@ -93,6 +94,11 @@ class ClientEndpoint {
   const std::optional<Error>& error() const { return error_; }
   const Snapshot* latest_snapshot() const { return snapshots_.latest(); }
   const RejectCounters& rejects() const { return rejects_; }
+  // The server's datagrams dropped because they did not open (forged or replayed).
+  const SealDrops& sealed_drops() const { return seal_.drops(); }
+  // This attempt's session keys (PROTOCOL.md 5.7; zero before a challenge): for tools and
+  // tests that write or read a session's datagrams themselves.
+  const SessionKeys& session_keys() const { return keys_; }
   ClientStats stats() const;
 
  private:
@@ -100,11 +106,16 @@ class ClientEndpoint {
   void send_packet(std::uint64_t now_ms);
   void emit(const Header& header, const std::vector<Message>& messages);
   void handle_connected(const Datagram& d, std::uint64_t now_ms);
+  void handle_connecting(const Datagram& d, std::uint64_t now_ms);
   void reject(Reject reason) { rejects_.add(reason); }
 
   ClientConfig config_;
   ClientState state_ = ClientState::idle;
   std::string cookie_;
+  KxKeyPair kx_;          // new for every connect(): the hello carries its public half
+  SessionKeys keys_;      // from our key pair and the challenge's server key
+  SealedChannel seal_;    // ready once a challenge gave the server's key
+  std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
   std::string nonce_;  // 16 hex digits
   std::uint64_t connect_start_ms_ = 0;
   std::uint64_t last_hello_ms_ = 0;

@@ -8,7 +8,7 @@ namespace fts::protocol {
 
 // "FTSP" read as a big-endian 32-bit integer: the first four bytes of every datagram.
 inline constexpr std::uint32_t kProtocolId = 0x46545350u;
-inline constexpr std::uint16_t kProtocolVersion = 2;
+inline constexpr std::uint16_t kProtocolVersion = 3;
 
 // No datagram, in either direction, is ever larger than this.
 inline constexpr std::size_t kMaxDatagramBytes = 1200;

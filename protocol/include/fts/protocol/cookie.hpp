@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -35,7 +36,13 @@ std::uint32_t derive_session_id(const ServerKey& key, std::uint64_t n);
 // bits, so the verifier cannot be turned back into one.
 std::string token_verifier(std::string_view token);
 
+// The seed of the server's key-exchange key pair (PROTOCOL.md 5.7): fixed for a server
+// key, so that tests are deterministic.
+std::array<std::uint8_t, 32> derive_kx_seed(const ServerKey& key);
+
 // Lower-case hex of bytes.
 std::string to_hex(const std::uint8_t* data, std::size_t size);
+// Lower-case hex of exactly out.size() bytes into `out`; false for anything else.
+bool from_hex(std::string_view hex, std::span<std::uint8_t> out);
 
 }  // namespace fts::protocol

@@ -20,6 +20,9 @@ namespace fts::protocol {
 
 inline constexpr std::size_t kHeaderPrefixBytes = 19;
 inline constexpr std::size_t kHeaderBytes = 21;
+// A sealed datagram (every one after the handshake, PROTOCOL.md 5.7) carries this many
+// more bytes: the Poly1305 tag after the encrypted payload.
+inline constexpr std::size_t kSealTagBytes = 16;
 
 struct Header {
   std::uint16_t version = kProtocolVersion;

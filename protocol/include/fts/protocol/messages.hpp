@@ -19,7 +19,8 @@ namespace fts::protocol {
 struct Hello {
   std::string name;    // 1..16 printable ASCII characters (checked by the server, which
                        // answers a bad one with error{code:"bad_name"})
-  std::string token;   // "" or the 32-hex-digit session token of a previous welcome
+  std::string token;   // "" or the session token of a previous welcome, sealed (96 hex
+                       // digits, PROTOCOL.md 5.7.3): it never travels in clear
   std::string cookie;  // "" or the 48-hex-digit cookie of a challenge
   std::string pad;     // ignored filler, any printable ASCII
   std::string nonce;   // 16 hex digits, new for every connection attempt: a repeated
@@ -29,6 +30,9 @@ struct Hello {
   // (Default member initializers: brace-initialised hellos need not name them.)
   std::string join = "";
   std::string room = "";  // the room's code for join and spectate (5 letters), else ""
+  // The client's crypto_kx public key for this attempt (64 hex digits; required with a
+  // cookie, PROTOCOL.md 5.7).
+  std::string key = "";
 
   bool operator==(const Hello&) const = default;
 };
@@ -36,13 +40,14 @@ struct Hello {
 // server -> client: prove you receive at your address by sending this cookie back.
 struct Challenge {
   std::string cookie;  // 48 hex digits
+  std::string key;     // the server's crypto_kx public key (64 hex digits, PROTOCOL.md 5.7)
   bool operator==(const Challenge&) const = default;
 };
 
-// server -> client: the handshake is complete.
+// server -> client: the handshake is complete. The first sealed datagram (PROTOCOL.md 5.7).
 struct Welcome {
   std::uint32_t player_id = 0;
-  std::string token;  // 32 hex digits; keep it to reconnect
+  std::string token;  // 32 hex digits; keep it to reconnect (only ever sent sealed)
   std::uint32_t tick_rate_hz = 100;
   std::uint32_t snapshot_rate_hz = 20;
   double arena_width_u = 500;

@@ -31,6 +31,10 @@ enum class Reject : std::uint8_t {
   address_full,       // a new session from a host that has max_sessions_per_address already
   idle,               // a session without real input for idle_timeout_ms: dropped (error "idle")
   join_refused,       // a new player's room choice refused (room_full, no_such_room, server_full, bad_join)
+  forged,             // a sealed datagram whose tag does not verify (forged, tampered, wrong key)
+  replayed,           // a sealed datagram whose sequence was seen already or is older than the window
+  bad_key,            // a handshake key exchange public key missing or refused
+  takeover_limited,   // over the address's rate of token take-overs
   count_
 };
 

@@ -20,6 +20,7 @@
 #include "fts/protocol/cookie.hpp"
 #include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
+#include "fts/protocol/seal.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
 namespace fts::protocol {
@@ -100,6 +101,12 @@ struct ServerConfig {
   // Handshake datagrams (session 0) per host; over it they are dropped (rate_limited).
   std::uint32_t hellos_per_s = 10;
   std::uint32_t hello_burst = 10;
+  // Hellos with a token (a reconnect takes its player over) per host; over it the hello
+  // is refused with error "rate_limited" (counted as takeover_limited). The burst lets
+  // every player of a household come back at once after an outage (0: as many as
+  // max_sessions_per_address).
+  std::uint32_t takeovers_per_s = 1;
+  std::uint32_t takeover_burst = 0;
   // A connected session that sends no real input (a frame with a key down, or a
   // command) for this long is dropped with error "idle"; never while the host says the
   // players cannot act (set_idle_paused: lobby, shop, game over). 0: never.
@@ -163,6 +170,7 @@ struct SessionInfo {
   std::uint64_t rate_limited = 0;  // datagrams of this session dropped over its rate
   std::uint32_t room = 0;
   bool spectator = false;
+  SealDrops sealed_drops;  // its sealed datagrams dropped: forged (bad tag) or replayed
 };
 
 class ServerEndpoint {
@@ -252,6 +260,7 @@ class ServerEndpoint {
     bool played = false;  // sent real input once: a lost connection holds its slot
     std::uint64_t rate_limited = 0;
     TokenBucket datagrams;
+    SealedChannel seal;  // this session's keys and replay window (PROTOCOL.md 5.7)
     AckWindow acks;
     ReliableSender<Result> results;
     ReliableSender<Chat> chats;
@@ -265,6 +274,7 @@ class ServerEndpoint {
   struct AddressState {
     TokenBucket datagrams;
     TokenBucket hellos;
+    TokenBucket takeovers;
   };
 
   AddressState* address_state(std::string_view host, std::uint64_t now_ms);
@@ -272,13 +282,12 @@ class ServerEndpoint {
   void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
                     std::size_t request_bytes, std::uint64_t now_ms);
-  void handle_session(const Address& from, const Datagram& d, std::uint64_t now_ms);
+  void handle_session(Session& s, const Datagram& d, std::uint64_t now_ms);
   void reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
                          const Message& message, std::size_t request_bytes);
-  void send_welcome(const Session& s, const Address& to, Encoding encoding, bool reconnected,
-                    std::size_t request_bytes);
-  void start_session(Session& s, const Address& from, Encoding encoding, const std::string& nonce,
-                     std::uint64_t now_ms);
+  void send_welcome(Session& s, bool reconnected, std::size_t request_bytes, std::uint64_t now_ms);
+  void start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
+                     const SessionKeys& keys, std::uint64_t now_ms);
   void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
   std::size_t seats_taken() const;
   std::size_t seats_taken_from(std::string_view host) const;
@@ -289,6 +298,9 @@ class ServerEndpoint {
   void emit(const Address& to, std::vector<std::uint8_t> bytes);
 
   ServerConfig config_;
+  KxKeyPair kx_;        // derived from config_.key: its public half goes in challenges
+  std::string kx_hex_;  // that public key in hex
+  std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
   std::map<std::uint32_t, Session> sessions_;  // by player id
   std::map<Address, std::uint32_t> by_address_;
   std::map<std::uint32_t, std::uint32_t> by_session_id_;

@@ -17,7 +17,7 @@
 namespace fts::protocol {
 
 // Payload budget of one datagram.
-inline constexpr std::size_t kMaxPayloadBytes = kMaxDatagramBytes - kHeaderBytes;
+inline constexpr std::size_t kMaxPayloadBytes = kMaxDatagramBytes - kHeaderBytes - kSealTagBytes;
 
 // One message holding `current` as a delta against `base` (nullptr: full). Both are
 // quantized first (base normally is already).

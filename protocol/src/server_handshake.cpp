@@ -1,0 +1,211 @@
+// The server's side of the handshake (PROTOCOL.md 5): challenges, hellos with a cookie,
+// the key exchange and the sealed welcome (5.7), reconnects with a token, refusals.
+#include "fts/protocol/server.hpp"
+
+#include <algorithm>
+
+namespace fts::protocol {
+
+// Before the handshake completes, a reply is never larger than its request.
+void ServerEndpoint::reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
+                                       const Message& message, std::size_t request_bytes) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = encoding;
+  h.session = session;
+  auto bytes = encode_datagram(h, {message});
+  if (bytes.size() > request_bytes) return;
+  emit(to, std::move(bytes));
+}
+
+// The welcome is the session's first sealed datagram (it carries the token); like every
+// reply before the handshake completes, it is never larger than the hello.
+void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t request_bytes,
+                                  std::uint64_t now_ms) {
+  Welcome w = config_.settings;
+  w.player_id = s.player_id;
+  w.token = s.token;
+  if (auto it = room_ticks_.find(s.room); it != room_ticks_.end()) w.server_tick = it->second;
+  w.room = s.room_code;
+  w.spectator = s.spectator;
+  w.reconnected = reconnected;
+  w.max_players = config_.max_players;
+  w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
+  w.reconnect_window_ms = static_cast<std::uint32_t>(config_.reconnect_window_ms);
+  Header h;
+  h.version = config_.version;
+  h.encoding = s.encoding;
+  h.session = s.session_id;
+  s.acks.stamp(h, now_ms);
+  auto bytes = encode_sealed(s.seal, h, {w});
+  if (bytes.size() <= request_bytes) emit(s.address, std::move(bytes));
+}
+
+void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
+                                   const SessionKeys& keys, std::uint64_t now_ms) {
+  if (s.session_id != 0) by_session_id_.erase(s.session_id);
+  if (!s.address.empty()) by_address_.erase(s.address);
+  ++sessions_made_;
+  s.session_id = derive_session_id(config_.key, sessions_made_);
+  while (by_session_id_.count(s.session_id))
+    s.session_id = derive_session_id(config_.key, ++sessions_made_);
+  s.address = from;
+  s.encoding = encoding;
+  s.connected = true;
+  s.quit = false;
+  s.nonce = hello.nonce;
+  s.seal = SealedChannel(keys, SealDirection::server_to_client, SealDirection::client_to_server);
+  s.welcomed_as_reconnect = false;
+  s.last_receive_ms = now_ms;
+  s.last_send_ms = now_ms;
+  s.last_input_seq = 0;
+  s.unanswered = 0;
+  s.last_active_ms = now_ms;
+  s.datagrams = TokenBucket(config_.session_datagrams_per_s, config_.session_datagram_burst, now_ms);
+  s.acks = AckWindow{};
+  s.results = ReliableSender<Result>{};
+  s.chats = ReliableSender<Chat>{};
+  s.commands = ReliableReceiver<Command>{};
+  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz);
+  by_session_id_[s.session_id] = s.player_id;
+  by_address_[from] = s.player_id;
+}
+
+void ServerEndpoint::handle_hello(const Address& from, const Header& header, const Hello& hello,
+                                  std::size_t request_bytes, std::uint64_t now_ms) {
+  const Encoding enc = header.encoding;
+  if (hello.cookie.empty()) {
+    reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms), kx_hex_}, request_bytes);
+    return;
+  }
+  switch (check_cookie(config_.key, from, hello.cookie, now_ms, config_.cookie_lifetime_ms)) {
+    case CookieCheck::forged: return rejects_.add(Reject::bad_cookie);
+    case CookieCheck::expired:
+      rejects_.add(Reject::bad_cookie);
+      reply_unconnected(from, enc, 0, Challenge{make_cookie(config_.key, from, now_ms), kx_hex_}, request_bytes);
+      return;
+    case CookieCheck::ok: break;
+  }
+  if (const std::string why = name_problem(hello.name); !why.empty()) {
+    rejects_.add(Reject::out_of_range);
+    reply_unconnected(from, enc, 0, Error{"bad_name", why}, request_bytes);
+    return;
+  }
+  Session* here = nullptr;
+  if (auto it = by_address_.find(from); it != by_address_.end()) {
+    here = &sessions_.at(it->second);
+    // The same connection attempt again (a lost welcome, a duplicated or resent hello):
+    // the same welcome, whatever was heard on the session since. Idempotent.
+    if (here->connected && here->nonce == hello.nonce) {
+      send_welcome(*here, here->welcomed_as_reconnect, request_bytes, now_ms);
+      return;
+    }
+  }
+  // The session's keys (PROTOCOL.md 5.7), and the token, which travels sealed with them.
+  const auto client_key = parse_public_key(hello.key);
+  const auto keys = client_key ? server_session_keys(kx_, *client_key) : std::nullopt;
+  if (!keys) {
+    rejects_.add(Reject::bad_key);
+    reply_unconnected(from, enc, 0, Error{"bad_key", "the hello has no usable key (PROTOCOL.md 5.7)"}, request_bytes);
+    return;
+  }
+  std::string token;
+  if (!hello.token.empty()) {
+    // Reconnects are rate limited per host: a token cannot be tried, or a player taken
+    // back and forth, faster than this.
+    if (AddressState* host = address_state(host_of(from), now_ms); host && !host->takeovers.take(now_ms)) {
+      rejects_.add(Reject::takeover_limited);
+      reply_unconnected(from, enc, 0, Error{"rate_limited", "too many reconnects from this address; try again soon"},
+                        request_bytes);
+      return;
+    }
+    token = open_hello_token(*keys, *client_key, hello.token).value_or("-");
+  }
+  // A new attempt from the address of a live session: the client there restarted.
+  // With that session's token it is taken back below; otherwise the old client is gone.
+  if (here && here->connected && token != here->token) drop_connection(*here, "replaced by a new connection", now_ms);
+  if (!token.empty()) {
+    // A restored session knows only its token's verifier (compared once per hello).
+    const std::string verifier = token_verifier(token);
+    auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == token;
+    });
+    if (it == sessions_.end()) {
+      rejects_.add(Reject::bad_token);
+      reply_unconnected(from, enc, 0,
+                        Error{"bad_token", "unknown or expired session token; connect again without one"},
+                        request_bytes);
+      return;
+    }
+    Session& s = it->second;
+    s.token = token;
+    // A player who quit gave its seat up: it comes back only to a free one.
+    if (s.quit && !s.spectator &&
+        (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
+      if (!config_.admit) return refuse_full(from, enc, request_bytes);
+      rejects_.add(Reject::join_refused);
+      reply_unconnected(from, enc, 0,
+                        Error{"room_full", "room " + s.room_code + " has no free seat; try again later"},
+                        request_bytes);
+      return;
+    }
+    // The token from another address takes the session over; the old address is told.
+    if (s.connected && s.address != from)
+      send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
+    start_session(s, from, enc, hello, *keys, now_ms);
+    s.welcomed_as_reconnect = true;
+    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
+    send_welcome(s, true, request_bytes, now_ms);
+    return;
+  }
+  if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
+    return refuse_full(from, enc, request_bytes);
+  if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
+    rejects_.add(Reject::address_full);
+    const std::string text = "this address has " + std::to_string(config_.max_sessions_per_address) +
+                             " players already; no more from it";
+    reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
+    return;
+  }
+  // The host picks the room last: a refused hello above creates no room.
+  Admission admission;
+  if (config_.admit) {
+    admission = config_.admit(JoinAsk{hello.join, hello.room, from});
+    if (!admission.error.empty() || admission.room == 0) {
+      rejects_.add(Reject::join_refused);
+      reply_unconnected(from, enc, 0,
+                        Error{admission.error.empty() ? "refused" : admission.error.substr(0, 32),
+                              admission.message.substr(0, kMaxTextBytes)},
+                        request_bytes);
+      return;
+    }
+    room_ticks_[admission.room] = admission.server_tick;
+  }
+  std::uint32_t player_id = 1;
+  while (sessions_.count(player_id)) ++player_id;
+  Session& s = sessions_[player_id];
+  s.player_id = player_id;
+  s.name = hello.name;
+  s.token = derive_token(config_.key, sessions_made_ + 1);
+  s.verifier = token_verifier(s.token);
+  s.room = admission.room;
+  s.room_code = admission.code;
+  s.spectator = admission.spectator;
+  start_session(s, from, enc, hello, *keys, now_ms);
+  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator});
+  send_welcome(s, false, request_bytes, now_ms);
+}
+
+void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
+  rejects_.add(Reject::server_full);
+  if (config_.admit) {
+    reply_unconnected(to, encoding, 0, Error{"server_full", "the server has no room for more players; try again later"},
+                      request_bytes);
+    return;
+  }
+  const std::string text = "the server is full (" + std::to_string(config_.max_players) +
+                           " players); try again later";
+  reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
+}
+
+}  // namespace fts::protocol

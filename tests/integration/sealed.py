@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""The sealed framing of PROTOCOL.md 5.7, written from the document alone with PyNaCl
+(Debian: python3-nacl): the key exchange, sealing and opening datagrams, the hello's
+token box, and a scripted JSON session that speaks the protocol from a Python socket.
+
+`python3 sealed.py` checks the test vectors of PROTOCOL.md 5.7.5 (exit status 0: they
+match the C++ library's)."""
+import json, struct, sys
+
+try:
+    import nacl.bindings as nb
+except ImportError:  # a Python of its own (pyenv, venv) next to Debian's python3-nacl
+    sys.path.append("/usr/lib/python3/dist-packages")
+    import nacl.bindings as nb
+
+VERSION = 3
+HEADER_BYTES = 21
+TAG_BYTES = 16
+C2S, S2C, HELLO_TOKEN = 1, 2, 3
+
+
+def header(session=0, seq=0, ack=0, ack_bits=0, delay=0, encoding=0, version=VERSION):
+    return b"FTSP" + struct.pack(">HBIHHIH", version, encoding, session, seq, ack, ack_bits, delay)
+
+
+def nonce(direction, sequence):
+    return bytes([direction, 0, 0, 0]) + struct.pack(">Q", sequence)
+
+
+def seal(key, direction, sequence, head, payload):
+    return head + nb.crypto_aead_chacha20poly1305_ietf_encrypt(payload, head, nonce(direction, sequence), key)
+
+
+def open_sealed(key, direction, sequence, datagram):
+    """The payload, or None if the tag does not verify."""
+    head = datagram[:HEADER_BYTES]
+    try:
+        return nb.crypto_aead_chacha20poly1305_ietf_decrypt(datagram[HEADER_BYTES:], head,
+                                                            nonce(direction, sequence), key)
+    except Exception:  # nacl.exceptions.CryptoError
+        return None
+
+
+def client_keys(client_pk, client_sk, server_pk):
+    """(rx, tx) of the client."""
+    return nb.crypto_kx_client_session_keys(client_pk, client_sk, server_pk)
+
+
+def token_box(tx, client_pk, token):
+    return nb.crypto_aead_chacha20poly1305_ietf_encrypt(token.encode(), client_pk, nonce(HELLO_TOKEN, 0), tx).hex()
+
+
+def extend(wire, newest):
+    candidate = (newest & ~0xFFFF) | wire
+    if candidate > newest + 0x8000 and candidate >= 0x10000:
+        candidate -= 0x10000
+    elif candidate + 0x8000 < newest:
+        candidate += 0x10000
+    return candidate
+
+
+class Session:
+    """One client's side of a JSON session after the handshake: seals what it sends
+    (its own sequence), opens what the server sends (no replay window: a test script)."""
+
+    def __init__(self, session_id, rx, tx):
+        self.id, self.rx, self.tx = session_id, rx, tx
+        self.seq = 0
+        self.newest = 0
+
+    def datagram(self, messages, seq=None):
+        if seq is None:
+            self.seq = self.seq % 65535 + 1
+            seq = self.seq
+        body = json.dumps(messages, separators=(",", ":")).encode()
+        return seal(self.tx, C2S, seq, header(self.id, seq), body)
+
+    def open(self, data):
+        """The messages of a datagram of this session, or None."""
+        if len(data) < HEADER_BYTES + TAG_BYTES or struct.unpack(">I", data[7:11])[0] != self.id:
+            return None
+        seq = extend(struct.unpack(">H", data[11:13])[0], self.newest)
+        body = open_sealed(self.rx, S2C, seq, data)
+        if body is None:
+            return None
+        self.newest = max(self.newest, seq)
+        return json.loads(body.decode())
+
+
+class Handshake:
+    """The client side of the handshake (PROTOCOL.md 5): hellos with this attempt's key,
+    the challenge's key, the sealed welcome."""
+
+    def __init__(self, name, nonce_value, token=""):
+        self.pk, self.sk = nb.crypto_kx_keypair()
+        self.name, self.nonce, self.token = name, nonce_value, token
+        self.cookie = ""
+        self.rx = self.tx = None
+        self.session = None  # a Session once welcomed
+        self.welcome = None
+        self.error = None
+
+    def hello(self):
+        box = token_box(self.tx, self.pk, self.token) if self.token and self.tx else ""
+        msg = {"t": "hello", "name": self.name, "token": box, "cookie": self.cookie,
+               "nonce": f"{self.nonce:016x}", "key": self.pk.hex(), "pad": ""}
+        body = json.dumps([msg]).encode()
+        msg["pad"] = "." * max(0, 512 - HEADER_BYTES - len(body))
+        return header() + json.dumps([msg]).encode()
+
+    def receive(self, data):
+        """Feeds one datagram; returns True when the hello should be sent again now."""
+        if len(data) < HEADER_BYTES or data[:4] != b"FTSP":
+            return False
+        session = struct.unpack(">I", data[7:11])[0]
+        if session == 0:
+            try:
+                msgs = json.loads(data[HEADER_BYTES:].decode())
+            except ValueError:
+                return False
+            for m in msgs:
+                if m.get("t") == "challenge" and not self.cookie:
+                    self.cookie = m["cookie"]
+                    self.rx, self.tx = client_keys(self.pk, self.sk, bytes.fromhex(m["key"]))
+                    return True
+                if m.get("t") == "error" and self.error is None and self.session is None:
+                    self.error = m["code"]
+            return False
+        if self.session is None and self.rx is not None:
+            s = Session(session, self.rx, self.tx)
+            msgs = s.open(data)
+            for m in msgs or []:
+                if m.get("t") == "welcome":
+                    self.session, self.welcome = s, m
+        return False
+
+
+def check_vectors():
+    cpk, csk = nb.crypto_kx_seed_keypair(bytes(range(0x00, 0x20)))
+    spk, ssk = nb.crypto_kx_seed_keypair(bytes(range(0x20, 0x40)))
+    c_rx, c_tx = client_keys(cpk, csk, spk)
+    s_rx, s_tx = nb.crypto_kx_server_session_keys(spk, ssk, cpk)
+    ping = b'[{"t":"ping"}]'
+    got = {
+        "client pk": cpk.hex(), "server pk": spk.hex(), "client tx": c_tx.hex(), "server tx": s_tx.hex(),
+        "1": seal(s_tx, S2C, 1, header(0x0a0b0c0d, 1), ping).hex(),
+        "2": seal(c_tx, C2S, 0x10001, header(0x0a0b0c0d, 1, ack=1, delay=3), ping).hex(),
+        "3": token_box(c_tx, cpk, "0123456789abcdef0123456789abcdef"),
+    }
+    want = {
+        "client pk": "0e0216223f147143d32615a91189c288c1728cba3cc5f9f621b1026e03d83129",
+        "server pk": "99f4674ecc87c0b8e712f192b8f49e7442a9376b4875967ababa28471019a93e",
+        "client tx": "17821f6861b0f9ac897981c01cca46b711a0afd09010d3694895333903865af2",
+        "server tx": "59f8af2a2061b2e35fd1cbfb708efd27a85c9924e6b83932e8a67c901a9998cb",
+        "1": "465453500003000a0b0c0d00010000000000000000"
+             "378ed4db2dd054b6230e0b5b0019219b7b2634477f9810a703b3097dc27e",
+        "2": "465453500003000a0b0c0d00010001000000000003"
+             "d825f86b42d7c4dd77d7739e15609d8f5dc6b8bf3595670d96db32e9a099",
+        "3": "42d9e71714d2ea27a1fe7f940c6e93cadc1412190673465631a36f0a08cb0312"
+             "bd367ef0d6350cb38c2507db15a2f231",
+    }
+    assert c_tx == s_rx and c_rx == s_tx
+    assert open_sealed(c_rx, S2C, 1, bytes.fromhex(want["1"])) == ping
+    bad = [k for k in want if got[k] != want[k]]
+    for k in bad:
+        print(f"vector {k}: got {got[k]}, PROTOCOL.md says {want[k]}")
+    return not bad
+
+
+if __name__ == "__main__":
+    ok = check_vectors()
+    print("sealed framing test vectors:", "ok" if ok else "MISMATCH")
+    sys.exit(0 if ok else 1)
