@@ -12,11 +12,9 @@
 #include <set>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
-#include "fts/io/address.hpp"
 #include "fts/io/udp.hpp"
 #include "fts/protocol/connection.hpp"
+#include "client_options.hpp"
 #include "replay/replay_loop.hpp"
 #include "term/io.hpp"
 #include "term/keys.hpp"
@@ -36,134 +34,6 @@ namespace proto = fts::protocol;
 using namespace fts::client;
 
 namespace {
-
-constexpr const char* kUsage =
-    "Usage: fts-client --connect HOST:PORT --name NAME [options]\n"
-    "       fts-client --replay FILE\n"
-    "\n"
-    "Plays Fear The Sphere in this terminal against an fts-server.\n"
-    "\n"
-    "Options:\n"
-    "  --connect HOST:PORT     the server (e.g. 127.0.0.1:7777)\n"
-    "  --name NAME             your name: 1 to 16 printable ASCII characters\n"
-    "  --encoding json|msgpack wire encoding (default msgpack)\n"
-    "  --interp-delay-ms N     draw this far behind the newest snapshot (default 100)\n"
-    "  --fps N                 frames drawn per second (default 60)\n"
-    "  --no-kitty              do not ask the terminal for key release events\n"
-    "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
-    "  --replay FILE           play back a server record (fts-server --record FILE):\n"
-    "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
-    "                          to the next/previous level, 1-9 to a level, e to the end\n"
-    "  --new                   start a new player (default: take back the player of the\n"
-    "                          last session on this server, kept in $XDG_STATE_HOME)\n"
-    "  --quick                 quick play: the fullest open room, or a new one\n"
-    "  --create                create a private room; friends join with the code in the HUD\n"
-    "  --join CODE             join the room with this code\n"
-    "  --spectate CODE         watch the room with this code\n"
-    "                          (none of these: a start screen asks)\n"
-    "  --help                  this text\n"
-    "\n"
-    "Controls: arrows, WASD or hjkl thrust (a tap is a short push, holding keeps pushing),\n"
-    "the mouse pointer steers (the ball thrusts toward it; a click fires), space fires\n"
-    "rockets, m s a r l x b buy in the shop, Enter is ready (and play again), t opens a\n"
-    "chat line (Enter sends, Esc cancels), Tab follows another player while you watch,\n"
-    "q twice quits. NO_COLOR=1 turns colours off.\n";
-
-struct Options {
-  std::string host, port, name;
-  proto::Encoding encoding = proto::Encoding::msgpack;
-  int interp_delay_ms = 100;
-  int fps = 60;
-  bool kitty = true;
-  bool mouse = true;  // --no-mouse: no mouse reporting, keys only
-  bool fresh = false;  // --new: ignore the saved session token
-  std::string replay;  // --replay FILE: play a record back, no server
-  std::optional<RoomChoice> room;  // none: the start screen asks
-};
-
-int usage_error(const std::string& msg) {
-  std::cerr << "fts-client: " << msg << "\n(see fts-client --help)\n";
-  return 2;
-}
-
-// Returns -1 on success, else the exit code.
-int parse(int argc, char** argv, Options& o) {
-  CLI::App app{"", "fts-client"};
-  app.set_help_flag();
-  app.allow_extras();
-  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  const CLI::Option* help = app.add_flag("-h,--help");
-  const CLI::Option* no_kitty = app.add_flag("--no-kitty");
-  const CLI::Option* no_mouse = app.add_flag("--no-mouse");
-  const CLI::Option* fresh = app.add_flag("--new");
-  const CLI::Option* quick = app.add_flag("--quick");
-  const CLI::Option* create = app.add_flag("--create");
-  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate"})
-    app.add_option(flag);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ArgumentMismatch&) {
-    return usage_error("unknown or incomplete option '" + std::string(argv[argc - 1]) + "'");
-  } catch (const CLI::ParseError& e) {
-    return usage_error(e.what());
-  }
-  if (help->count() > 0) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (!app.remaining().empty()) return usage_error("unknown or incomplete option '" + app.remaining().front() + "'");
-  auto value = [&](const std::string& flag) -> std::optional<std::string> {
-    const CLI::Option* opt = app.get_option(flag);
-    if (opt->count() == 0) return std::nullopt;
-    return opt->results().back();
-  };
-  o.kitty = no_kitty->count() == 0;
-  o.mouse = no_mouse->count() == 0;
-  o.fresh = fresh->count() > 0;
-  if (const auto v = value("--connect")) {
-    const auto hp = fts::io::parse_host_port(*v);
-    if (!hp) return usage_error("--connect wants HOST:PORT, got '" + *v + "'");
-    o.host = hp->host;
-    o.port = hp->port;
-  }
-  if (const auto v = value("--name")) o.name = *v;
-  if (const auto v = value("--encoding")) {
-    if (*v == "json") o.encoding = proto::Encoding::json;
-    else if (*v == "msgpack") o.encoding = proto::Encoding::msgpack;
-    else return usage_error("--encoding is json or msgpack, got '" + *v + "'");
-  }
-  for (const bool fps : {false, true}) {
-    const std::string flag = fps ? "--fps" : "--interp-delay-ms";
-    const auto v = value(flag);
-    if (!v) continue;
-    char* end = nullptr;
-    const long n = std::strtol(v->c_str(), &end, 10);
-    if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
-      return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
-    (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
-  }
-  if (const auto v = value("--replay")) {
-    if (v->empty()) return usage_error("--replay needs a record file");
-    o.replay = *v;
-    return -1;
-  }
-  const int room_flags = static_cast<int>(quick->count() > 0) + static_cast<int>(create->count() > 0) +
-                         static_cast<int>(value("--join").has_value()) + static_cast<int>(value("--spectate").has_value());
-  if (room_flags > 1) return usage_error("--quick, --create, --join and --spectate exclude each other");
-  if (quick->count() > 0) o.room = RoomChoice{};
-  if (create->count() > 0) o.room = RoomChoice{"create", ""};
-  for (const char* flag : {"--join", "--spectate"}) {
-    const auto v = value(flag);
-    if (!v) continue;
-    const auto choice = parse_start_choice(std::string(flag == std::string("--join") ? "3 " : "4 ") + *v);
-    if (const auto* why = std::get_if<std::string>(&choice)) return usage_error(std::string(flag) + ": " + *why);
-    o.room = std::get<RoomChoice>(choice);
-  }
-  if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
-  if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
-    return usage_error("--name must be 1 to 16 printable ASCII characters");
-  return -1;
-}
 
 std::uint64_t now_ms() {
   using namespace std::chrono;
@@ -547,7 +417,7 @@ class Game {
 
 int main(int argc, char** argv) {
   Options opts;
-  if (const int code = parse(argc, argv, opts); code >= 0) return code;
+  if (const int code = parse_options(argc, argv, opts); code >= 0) return code;
   if (!opts.replay.empty()) {
     std::string message;
     const int code = run_replay(opts.replay, opts.kitty, message);

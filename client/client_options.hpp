@@ -1,0 +1,28 @@
+// fts-client's command line: the options, their checks and the usage text.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "fts/protocol/constants.hpp"
+#include "ui/start_screen.hpp"
+
+namespace fts::client {
+
+struct Options {
+  std::string host, port, name;
+  protocol::Encoding encoding = protocol::Encoding::msgpack;
+  int interp_delay_ms = 100;
+  int fps = 60;
+  bool kitty = true;
+  bool mouse = true;  // --no-mouse: no mouse reporting, keys only
+  bool fresh = false;  // --new: ignore the saved session token
+  std::string replay;  // --replay FILE: play a record back, no server
+  std::optional<RoomChoice> room;  // none: the start screen asks
+};
+
+// Parses argv into o. Returns -1 to go on, else the exit code (0 after --help, 2 after
+// a bad option, with the reason on stderr).
+int parse_options(int argc, char** argv, Options& o);
+
+}  // namespace fts::client
