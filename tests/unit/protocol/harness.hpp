@@ -53,6 +53,14 @@ inline std::vector<std::uint8_t> seal_raw(const ClientEndpoint& client, const He
   return out;
 }
 
+// A client config with this name (and a session token to resume with).
+inline ClientConfig named(const std::string& name, const std::string& token = "") {
+  ClientConfig c;
+  c.name = name;
+  c.token = token;
+  return c;
+}
+
 inline ServerConfig test_server_config() {
   ServerConfig c;
   c.key = test_key();

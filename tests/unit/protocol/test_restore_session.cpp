@@ -17,13 +17,6 @@ ServerConfig other_key_config() {
   return c;
 }
 
-ClientConfig named(const std::string& name, const std::string& token = "") {
-  ClientConfig c;
-  c.name = name;
-  c.token = token;
-  return c;
-}
-
 }  // namespace
 
 TEST_CASE("Restore: a restarted server takes a player back by its old token", "[protocol][sessions][restore]") {

@@ -10,7 +10,8 @@ using namespace fts::protocol::test;
 
 namespace {
 
-ClientConfig named(const std::string& name, std::uint64_t nonce = 0) {
+// A client config for one connection attempt (its hello nonce).
+ClientConfig attempt(const std::string& name, std::uint64_t nonce = 0) {
   ClientConfig c;
   c.name = name;
   c.nonce = nonce;
@@ -29,14 +30,14 @@ void deliver_twice(Harness& h, Peer& p) {
 
 TEST_CASE("Sessions: a duplicated token hello keeps the live session", "[protocol][sessions]") {
   Harness h;
-  Peer& p = h.add_client(named("ann"));
+  Peer& p = h.add_client(attempt("ann"));
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
   const std::string token = p.client.welcome()->token;
 
   // The client loses its connection and reconnects with its token; its hello with the
   // cookie is delivered twice, 200 ms apart, and the session is heard from in between.
-  ClientConfig again = named("ann", 0x1234);
+  ClientConfig again = attempt("ann", 0x1234);
   again.token = token;
   Peer& q = h.add_client(again, {}, "10.0.9.9:4000");
   q.client.connect(h.now);
@@ -67,7 +68,7 @@ TEST_CASE("Sessions: a duplicated token hello keeps the live session", "[protoco
 
 TEST_CASE("Sessions: every hello of one attempt gets the same welcome", "[protocol][sessions]") {
   Harness h;
-  Peer& p = h.add_client(named("ann"));
+  Peer& p = h.add_client(attempt("ann"));
   p.client.connect(h.now);
   // Deliver every datagram twice until connected; then talk for a while.
   for (int i = 0; i < 100 && p.client.state() != ClientState::connected; ++i) {
@@ -89,10 +90,10 @@ TEST_CASE("Sessions: every hello of one attempt gets the same welcome", "[protoc
 TEST_CASE("Sessions: a token from another address takes over and the old address is told",
           "[protocol][sessions]") {
   Harness h;
-  Peer& a = h.add_client(named("ann"));
+  Peer& a = h.add_client(attempt("ann"));
   a.client.connect(h.now);
   REQUIRE(h.run_until([&] { return a.client.state() == ClientState::connected; }, 1000));
-  ClientConfig c = named("ann");
+  ClientConfig c = attempt("ann");
   c.token = a.client.welcome()->token;
   Peer& b = h.add_client(c, {}, "10.0.0.99:6000");
   b.client.connect(h.now);
@@ -105,7 +106,7 @@ TEST_CASE("Sessions: a token from another address takes over and the old address
 
 TEST_CASE("Sessions: a 15 s stall of the server drops nobody", "[protocol][sessions][stall]") {
   Harness h;
-  for (int i = 0; i < 5; ++i) h.add_client(named("p" + std::to_string(i))).client.connect(h.now);
+  for (int i = 0; i < 5; ++i) h.add_client(attempt("p" + std::to_string(i))).client.connect(h.now);
   REQUIRE(h.run_until([&] {
     for (auto& p : h.peers)
       if (p->client.state() != ClientState::connected) return false;
@@ -135,7 +136,7 @@ TEST_CASE("Sessions: a 15 s stall of the server drops nobody", "[protocol][sessi
 
 TEST_CASE("Sessions: a silent client still times out", "[protocol][sessions][stall]") {
   Harness h;
-  Peer& p = h.add_client(named("ann"));
+  Peer& p = h.add_client(attempt("ann"));
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
   p.client.send_input({1, 1, 0, false}, h.now);  // a player: its slot is held, not freed
@@ -152,7 +153,7 @@ TEST_CASE("Sessions: a silent client still times out", "[protocol][sessions][sta
 TEST_CASE("Sessions: a bad hello gets an error smaller than the hello", "[protocol][sessions][reject]") {
   Harness h;
   SECTION("a name with control characters") {
-    ClientEndpoint c(named("\x1b[31mred"));
+    ClientEndpoint c(attempt("\x1b[31mred"));
     c.connect(h.now);
     for (int i = 0; i < 4; ++i) {
       for (auto& d : c.take_datagrams()) {
@@ -169,7 +170,7 @@ TEST_CASE("Sessions: a bad hello gets an error smaller than the hello", "[protoc
     CHECK(h.server.sessions().empty());
   }
   SECTION("a name that is too long") {
-    ClientEndpoint c(named(std::string(40, 'n')));
+    ClientEndpoint c(attempt(std::string(40, 'n')));
     c.connect(h.now);
     for (int i = 0; i < 4; ++i)
       for (auto& d : c.take_datagrams()) {
@@ -203,7 +204,7 @@ TEST_CASE("Sessions: RTT is the network's, not the peer's wait to answer", "[pro
   Harness h;
   // 5 ms each way; the server only answers every 50 ms (a snapshot rate), the client
   // sends every 10 ms.
-  Peer& p = h.add_client(named("ann"), LinkConfig{0, 0, 5, 0, 3});
+  Peer& p = h.add_client(attempt("ann"), LinkConfig{0, 0, 5, 0, 3});
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
   const std::uint32_t id = p.client.welcome()->player_id;
@@ -232,7 +233,7 @@ TEST_CASE("Sessions: RTT is the network's, not the peer's wait to answer", "[pro
 TEST_CASE("Sessions: an input frame far ahead is ignored, the real ones still count",
           "[protocol][sessions][input]") {
   Harness h;
-  Peer& p = h.add_client(named("ann"));
+  Peer& p = h.add_client(attempt("ann"));
   p.client.connect(h.now);
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
   p.client.send_input({0, 1, 0, false}, h.now);

@@ -10,12 +10,6 @@ using namespace fts::protocol::test;
 
 namespace {
 
-ClientConfig named(const std::string& name) {
-  ClientConfig c;
-  c.name = name;
-  return c;
-}
-
 bool connected(const Peer& p) { return p.client.state() == ClientState::connected; }
 
 std::vector<std::uint8_t> padded_hello() {
