@@ -34,8 +34,11 @@ constexpr std::uint32_t kFall = 0xffffff02u;
 // callgrind, gas-10000 continuous, 50 ticks, instructions by kSkinTravels: 3: 249 M,
 // 4: 212 M, 6: 207 M, 8: ~230 M, 12: 271 M, 20: 390 M (wider skins list more pairs to
 // predict every tick; narrower ones rebuild more often).
-constexpr double kSkinTravels = 6.0;
+constexpr double kSkinTravels = 10.0;
 constexpr double kSkinRadii = 0.05;
+// A listed pair whose balls keep their lines is predicted again after at most this many
+// ticks, however far apart it was (bounds the rounding drift the margins must cover).
+constexpr std::uint32_t kMaxSkip = 16;
 
 // b is another ball's index or kWallX / kWallY / kFall.
 using Event = TimedEvent;
@@ -93,6 +96,7 @@ class Solver {
     S_ = stamp_.data();
     A_ = alive_.data();
     E_ = escaped_flag_.data();
+    slack_ = 1e-12 * (std::fabs(world_.arena.width_u) + std::fabs(world_.arena.height_u));
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
     if (initial_events() && !overlaps_.empty()) {
@@ -140,16 +144,34 @@ class Solver {
     if (!grid_mode_) {
       for (std::uint32_t i = 0; i < n; ++i)
         for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
+      skin_.skin_valid = false;  // the wakes assume every solve saw the balls
       return !overlaps_.empty();
     }
+    if (skin_.skin_tick >= (1u << 30)) skin_.skin_valid = false;  // renumbered by a build
+    tick_ = ++skin_.skin_tick;
     if (!skin_fits()) {
       build_skin();
       skin_fits();  // a ball faster than the skin leaves it even now
     }
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
     // against the balls in their skins (a grid query) and the later escaped ones.
-    for (auto [i, j] : skin_.skin_pairs)
-      if (!E_[i] && !E_[j]) pair_event(i, j, true);
+    // A pair predicted in an earlier tick whose balls both kept their lines since is
+    // predicted again only when its wake comes (kept_apart_ticks).
+    const std::size_t np = skin_.skin_pairs.size();
+    const IndexPair* pairs = skin_.skin_pairs.data();
+    StepBuffers::PairWake* wakes = skin_.pair_wake.data();
+    const std::uint32_t* course = skin_.course_tick.data();
+    const std::uint32_t tick = tick_;
+    for (std::size_t p = 0; p < np; ++p) {
+      const auto [i, j] = pairs[p];
+      if (E_[i] || E_[j]) continue;
+      StepBuffers::PairWake& w = wakes[p];
+      if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
+      const std::uint32_t apart = kept_apart_ticks(i, j);
+      w.seen = tick;
+      w.wake = tick + (apart > 0 ? apart : 1);
+      if (apart == 0) pair_event(i, j, true);
+    }
     for (std::size_t k = 0; k < escaped_.size(); ++k) {
       const std::uint32_t i = escaped_[k];
       const Box now = path_box(i, 0.0);
@@ -172,6 +194,26 @@ class Solver {
     return length_sq(B_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
   }
 
+  // Whole ticks, from the start of this one (every clock 0), in which balls i and j on
+  // their present lines certainly do not touch: 0 (predict now) .. kMaxSkip. For t >= 0,
+  // |d + w t|^2 >= |d|^2 + 2 (d.w) t, which stays above reach^2 until t = c / (-2 d.w).
+  // The reach is widened by 1e-6 of itself and by 1e-12 of the arena, far above the
+  // rounding here and the drift of positions re-based every tick for kMaxSkip ticks,
+  // so a skipped tick is one whose prediction would have found nothing.
+  [[gnu::always_inline]] std::uint32_t kept_apart_ticks(std::uint32_t i, std::uint32_t j) const {
+    const Ball& a = B_[i];
+    const Ball& b = B_[j];
+    const Vec2 d = b.pos - a.pos;
+    const double reach = (a.radius + b.radius) * (1.0 + 1e-6) + slack_;
+    const double c = length_sq(d) - reach * reach;
+    if (!(c > 0.0)) return 0;
+    const double approach = dot(d, b.vel - a.vel);
+    if (approach >= 0.0) return kMaxSkip;
+    const double ticks = c / (-2.0 * approach * dt_);
+    if (!(ticks >= 1.0)) return 0;  // also NaN
+    return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
+  }
+
   void escape(std::uint32_t i) {
     E_[i] = 1;
     escaped_.push_back(i);
@@ -184,7 +226,14 @@ class Solver {
     const std::size_t n = balls_.size();
     std::fill(escaped_flag_.begin(), escaped_flag_.end(), 0);
     escaped_.clear();
-    if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n) return false;
+    if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
+      return false;
+    // A ball whose position or velocity is not what the last solve left changed course.
+    const bool kept = skin_.end_pos.size() == n && skin_.end_vel.size() == n;
+    const Vec2* end_pos = skin_.end_pos.data();
+    const Vec2* end_vel = skin_.end_vel.data();
+    std::uint32_t* course = skin_.course_tick.data();
+    const std::uint32_t tick = tick_;
     const std::size_t allowed = 32 + n / 256;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
@@ -193,6 +242,9 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = B_[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return false;
+      if (!kept || b.pos.x != end_pos[i].x || b.pos.y != end_pos[i].y || b.vel.x != end_vel[i].x ||
+          b.vel.y != end_vel[i].y)
+        course[i] = tick;
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
       const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
@@ -255,6 +307,11 @@ class Solver {
       skin_.near[skin_.near_fill[i]++] = j;
       skin_.near[skin_.near_fill[j]++] = i;
     }
+    // Nothing predicted yet: every pair is due, and the solve count starts again.
+    skin_.pair_wake.assign(pairs.size(), {});
+    skin_.course_tick.assign(n, 0);
+    skin_.skin_tick = tick_ = 1;
+    skin_.skin_dt = dt_;
     skin_.skin_valid = true;
     ++skin_.skin_builds;
   }
@@ -411,6 +468,7 @@ class Solver {
   }
 
   void wall(const Event& e) {
+    if (grid_mode_) skin_.course_tick[e.a] = tick_;
     advance(e.a, e.t);
     Ball& b = B_[e.a];
     ++S_[e.a];
@@ -430,6 +488,7 @@ class Solver {
   }
 
   void collide(const Event& e) {
+    if (grid_mode_) skin_.course_tick[e.a] = skin_.course_tick[e.b] = tick_;
     advance(e.a, e.t);
     advance(e.b, e.t);
     Ball& a = B_[e.a];
@@ -447,8 +506,17 @@ class Solver {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i)
       if (alive_[i]) advance(i, dt_);
+    if (grid_mode_) {  // what the next solve compares the balls with (skin_fits)
+      skin_.end_pos.resize(n);
+      skin_.end_vel.resize(n);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        skin_.end_pos[i] = B_[i].pos;
+        skin_.end_vel[i] = B_[i].vel;
+      }
+    }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
       skin_.skin_valid = false;       // the indices shift
+      skin_.end_pos.clear();
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
         if (alive_[i]) balls_[out++] = balls_[i];
@@ -480,6 +548,8 @@ class Solver {
   std::uint32_t* S_ = nullptr;
   std::uint8_t* A_ = nullptr;
   std::uint8_t* E_ = nullptr;
+  double slack_ = 0.0;       // kept_apart_ticks' margin for the arena's size
+  std::uint32_t tick_ = 0;   // this solve's number (grid mode; StepBuffers::skin_tick)
 };
 
 }  // namespace
