@@ -18,6 +18,7 @@
 // by the same formula and the heap orders events by (time, a, b), so a world stepped
 // with or without its cache ends in the same bits.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -164,9 +165,9 @@ class Solver {
     const std::uint32_t tick = tick_;
     for (std::size_t p = 0; p < np; ++p) {
       const auto [i, j] = pairs[p];
-      if (E_[i] || E_[j]) continue;
       StepBuffers::PairWake& w = wakes[p];
       if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
+      if (E_[i] || E_[j]) continue;
       const std::uint32_t apart = kept_apart_ticks(i, j);
       w.seen = tick;
       w.wake = tick + (apart > 0 ? apart : 1);
@@ -214,6 +215,8 @@ class Solver {
     return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
   }
 
+  static std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
   void escape(std::uint32_t i) {
     E_[i] = 1;
     escaped_.push_back(i);
@@ -229,9 +232,8 @@ class Solver {
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
       return false;
     // A ball whose position or velocity is not what the last solve left changed course.
-    const bool kept = skin_.end_pos.size() == n && skin_.end_vel.size() == n;
-    const Vec2* end_pos = skin_.end_pos.data();
-    const Vec2* end_vel = skin_.end_vel.data();
+    const bool kept = skin_.end_line.size() == n;
+    const StepBuffers::Line* end = skin_.end_line.data();
     std::uint32_t* course = skin_.course_tick.data();
     const std::uint32_t tick = tick_;
     const std::size_t allowed = 32 + n / 256;
@@ -242,8 +244,9 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = B_[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return false;
-      if (!kept || b.pos.x != end_pos[i].x || b.pos.y != end_pos[i].y || b.vel.x != end_vel[i].x ||
-          b.vel.y != end_vel[i].y)
+      // Compared as bits: a changed zero sign counts as a change, NaN never matches.
+      if (!kept || ((bits(b.pos.x) ^ bits(end[i].pos.x)) | (bits(b.pos.y) ^ bits(end[i].pos.y)) |
+                    (bits(b.vel.x) ^ bits(end[i].vel.x)) | (bits(b.vel.y) ^ bits(end[i].vel.y))) != 0)
         course[i] = tick;
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
@@ -369,9 +372,10 @@ class Solver {
       const Ball& b = balls[i];
       const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * dt;
       const double inset = walls ? b.radius : 0.0;
-      if (!(b.pos.x - travel > inset && b.pos.x + travel < w - inset && b.pos.y - travel > inset &&
-            b.pos.y + travel < h - inset))
-        edge_event(i);
+      // The four tests without branches (almost every ball passes all four).
+      const bool inside = (b.pos.x - travel > inset) & (b.pos.x + travel < w - inset) &
+                          (b.pos.y - travel > inset) & (b.pos.y + travel < h - inset);
+      if (!inside) edge_event(i);
     }
   }
 
@@ -504,19 +508,20 @@ class Solver {
 
   void finish() {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (alive_[i]) advance(i, dt_);
-    if (grid_mode_) {  // what the next solve compares the balls with (skin_fits)
-      skin_.end_pos.resize(n);
-      skin_.end_vel.resize(n);
+    if (grid_mode_) {  // and keep what the next solve compares the balls with (skin_fits)
+      skin_.end_line.resize(n);
+      StepBuffers::Line* end = skin_.end_line.data();
       for (std::uint32_t i = 0; i < n; ++i) {
-        skin_.end_pos[i] = B_[i].pos;
-        skin_.end_vel[i] = B_[i].vel;
+        if (A_[i]) advance(i, dt_);
+        end[i] = {B_[i].pos, B_[i].vel};
       }
+    } else {
+      for (std::uint32_t i = 0; i < n; ++i)
+        if (A_[i]) advance(i, dt_);
     }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
       skin_.skin_valid = false;       // the indices shift
-      skin_.end_pos.clear();
+      skin_.end_line.clear();
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
         if (alive_[i]) balls_[out++] = balls_[i];

@@ -60,13 +60,16 @@ struct StepBuffers {
   // start of solve `seen` and cannot meet before the start of solve `wake` while both
   // balls keep their lines; course_tick[i] is the last solve in which ball i's line
   // changed (an event, or a change between solves: its position or velocity differs
-  // from end_pos / end_vel, what the previous solve left).
+  // from end_line, what the previous solve left).
   struct PairWake {
     std::uint32_t seen = 0, wake = 0;
   };
   std::vector<PairWake> pair_wake;  // parallel to skin_pairs
   std::vector<std::uint32_t> course_tick;
-  std::vector<Vec2> end_pos, end_vel;
+  struct Line {
+    Vec2 pos, vel;
+  };
+  std::vector<Line> end_line;
   std::uint32_t skin_tick = 0;  // solves in grid mode
   double skin_dt = 0.0;         // the tick the skin and the wakes were made for
   double half_skin = 0.0;
