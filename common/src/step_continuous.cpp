@@ -97,6 +97,7 @@ class Solver {
     S_ = stamp_.data();
     A_ = alive_.data();
     E_ = escaped_flag_.data();
+    edges_ = {world_.arena.boundary == Boundary::walls, world_.arena.width_u, world_.arena.height_u};
     slack_ = 1e-12 * (std::fabs(world_.arena.width_u) + std::fabs(world_.arena.height_u));
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
@@ -141,8 +142,8 @@ class Solver {
     overlaps_.clear();
     escaped_.clear();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    initial_boundary_events();
     if (!grid_mode_) {
+      initial_boundary_events();
       for (std::uint32_t i = 0; i < n; ++i)
         for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
       skin_.skin_valid = false;  // the wakes assume every solve saw the balls
@@ -154,6 +155,7 @@ class Solver {
       build_skin();
       skin_fits();  // a ball faster than the skin leaves it even now
     }
+    for (std::uint32_t i : skin_.edge_due) edge_event(i);
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
     // against the balls in their skins (a grid query) and the later escaped ones.
     // A pair predicted in an earlier tick whose balls both kept their lines since is
@@ -183,6 +185,21 @@ class Solver {
         if (overlaps(escaped_box_[i], escaped_box_[escaped_[m]])) pair_event(i, escaped_[m], true);
     }
     return !overlaps_.empty();
+  }
+
+  // The arena's edges, as clear_of_edges reads them.
+  struct Edges {
+    bool walls;
+    double width, height;
+  };
+  // Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
+  // bounds the speed from above, and the four tests run without branches (almost every
+  // ball passes all four).
+  [[gnu::always_inline]] static bool clear_of_edges(const Ball& b, double time, const Edges& e) {
+    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
+    const double inset = e.walls ? b.radius : 0.0;
+    return (b.pos.x - travel > inset) & (b.pos.x + travel < e.width - inset) & (b.pos.y - travel > inset) &
+           (b.pos.y + travel < e.height - inset);
   }
 
   // Whether ball i's path for the rest of the tick stays within half_skin of where the
@@ -236,6 +253,8 @@ class Solver {
     const StepBuffers::Line* end = skin_.end_line.data();
     std::uint32_t* course = skin_.course_tick.data();
     const std::uint32_t tick = tick_;
+    const Edges edges = edges_;
+    skin_.edge_due.clear();
     const std::size_t allowed = 32 + n / 256;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
@@ -255,6 +274,7 @@ class Solver {
         if (escaped_.size() == allowed) return false;
         escape(i);
       }
+      if (!clear_of_edges(b, dt, edges)) skin_.edge_due.push_back(i);  // boundary_event's test
     }
     return true;
   }
@@ -362,33 +382,16 @@ class Solver {
 
   // boundary_event for every ball at the start of the tick (every clock 0), with the
   // arena and the tick in registers: the same test, the same events.
+  // (grid mode does the same test in skin_fits' pass over the balls).
   void initial_boundary_events() {
-    const Arena& a = world_.arena;
-    const bool walls = a.boundary == Boundary::walls;
-    const double w = a.width_u, h = a.height_u, dt = dt_;  // dt_ - 0
-    const Ball* balls = B_;
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const Ball& b = balls[i];
-      const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * dt;
-      const double inset = walls ? b.radius : 0.0;
-      // The four tests without branches (almost every ball passes all four).
-      const bool inside = (b.pos.x - travel > inset) & (b.pos.x + travel < w - inset) &
-                          (b.pos.y - travel > inset) & (b.pos.y + travel < h - inset);
-      if (!inside) edge_event(i);
-    }
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (!clear_of_edges(B_[i], dt_, edges_)) edge_event(i);  // dt_ - 0
   }
 
   // Most balls cannot reach an edge this tick: an inlined test skips the divisions.
   void boundary_event(std::uint32_t i) {
-    const Ball& b = B_[i];
-    const Arena& a = world_.arena;
-    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - T_[i]);
-    const double inset = a.boundary == Boundary::walls ? b.radius : 0.0;
-    if (b.pos.x - travel > inset && b.pos.x + travel < a.width_u - inset && b.pos.y - travel > inset &&
-        b.pos.y + travel < a.height_u - inset)
-      return;
-    edge_event(i);
+    if (!clear_of_edges(B_[i], dt_ - T_[i], edges_)) edge_event(i);
   }
 
   [[gnu::noinline]] void edge_event(std::uint32_t i) {
@@ -553,6 +556,7 @@ class Solver {
   std::uint32_t* S_ = nullptr;
   std::uint8_t* A_ = nullptr;
   std::uint8_t* E_ = nullptr;
+  Edges edges_{};
   double slack_ = 0.0;       // kept_apart_ticks' margin for the arena's size
   std::uint32_t tick_ = 0;   // this solve's number (grid mode; StepBuffers::skin_tick)
 };
