@@ -13,7 +13,10 @@
 // its listed neighbours. A ball whose path leaves its skin (at the start of a tick, or
 // after a collision) joins a small "escaped" list: it finds its partners with a query of
 // the skin grid, and every other refresh also scans the list. When too many balls have
-// left, or a ball was added, removed or resized, the skin is rebuilt. Which pairs are
+// left, or a ball was added, removed or resized, the skin is rebuilt (step_skin.cpp).
+// Predictions are kept across ticks too: a listed pair found unable to meet for the
+// next k ticks (k <= kMaxSkip) is not predicted again until then, unless one of its
+// balls changes its line (an event, or a change between ticks). Which pairs are
 // offered never changes a result, only its cost: every pair that can meet is predicted
 // by the same formula and the heap orders events by (time, a, b), so a world stepped
 // with or without its cache ends in the same bits.
@@ -31,12 +34,6 @@ namespace {
 constexpr std::uint32_t kWallX = 0xffffff00u;
 constexpr std::uint32_t kWallY = 0xffffff01u;
 constexpr std::uint32_t kFall = 0xffffff02u;
-// Half the skin, in rms travels per tick plus mean radii (cost only; see build_skin).
-// callgrind, gas-10000 continuous, 50 ticks, instructions by kSkinTravels: 3: 249 M,
-// 4: 212 M, 6: 207 M, 8: ~230 M, 12: 271 M, 20: 390 M (wider skins list more pairs to
-// predict every tick; narrower ones rebuild more often).
-constexpr double kSkinTravels = 10.0;
-constexpr double kSkinRadii = 0.05;
 // A listed pair whose balls keep their lines is predicted again after at most this many
 // ticks, however far apart it was (bounds the rounding drift the margins must cover).
 constexpr std::uint32_t kMaxSkip = 16;
@@ -152,7 +149,8 @@ class Solver {
     if (skin_.skin_tick >= (1u << 30)) skin_.skin_valid = false;  // renumbered by a build
     tick_ = ++skin_.skin_tick;
     if (!skin_fits()) {
-      build_skin();
+      build_continuous_skin(balls_, dt_, skin_);
+      tick_ = skin_.skin_tick;
       skin_fits();  // a ball faster than the skin leaves it even now
     }
     for (std::uint32_t i : skin_.edge_due) edge_event(i);
@@ -277,66 +275,6 @@ class Solver {
       if (!clear_of_edges(b, dt, edges)) skin_.edge_due.push_back(i);  // boundary_event's test
     }
     return true;
-  }
-
-  void build_skin() {
-    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    // Half the skin: a few ticks of the typical (rms) travel plus a little of the mean
-    // radius, so a ball at a typical speed keeps its skin for several ticks while the
-    // boxes stay small. Only the cost depends on it.
-    double travel_sq = 0.0, radius_sum = 0.0;
-    for (const Ball& b : balls_) {
-      travel_sq += length_sq(b.vel) * dt_ * dt_;
-      radius_sum += b.radius;
-    }
-    const double inv_n = 1.0 / static_cast<double>(n);
-    double h = kSkinTravels * std::sqrt(travel_sq * inv_n) + kSkinRadii * radius_sum * inv_n;
-    if (!(h > 0.0) || !std::isfinite(h)) h = 0.0;
-    skin_.half_skin = h;
-    skin_.skin_origin.resize(n);
-    skin_.skin_id.resize(n);
-    skin_.skin_radius.resize(n);
-    std::vector<Box>& boxes = grid_.boxes();
-    boxes.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const Ball& b = B_[i];
-      skin_.skin_origin[i] = b.pos;
-      skin_.skin_id[i] = b.id.value;
-      skin_.skin_radius[i] = b.radius;
-      const double m = b.radius + h;
-      boxes[i] = {b.pos.x - m, b.pos.y - m, b.pos.x + m, b.pos.y + m};
-    }
-    grid_.build();
-    auto& pairs = skin_.skin_pairs;
-    pairs.clear();
-    // Two balls each within half_skin of their origins can touch only if their origins
-    // are within r_i + r_j + 2 half_skin: a disc test, tighter than the boxes' (about
-    // a fifth fewer pairs to predict every tick).
-    grid_.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) {
-      const double reach = balls_[i].radius + balls_[j].radius + 2.0 * h;
-      if (length_sq(balls_[j].pos - balls_[i].pos) <= reach * reach) pairs.emplace_back(i, j);
-    });
-    // Per ball, the same pairs (a counting sort into CSR).
-    auto& start = skin_.near_start;
-    start.assign(n + 1, 0);
-    for (auto [i, j] : pairs) {
-      ++start[i + 1];
-      ++start[j + 1];
-    }
-    for (std::uint32_t i = 0; i < n; ++i) start[i + 1] += start[i];
-    skin_.near.resize(start[n]);
-    skin_.near_fill.assign(start.begin(), start.end() - 1);
-    for (auto [i, j] : pairs) {
-      skin_.near[skin_.near_fill[i]++] = j;
-      skin_.near[skin_.near_fill[j]++] = i;
-    }
-    // Nothing predicted yet: every pair is due, and the solve count starts again.
-    skin_.pair_wake.assign(pairs.size(), {});
-    skin_.course_tick.assign(n, 0);
-    skin_.skin_tick = tick_ = 1;
-    skin_.skin_dt = dt_;
-    skin_.skin_valid = true;
-    ++skin_.skin_builds;
   }
 
   void clamp_all_into_walls() {
