@@ -82,10 +82,14 @@ class Solver {
 
   void run() {
     const std::size_t n = balls_.size();
-    t_.assign(n, 0.0);
-    stamp_.assign(n, 0);
-    alive_.assign(n, 1);
-    escaped_flag_.resize(n);  // cleared by each initial_events
+    // Clocks, stamps and liveness carry over from the last solve while the count of
+    // balls stays: finish() leaves every clock at 0 and (no fall) every ball alive, and
+    // a stamp is only compared with itself within one tick (the heap starts empty).
+    if (t_.size() != n) t_.assign(n, 0.0);
+    if (stamp_.size() != n) stamp_.assign(n, 0);
+    if (alive_.size() != n) alive_.assign(n, 1);
+    clear_escaped();  // before the resize: the list may hold the last solve's indices
+    escaped_flag_.resize(n);
     escaped_box_.resize(n);  // written when a ball escapes, read only after
     // Raw pointers into the buffers, which keep their size for the whole solve: through
     // the vectors every access reloads the data pointer (a store might alias it).
@@ -137,7 +141,7 @@ class Solver {
   bool initial_events() {
     heap_.clear();
     overlaps_.clear();
-    escaped_.clear();
+    clear_escaped();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     if (!grid_mode_) {
       initial_boundary_events();
@@ -232,6 +236,14 @@ class Solver {
 
   static std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
+  // Escape flags are set only by escape(), which lists the ball: clearing the listed
+  // ones clears them all.
+  void clear_escaped() {
+    for (std::uint32_t i : escaped_)
+      if (i < escaped_flag_.size()) escaped_flag_[i] = 0;
+    escaped_.clear();
+  }
+
   void escape(std::uint32_t i) {
     E_[i] = 1;
     escaped_.push_back(i);
@@ -242,8 +254,7 @@ class Solver {
   // leaving it this tick that the escaped list stays short. Those leaving it are escaped.
   bool skin_fits() {
     const std::size_t n = balls_.size();
-    std::fill(escaped_flag_.begin(), escaped_flag_.end(), 0);
-    escaped_.clear();
+    clear_escaped();
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
       return false;
     // A ball whose position or velocity is not what the last solve left changed course.
@@ -449,20 +460,19 @@ class Solver {
 
   void finish() {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    if (grid_mode_) {  // and keep what the next solve compares the balls with (skin_fits)
-      skin_.end_line.resize(n);
-      StepBuffers::Line* end = skin_.end_line.data();
-      for (std::uint32_t i = 0; i < n; ++i) {
-        if (A_[i]) advance(i, dt_);
-        end[i] = {B_[i].pos, B_[i].vel};
-      }
-    } else {
-      for (std::uint32_t i = 0; i < n; ++i)
-        if (A_[i]) advance(i, dt_);
+    // Every ball to the end of the tick, its clock back to 0 for the next solve, and
+    // (grid mode) what the next solve compares the balls with (skin_fits).
+    if (grid_mode_) skin_.end_line.resize(n);
+    StepBuffers::Line* end = grid_mode_ ? skin_.end_line.data() : nullptr;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (A_[i]) B_[i].pos = pos_at(i, dt_);
+      T_[i] = 0.0;
+      if (end) end[i] = {B_[i].pos, B_[i].vel};
     }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
       skin_.skin_valid = false;       // the indices shift
       skin_.end_line.clear();
+      alive_.clear();                 // the next solve starts them all alive again
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
         if (alive_[i]) balls_[out++] = balls_[i];
