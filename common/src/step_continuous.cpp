@@ -13,11 +13,15 @@
 // its listed neighbours. A ball whose path leaves its skin (at the start of a tick, or
 // after a collision) joins a small "escaped" list: it finds its partners with a query of
 // the skin grid, and every other refresh also scans the list. When too many balls have
-// left, or a ball was added, removed or resized, the skin is rebuilt. Which pairs are
+// left, or a ball was added, removed or resized, the skin is rebuilt (step_skin.cpp).
+// Predictions are kept across ticks too: a listed pair found unable to meet for the
+// next k ticks (k <= kMaxSkip) is not predicted again until then, unless one of its
+// balls changes its line (an event, or a change between ticks). Which pairs are
 // offered never changes a result, only its cost: every pair that can meet is predicted
 // by the same formula and the heap orders events by (time, a, b), so a world stepped
 // with or without its cache ends in the same bits.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -30,12 +34,9 @@ namespace {
 constexpr std::uint32_t kWallX = 0xffffff00u;
 constexpr std::uint32_t kWallY = 0xffffff01u;
 constexpr std::uint32_t kFall = 0xffffff02u;
-// Half the skin, in rms travels per tick plus mean radii (cost only; see build_skin).
-// callgrind, gas-10000 continuous, 50 ticks, instructions by kSkinTravels: 3: 249 M,
-// 4: 212 M, 6: 207 M, 8: ~230 M, 12: 271 M, 20: 390 M (wider skins list more pairs to
-// predict every tick; narrower ones rebuild more often).
-constexpr double kSkinTravels = 6.0;
-constexpr double kSkinRadii = 0.05;
+// A listed pair whose balls keep their lines is predicted again after at most this many
+// ticks, however far apart it was (bounds the rounding drift the margins must cover).
+constexpr std::uint32_t kMaxSkip = 16;
 
 // b is another ball's index or kWallX / kWallY / kFall.
 using Event = TimedEvent;
@@ -81,10 +82,14 @@ class Solver {
 
   void run() {
     const std::size_t n = balls_.size();
-    t_.assign(n, 0.0);
-    stamp_.assign(n, 0);
-    alive_.assign(n, 1);
-    escaped_flag_.resize(n);  // cleared by each initial_events
+    // Clocks, stamps and liveness carry over from the last solve while the count of
+    // balls stays: finish() leaves every clock at 0 and (no fall) every ball alive, and
+    // a stamp is only compared with itself within one tick (the heap starts empty).
+    if (t_.size() != n) t_.assign(n, 0.0);
+    if (stamp_.size() != n) stamp_.assign(n, 0);
+    if (alive_.size() != n) alive_.assign(n, 1);
+    clear_escaped();  // before the resize: the list may hold the last solve's indices
+    escaped_flag_.resize(n);
     escaped_box_.resize(n);  // written when a ball escapes, read only after
     // Raw pointers into the buffers, which keep their size for the whole solve: through
     // the vectors every access reloads the data pointer (a store might alias it).
@@ -93,6 +98,8 @@ class Solver {
     S_ = stamp_.data();
     A_ = alive_.data();
     E_ = escaped_flag_.data();
+    edges_ = {world_.arena.boundary == Boundary::walls, world_.arena.width_u, world_.arena.height_u};
+    slack_ = 1e-12 * (std::fabs(world_.arena.width_u) + std::fabs(world_.arena.height_u));
     // Balls that start a tick overlapping (a generated pile, a respawn) are first
     // pushed apart; then every pair is searched again from clean positions.
     if (initial_events() && !overlaps_.empty()) {
@@ -134,22 +141,42 @@ class Solver {
   bool initial_events() {
     heap_.clear();
     overlaps_.clear();
-    escaped_.clear();
+    clear_escaped();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    for (std::uint32_t i = 0; i < n; ++i) boundary_event(i);
     if (!grid_mode_) {
+      initial_boundary_events();
       for (std::uint32_t i = 0; i < n; ++i)
         for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
+      skin_.skin_valid = false;  // the wakes assume every solve saw the balls
       return !overlaps_.empty();
     }
+    if (skin_.skin_tick >= (1u << 30)) skin_.skin_valid = false;  // renumbered by a build
+    tick_ = ++skin_.skin_tick;
     if (!skin_fits()) {
-      build_skin();
+      build_continuous_skin(balls_, dt_, skin_);
+      tick_ = skin_.skin_tick;
       skin_fits();  // a ball faster than the skin leaves it even now
     }
+    for (std::uint32_t i : skin_.edge_due) edge_event(i);
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
     // against the balls in their skins (a grid query) and the later escaped ones.
-    for (auto [i, j] : skin_.skin_pairs)
-      if (!E_[i] && !E_[j]) pair_event(i, j, true);
+    // A pair predicted in an earlier tick whose balls both kept their lines since is
+    // predicted again only when its wake comes (kept_apart_ticks).
+    const std::size_t np = skin_.skin_pairs.size();
+    const IndexPair* pairs = skin_.skin_pairs.data();
+    StepBuffers::PairWake* wakes = skin_.pair_wake.data();
+    const std::uint32_t* course = skin_.course_tick.data();
+    const std::uint32_t tick = tick_;
+    for (std::size_t p = 0; p < np; ++p) {
+      const auto [i, j] = pairs[p];
+      StepBuffers::PairWake& w = wakes[p];
+      if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
+      if (E_[i] || E_[j]) continue;
+      const std::uint32_t apart = kept_apart_ticks(i, j);
+      w.seen = tick;
+      w.wake = tick + (apart > 0 ? apart : 1);
+      if (apart == 0) pair_event(i, j, true);
+    }
     for (std::size_t k = 0; k < escaped_.size(); ++k) {
       const std::uint32_t i = escaped_[k];
       const Box now = path_box(i, 0.0);
@@ -162,6 +189,21 @@ class Solver {
     return !overlaps_.empty();
   }
 
+  // The arena's edges, as clear_of_edges reads them.
+  struct Edges {
+    bool walls;
+    double width, height;
+  };
+  // Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
+  // bounds the speed from above, and the four tests run without branches (almost every
+  // ball passes all four).
+  [[gnu::always_inline]] static bool clear_of_edges(const Ball& b, double time, const Edges& e) {
+    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
+    const double inset = e.walls ? b.radius : 0.0;
+    return (b.pos.x - travel > inset) & (b.pos.x + travel < e.width - inset) & (b.pos.y - travel > inset) &
+           (b.pos.y + travel < e.height - inset);
+  }
+
   // Whether ball i's path for the rest of the tick stays within half_skin of where the
   // skin was built (a straight path: both ends suffice). 1 % short of the box, so that
   // rounding cannot put a ball that passes outside it.
@@ -170,6 +212,36 @@ class Solver {
     const double h2 = h * h;
     const Vec2 o = skin_.skin_origin[i];
     return length_sq(B_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
+  }
+
+  // Whole ticks, from the start of this one (every clock 0), in which balls i and j on
+  // their present lines certainly do not touch: 0 (predict now) .. kMaxSkip. For t >= 0,
+  // |d + w t|^2 >= |d|^2 + 2 (d.w) t, which stays above reach^2 until t = c / (-2 d.w).
+  // The reach is widened by 1e-6 of itself and by 1e-12 of the arena, far above the
+  // rounding here and the drift of positions re-based every tick for kMaxSkip ticks,
+  // so a skipped tick is one whose prediction would have found nothing.
+  [[gnu::always_inline]] std::uint32_t kept_apart_ticks(std::uint32_t i, std::uint32_t j) const {
+    const Ball& a = B_[i];
+    const Ball& b = B_[j];
+    const Vec2 d = b.pos - a.pos;
+    const double reach = (a.radius + b.radius) * (1.0 + 1e-6) + slack_;
+    const double c = length_sq(d) - reach * reach;
+    if (!(c > 0.0)) return 0;
+    const double approach = dot(d, b.vel - a.vel);
+    if (approach >= 0.0) return kMaxSkip;
+    const double ticks = c / (-2.0 * approach * dt_);
+    if (!(ticks >= 1.0)) return 0;  // also NaN
+    return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
+  }
+
+  static std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+  // Escape flags are set only by escape(), which lists the ball: clearing the listed
+  // ones clears them all.
+  void clear_escaped() {
+    for (std::uint32_t i : escaped_)
+      if (i < escaped_flag_.size()) escaped_flag_[i] = 0;
+    escaped_.clear();
   }
 
   void escape(std::uint32_t i) {
@@ -182,9 +254,16 @@ class Solver {
   // leaving it this tick that the escaped list stays short. Those leaving it are escaped.
   bool skin_fits() {
     const std::size_t n = balls_.size();
-    std::fill(escaped_flag_.begin(), escaped_flag_.end(), 0);
-    escaped_.clear();
-    if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n) return false;
+    clear_escaped();
+    if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
+      return false;
+    // A ball whose position or velocity is not what the last solve left changed course.
+    const bool kept = skin_.end_line.size() == n;
+    const StepBuffers::Line* end = skin_.end_line.data();
+    std::uint32_t* course = skin_.course_tick.data();
+    const std::uint32_t tick = tick_;
+    const Edges edges = edges_;
+    skin_.edge_due.clear();
     const std::size_t allowed = 32 + n / 256;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
@@ -193,6 +272,10 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = B_[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return false;
+      // Compared as bits: a changed zero sign counts as a change, NaN never matches.
+      if (!kept || ((bits(b.pos.x) ^ bits(end[i].pos.x)) | (bits(b.pos.y) ^ bits(end[i].pos.y)) |
+                    (bits(b.vel.x) ^ bits(end[i].vel.x)) | (bits(b.vel.y) ^ bits(end[i].vel.y))) != 0)
+        course[i] = tick;
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
       const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
@@ -200,63 +283,9 @@ class Solver {
         if (escaped_.size() == allowed) return false;
         escape(i);
       }
+      if (!clear_of_edges(b, dt, edges)) skin_.edge_due.push_back(i);  // boundary_event's test
     }
     return true;
-  }
-
-  void build_skin() {
-    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    // Half the skin: a few ticks of the typical (rms) travel plus a little of the mean
-    // radius, so a ball at a typical speed keeps its skin for several ticks while the
-    // boxes stay small. Only the cost depends on it.
-    double travel_sq = 0.0, radius_sum = 0.0;
-    for (const Ball& b : balls_) {
-      travel_sq += length_sq(b.vel) * dt_ * dt_;
-      radius_sum += b.radius;
-    }
-    const double inv_n = 1.0 / static_cast<double>(n);
-    double h = kSkinTravels * std::sqrt(travel_sq * inv_n) + kSkinRadii * radius_sum * inv_n;
-    if (!(h > 0.0) || !std::isfinite(h)) h = 0.0;
-    skin_.half_skin = h;
-    skin_.skin_origin.resize(n);
-    skin_.skin_id.resize(n);
-    skin_.skin_radius.resize(n);
-    std::vector<Box>& boxes = grid_.boxes();
-    boxes.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const Ball& b = B_[i];
-      skin_.skin_origin[i] = b.pos;
-      skin_.skin_id[i] = b.id.value;
-      skin_.skin_radius[i] = b.radius;
-      const double m = b.radius + h;
-      boxes[i] = {b.pos.x - m, b.pos.y - m, b.pos.x + m, b.pos.y + m};
-    }
-    grid_.build();
-    auto& pairs = skin_.skin_pairs;
-    pairs.clear();
-    // Two balls each within half_skin of their origins can touch only if their origins
-    // are within r_i + r_j + 2 half_skin: a disc test, tighter than the boxes' (about
-    // a fifth fewer pairs to predict every tick).
-    grid_.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) {
-      const double reach = balls_[i].radius + balls_[j].radius + 2.0 * h;
-      if (length_sq(balls_[j].pos - balls_[i].pos) <= reach * reach) pairs.emplace_back(i, j);
-    });
-    // Per ball, the same pairs (a counting sort into CSR).
-    auto& start = skin_.near_start;
-    start.assign(n + 1, 0);
-    for (auto [i, j] : pairs) {
-      ++start[i + 1];
-      ++start[j + 1];
-    }
-    for (std::uint32_t i = 0; i < n; ++i) start[i + 1] += start[i];
-    skin_.near.resize(start[n]);
-    skin_.near_fill.assign(start.begin(), start.end() - 1);
-    for (auto [i, j] : pairs) {
-      skin_.near[skin_.near_fill[i]++] = j;
-      skin_.near[skin_.near_fill[j]++] = i;
-    }
-    skin_.skin_valid = true;
-    ++skin_.skin_builds;
   }
 
   void clamp_all_into_walls() {
@@ -279,6 +308,12 @@ class Solver {
     }
     const double b = dot(d, w);
     if (!(b < 0.0)) return;  // not approaching
+    // Cannot meet in the rest of the tick, decided without the root and the division:
+    // for t in [0, rest], |d + w t|^2 - reach^2 >= c + 2 b t >= c + 2 b rest, so c >
+    // -2 b rest means no contact; the root below is then >= c / (-2 b) > rest too. The
+    // slack (1e-9 of the tick) is far above the rounding of either computation, so only
+    // pairs the formula would also reject are skipped.
+    if (c > -2.0 * b * ((dt_ - t0) + 1e-9 * dt_)) return;
     double t;
     if (c <= 0.0) {
       t = t0;  // touching or overlapping and approaching: collide now
@@ -294,16 +329,18 @@ class Solver {
     heap_.push({t, lo, hi, S_[lo], S_[hi]});
   }
 
+  // boundary_event for every ball at the start of the tick (every clock 0), with the
+  // arena and the tick in registers: the same test, the same events.
+  // (grid mode does the same test in skin_fits' pass over the balls).
+  void initial_boundary_events() {
+    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (!clear_of_edges(B_[i], dt_, edges_)) edge_event(i);  // dt_ - 0
+  }
+
   // Most balls cannot reach an edge this tick: an inlined test skips the divisions.
   void boundary_event(std::uint32_t i) {
-    const Ball& b = B_[i];
-    const Arena& a = world_.arena;
-    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - T_[i]);
-    const double inset = a.boundary == Boundary::walls ? b.radius : 0.0;
-    if (b.pos.x - travel > inset && b.pos.x + travel < a.width_u - inset && b.pos.y - travel > inset &&
-        b.pos.y + travel < a.height_u - inset)
-      return;
-    edge_event(i);
+    if (!clear_of_edges(B_[i], dt_ - T_[i], edges_)) edge_event(i);
   }
 
   [[gnu::noinline]] void edge_event(std::uint32_t i) {
@@ -387,6 +424,7 @@ class Solver {
   }
 
   void wall(const Event& e) {
+    if (grid_mode_) skin_.course_tick[e.a] = tick_;
     advance(e.a, e.t);
     Ball& b = B_[e.a];
     ++S_[e.a];
@@ -406,6 +444,7 @@ class Solver {
   }
 
   void collide(const Event& e) {
+    if (grid_mode_) skin_.course_tick[e.a] = skin_.course_tick[e.b] = tick_;
     advance(e.a, e.t);
     advance(e.b, e.t);
     Ball& a = B_[e.a];
@@ -421,10 +460,19 @@ class Solver {
 
   void finish() {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (alive_[i]) advance(i, dt_);
+    // Every ball to the end of the tick, its clock back to 0 for the next solve, and
+    // (grid mode) what the next solve compares the balls with (skin_fits).
+    if (grid_mode_) skin_.end_line.resize(n);
+    StepBuffers::Line* end = grid_mode_ ? skin_.end_line.data() : nullptr;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (A_[i]) B_[i].pos = pos_at(i, dt_);
+      T_[i] = 0.0;
+      if (end) end[i] = {B_[i].pos, B_[i].vel};
+    }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
       skin_.skin_valid = false;       // the indices shift
+      skin_.end_line.clear();
+      alive_.clear();                 // the next solve starts them all alive again
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
         if (alive_[i]) balls_[out++] = balls_[i];
@@ -456,6 +504,9 @@ class Solver {
   std::uint32_t* S_ = nullptr;
   std::uint8_t* A_ = nullptr;
   std::uint8_t* E_ = nullptr;
+  Edges edges_{};
+  double slack_ = 0.0;       // kept_apart_ticks' margin for the arena's size
+  std::uint32_t tick_ = 0;   // this solve's number (grid mode; StepBuffers::skin_tick)
 };
 
 }  // namespace

@@ -43,6 +43,7 @@ struct StepBuffers {
   std::vector<std::uint8_t> escaped_flag;
   std::vector<std::uint32_t> escaped;
   std::vector<Box> escaped_box;  // an escaped ball's path box until its next event
+  std::vector<std::uint32_t> edge_due;  // balls that may reach an edge this tick (grid mode)
   std::vector<detail::TimedEvent> heap;
   // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
   // the last build +- (radius + half_skin); `grid` indexes those boxes and `skin_pairs`
@@ -56,6 +57,22 @@ struct StepBuffers {
   std::vector<std::uint32_t> near_start;  // ball i's neighbours: near[near_start[i] .. near_start[i + 1])
   std::vector<std::uint32_t> near;
   std::vector<std::uint32_t> near_fill;   // build scratch
+  // Predictions kept across ticks (grid mode): skin pair p was last predicted at the
+  // start of solve `seen` and cannot meet before the start of solve `wake` while both
+  // balls keep their lines; course_tick[i] is the last solve in which ball i's line
+  // changed (an event, or a change between solves: its position or velocity differs
+  // from end_line, what the previous solve left).
+  struct PairWake {
+    std::uint32_t seen = 0, wake = 0;
+  };
+  std::vector<PairWake> pair_wake;  // parallel to skin_pairs
+  std::vector<std::uint32_t> course_tick;
+  struct Line {
+    Vec2 pos, vel;
+  };
+  std::vector<Line> end_line;
+  std::uint32_t skin_tick = 0;  // solves in grid mode
+  double skin_dt = 0.0;         // the tick the skin and the wakes were made for
   double half_skin = 0.0;
   bool skin_valid = false;
   std::uint64_t skin_builds = 0;  // how often it was rebuilt (benchmarks and tests)
