@@ -26,6 +26,7 @@
 #include <limits>
 
 #include "fts/sim/collide.hpp"
+#include "event_heap.hpp"
 #include "step_internal.hpp"
 
 namespace fts::sim::detail {
@@ -37,36 +38,6 @@ constexpr std::uint32_t kFall = 0xffffff02u;
 // A listed pair whose balls keep their lines is predicted again after at most this many
 // ticks, however far apart it was (bounds the rounding drift the margins must cover).
 constexpr std::uint32_t kMaxSkip = 16;
-
-// b is another ball's index or kWallX / kWallY / kFall.
-using Event = TimedEvent;
-struct Later {
-  bool operator()(const Event& x, const Event& y) const {
-    if (x.t != y.t) return x.t > y.t;
-    if (x.a != y.a) return x.a > y.a;
-    return x.b > y.b;
-  }
-};
-
-// The event queue: a binary heap (earliest first) in a vector the world owns.
-class EventHeap {
- public:
-  explicit EventHeap(std::vector<Event>& storage) : v_(storage) { v_.clear(); }
-  bool empty() const { return v_.empty(); }
-  const Event& top() const { return v_.front(); }
-  void push(const Event& e) {
-    v_.push_back(e);
-    std::push_heap(v_.begin(), v_.end(), Later{});
-  }
-  void pop() {
-    std::pop_heap(v_.begin(), v_.end(), Later{});
-    v_.pop_back();
-  }
-  void clear() { v_.clear(); }
-
- private:
-  std::vector<Event>& v_;
-};
 
 // One tick's solve over the world's balls, working in the world's step buffers.
 class Solver {
