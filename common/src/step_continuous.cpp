@@ -123,10 +123,14 @@ class Solver {
     }
     if (skin_.skin_tick >= (1u << 30)) skin_.skin_valid = false;  // renumbered by a build
     tick_ = ++skin_.skin_tick;
-    if (!skin_fits()) {
+    const Fit fit = skin_fits();
+    if (fit != Fit::fits) {
       build_continuous_skin(balls_, dt_, skin_);
       tick_ = skin_.skin_tick;
-      skin_fits();  // a ball faster than the skin leaves it even now
+      // A crowded pass did every ball's course and edge tests; after a change they are
+      // done again. Either way a ball faster than the new skin leaves it even now.
+      if (fit == Fit::changed) skin_fits();
+      escape_after_build();
     }
     for (std::uint32_t i : skin_.edge_due) edge_event(i);
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
@@ -221,13 +225,17 @@ class Solver {
     escaped_box_[i] = path_box(i, 0.1);
   }
 
-  // Whether the skin still fits the balls: the same balls, and few enough of them
-  // leaving it this tick that the escaped list stays short. Those leaving it are escaped.
-  bool skin_fits() {
+  enum class Fit { fits, crowded, changed };
+  // Whether the skin still fits the balls: the same balls (else `changed`, at once), and
+  // few enough of them leaving it this tick that the escaped list stays short (else
+  // `crowded`: the pass goes on, escaping no more, so that its course and edge tests
+  // still cover every ball and a rebuild needs only escape_after_build()). Those leaving
+  // it are escaped.
+  Fit skin_fits() {
     const std::size_t n = balls_.size();
     clear_escaped();
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
-      return false;
+      return Fit::changed;
     // A ball whose position or velocity is not what the last solve left changed course.
     const bool kept = skin_.end_line.size() == n;
     const StepBuffers::Line* end = skin_.end_line.data();
@@ -236,13 +244,14 @@ class Solver {
     const Edges edges = edges_;
     skin_.edge_due.clear();
     const std::size_t allowed = 32 + n / 256;
+    bool crowded = false;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
     const Vec2* origins = skin_.skin_origin.data();
     const double h = 0.99 * skin_.half_skin, h2 = h * h, dt = dt_;
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = B_[i];
-      if (b.id.value != ids[i] || b.radius != radii[i]) return false;
+      if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
       // Compared as bits: a changed zero sign counts as a change, NaN never matches.
       if (!kept || ((bits(b.pos.x) ^ bits(end[i].pos.x)) | (bits(b.pos.y) ^ bits(end[i].pos.y)) |
                     (bits(b.vel.x) ^ bits(end[i].vel.x)) | (bits(b.vel.y) ^ bits(end[i].vel.y))) != 0)
@@ -251,12 +260,27 @@ class Solver {
       const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
       const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
       if (!(dx * dx + dy * dy <= h2 && ex * ex + ey * ey <= h2)) {
-        if (escaped_.size() == allowed) return false;
-        escape(i);
+        if (escaped_.size() == allowed) {
+          crowded = true;
+        } else {
+          escape(i);
+        }
       }
       if (!clear_of_edges(b, dt, edges)) skin_.edge_due.push_back(i);  // boundary_event's test
     }
-    return true;
+    return crowded ? Fit::crowded : Fit::fits;
+  }
+
+  // After a build every origin is the ball's position: a ball leaves its new skin this
+  // tick only if it travels more than (0.99 of) half a skin. All of them are escaped.
+  void escape_after_build() {
+    clear_escaped();
+    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
+    const double h = 0.99 * skin_.half_skin, h2 = h * h, dt = dt_;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double ex = B_[i].vel.x * dt, ey = B_[i].vel.y * dt;
+      if (!(ex * ex + ey * ey <= h2)) escape(i);
+    }
   }
 
   void clamp_all_into_walls() {

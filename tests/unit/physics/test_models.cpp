@@ -290,3 +290,25 @@ TEST_CASE("Continuous skin: a cached skin gives the same bits as one rebuilt eve
     CHECK(state_hash(pairs.balls) == state_hash(grid.balls));
   }
 }
+
+TEST_CASE("Continuous skin: every ball faster than a new skin leaves it, however many", "[models]") {
+  // 70 balls at 1000 u/s among 7921 at rest: half a skin is about 9.4 u, less than their
+  // 10 u per tick, so each leaves its new skin at once, more balls than the escaped list
+  // takes before a rebuild (32 + n / 256 = 63). All of them must be escaped and tested
+  // against the top wall, which each reaches within the first tick (turned back, inside).
+  World w;
+  w.arena = {300, 300, Boundary::walls};
+  std::uint32_t id = 1;
+  for (int gy = 0; gy < 89; ++gy)
+    for (int gx = 0; gx < 89; ++gx, ++id) w.balls.push_back(ball(id, 3.0 + 3.0 * gx, 3.0 + 3.0 * gy, 0, 0, 1, 1));
+  for (int k = 0; k < 70; ++k, ++id) w.balls.push_back(ball(id, 5.0 + 4.0 * k, 290, 0, 1000, 1, 1));
+  auto s = settings(Model::continuous);
+  s.broadphase = Broadphase::grid;
+  StepReport rep;
+  step(w, s, make_step_constants(s, 0.01), rep);
+  CHECK(rep.wall_hits == 70);
+  std::size_t inside = 0;
+  for (const Ball& b : w.balls) inside += b.pos.y <= 299.0 && b.vel.y <= 0.0;
+  CHECK(inside == w.balls.size());
+  CHECK(kinetic_energy(w.balls) == Approx(70 * 0.5 * 1000.0 * 1000.0));
+}
