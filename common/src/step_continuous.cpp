@@ -21,8 +21,8 @@
 // by the same formula and the heap orders events by (time, a, b), so a world stepped
 // with or without its cache ends in the same bits.
 #include <algorithm>
-#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fts/sim/collide.hpp"
@@ -132,7 +132,7 @@ class Solver {
       if (fit == Fit::changed) skin_fits();
       escape_after_build();
     }
-    for (std::uint32_t i : skin_.edge_due) edge_event(i);
+    for (std::uint32_t k = 0; k < edge_count_; ++k) edge_event(skin_.edge_due[k]);
     // Each pair once: listed pairs of balls in their skins, then each escaped ball
     // against the balls in their skins (a grid query) and the later escaped ones.
     // A pair predicted in an earlier tick whose balls both kept their lines since is
@@ -209,7 +209,13 @@ class Solver {
     return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
   }
 
-  static std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+  // A vector's two doubles as bits, in one 16-byte register (GCC and Clang vectors).
+  using Bits2 = std::uint64_t __attribute__((vector_size(16)));
+  static Bits2 bits2(const Vec2& v) {
+    Bits2 r;
+    std::memcpy(&r, &v, sizeof r);
+    return r;
+  }
 
   // Escape flags are set only by escape(), which lists the ball: clearing the listed
   // ones clears them all.
@@ -234,28 +240,38 @@ class Solver {
   Fit skin_fits() {
     const std::size_t n = balls_.size();
     clear_escaped();
+    edge_count_ = 0;
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
       return Fit::changed;
-    // A ball whose position or velocity is not what the last solve left changed course.
-    const bool kept = skin_.end_line.size() == n;
-    const StepBuffers::Line* end = skin_.end_line.data();
+    // A ball whose position or velocity is not what the last solve left changed course;
+    // with no last solve's lines (the first solve since a build or a fall) every ball did.
     std::uint32_t* course = skin_.course_tick.data();
     const std::uint32_t tick = tick_;
+    if (skin_.end_line.size() != n) {
+      skin_.end_line.resize(n);
+      std::fill_n(course, n, tick);
+    }
+    const StepBuffers::Line* end = skin_.end_line.data();
+    // The balls that may reach an edge, written branch-free into a list as long as the
+    // balls (edge_count_ of them are real).
+    skin_.edge_due.resize(n);
+    std::uint32_t* due = skin_.edge_due.data();
+    std::uint32_t edge_count = 0;
     const Edges edges = edges_;
-    skin_.edge_due.clear();
     const std::size_t allowed = 32 + n / 256;
     bool crowded = false;
+    const Ball* balls = B_;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
     const Vec2* origins = skin_.skin_origin.data();
     const double h = 0.99 * skin_.half_skin, h2 = h * h, dt = dt_;
     for (std::uint32_t i = 0; i < n; ++i) {
-      const Ball& b = B_[i];
+      const Ball& b = balls[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
-      // Compared as bits: a changed zero sign counts as a change, NaN never matches.
-      if (!kept || ((bits(b.pos.x) ^ bits(end[i].pos.x)) | (bits(b.pos.y) ^ bits(end[i].pos.y)) |
-                    (bits(b.vel.x) ^ bits(end[i].vel.x)) | (bits(b.vel.y) ^ bits(end[i].vel.y))) != 0)
-        course[i] = tick;
+      // Compared as bits, two doubles at a time: a changed zero sign counts as a change,
+      // NaN never matches.
+      const Bits2 changed = (bits2(b.pos) ^ bits2(end[i].pos)) | (bits2(b.vel) ^ bits2(end[i].vel));
+      if ((changed[0] | changed[1]) != 0) course[i] = tick;
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
       const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
@@ -266,8 +282,10 @@ class Solver {
           escape(i);
         }
       }
-      if (!clear_of_edges(b, dt, edges)) skin_.edge_due.push_back(i);  // boundary_event's test
+      due[edge_count] = i;  // boundary_event's test
+      edge_count += clear_of_edges(b, dt, edges) ? 0u : 1u;
     }
+    edge_count_ = edge_count;
     return crowded ? Fit::crowded : Fit::fits;
   }
 
@@ -502,6 +520,7 @@ class Solver {
   Edges edges_{};
   double slack_ = 0.0;       // kept_apart_ticks' margin for the arena's size
   std::uint32_t tick_ = 0;   // this solve's number (grid mode; StepBuffers::skin_tick)
+  std::uint32_t edge_count_ = 0;  // StepBuffers::edge_due's length this solve
 };
 
 }  // namespace

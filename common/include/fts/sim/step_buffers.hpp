@@ -43,7 +43,7 @@ struct StepBuffers {
   std::vector<std::uint8_t> escaped_flag;
   std::vector<std::uint32_t> escaped;
   std::vector<Box> escaped_box;  // an escaped ball's path box until its next event
-  std::vector<std::uint32_t> edge_due;  // balls that may reach an edge this tick (grid mode)
+  std::vector<std::uint32_t> edge_due;  // balls that may reach an edge this tick (grid mode; a prefix)
   std::vector<detail::TimedEvent> heap;
   // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
   // the last build +- (radius + half_skin); `grid` indexes those boxes and `skin_pairs`
