@@ -164,6 +164,21 @@ class Solver {
     return !overlaps_.empty();
   }
 
+  // A vector's two doubles in one 16-byte register (GCC and Clang vectors), as numbers
+  // or as bits.
+  using D2 = double __attribute__((vector_size(16)));
+  using Bits2 = std::uint64_t __attribute__((vector_size(16)));
+  static D2 lanes(const Vec2& v) {
+    D2 r;
+    std::memcpy(&r, &v, sizeof r);
+    return r;
+  }
+  static Bits2 bits2(const Vec2& v) {
+    Bits2 r;
+    std::memcpy(&r, &v, sizeof r);
+    return r;
+  }
+
   // The arena's edges, as clear_of_edges reads them.
   struct Edges {
     bool walls;
@@ -172,21 +187,31 @@ class Solver {
   // Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
   // bounds the speed from above, and the four tests run without branches (almost every
   // ball passes all four).
+  // (x and y in the two lanes: the same IEEE operations as on scalars, lane by lane).
   [[gnu::always_inline]] static bool clear_of_edges(const Ball& b, double time, const Edges& e) {
     const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
     const double inset = e.walls ? b.radius : 0.0;
-    return (b.pos.x - travel > inset) & (b.pos.x + travel < e.width - inset) & (b.pos.y - travel > inset) &
-           (b.pos.y + travel < e.height - inset);
+    const D2 p = lanes(b.pos), t = {travel, travel};
+    const D2 lo = {inset, inset}, hi = {e.width - inset, e.height - inset};
+    const auto clear = ((p - t) > lo) & ((p + t) < hi);
+    return (clear[0] & clear[1]) != 0;
   }
 
-  // Whether ball i's path for the rest of the tick stays within half_skin of where the
-  // skin was built (a straight path: both ends suffice). 1 % short of the box, so that
-  // rounding cannot put a ball that passes outside it.
+  // Whether a ball at pos moving at vel for `time` stays within sqrt(h2) of origin (a
+  // straight path: both ends suffice). Callers pass 0.99 of half_skin, 1 % short of the
+  // box, so that rounding cannot put a ball that passes outside it.
+  [[gnu::always_inline]] static bool stays_within(const Vec2& pos, const Vec2& vel, double time, const Vec2& origin,
+                                                  double h2) {
+    const D2 d = lanes(pos) - lanes(origin);
+    const D2 e = d + lanes(vel) * D2{time, time};
+    const D2 dd = d * d, ee = e * e;
+    return (dd[0] + dd[1] <= h2) & (ee[0] + ee[1] <= h2);
+  }
+
+  // Whether ball i's path for the rest of the tick stays within its skin.
   [[gnu::always_inline]] bool in_skin(std::uint32_t i) const {
     const double h = 0.99 * skin_.half_skin;
-    const double h2 = h * h;
-    const Vec2 o = skin_.skin_origin[i];
-    return length_sq(B_[i].pos - o) <= h2 && length_sq(pos_at(i, dt_) - o) <= h2;
+    return stays_within(B_[i].pos, B_[i].vel, dt_ - T_[i], skin_.skin_origin[i], h * h);
   }
 
   // Whole ticks, from the start of this one (every clock 0), in which balls i and j on
@@ -209,13 +234,6 @@ class Solver {
     return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
   }
 
-  // A vector's two doubles as bits, in one 16-byte register (GCC and Clang vectors).
-  using Bits2 = std::uint64_t __attribute__((vector_size(16)));
-  static Bits2 bits2(const Vec2& v) {
-    Bits2 r;
-    std::memcpy(&r, &v, sizeof r);
-    return r;
-  }
 
   // Escape flags are set only by escape(), which lists the ball: clearing the listed
   // ones clears them all.
@@ -273,9 +291,7 @@ class Solver {
       const Bits2 changed = (bits2(b.pos) ^ bits2(end[i].pos)) | (bits2(b.vel) ^ bits2(end[i].vel));
       if ((changed[0] | changed[1]) != 0) course[i] = tick;
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
-      const double dx = b.pos.x - origins[i].x, dy = b.pos.y - origins[i].y;
-      const double ex = dx + b.vel.x * dt, ey = dy + b.vel.y * dt;
-      if (!(dx * dx + dy * dy <= h2 && ex * ex + ey * ey <= h2)) {
+      if (!stays_within(b.pos, b.vel, dt, origins[i], h2)) {
         if (escaped_.size() == allowed) {
           crowded = true;
         } else {
