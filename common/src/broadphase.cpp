@@ -90,4 +90,39 @@ void Grid::build() {
   }
 }
 
+void Grid::overlapping_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  // Each slot is tested against two contiguous ranges: the rest of its cell and the
+  // next one in its row, then the three cells of the row above. About one candidate in
+  // three overlaps: a branch on each test would mispredict often, so every candidate is
+  // written out and kept by its overlap bit.
+  std::size_t count = 0;
+  const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
+  for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {
+    const std::uint32_t right = st.right_end - p - 1, up = st.up1 - st.up0;
+    const std::size_t room = count + right + up;
+    if (out.size() < room) out.resize(2 * room);
+    auto* dst = out.data();
+    const Slot* slots = slots_.data();
+    const Box a = slots[p].box;
+    const std::uint32_t i = slots[p].id;
+    auto scan = [&](std::uint32_t q, std::uint32_t end) {
+      for (; q < end; ++q) {
+        const std::uint32_t j = slots[q].id;
+        dst[count] = {i < j ? i : j, i < j ? j : i};
+        count += overlap_bit(a, slots[q].box);
+      }
+    };
+    scan(p + 1, st.right_end);
+    scan(st.up0, st.up1);
+  });
+  out.resize(count);
+  const std::uint32_t n = static_cast<std::uint32_t>(boxes_.size());
+  for (std::uint32_t i : overflow_) {
+    for (std::uint32_t j = 0; j < n; ++j) {
+      if (j == i || (overflow_flag_[j] && j < i)) continue;
+      if (overlaps(boxes_[i], boxes_[j])) out.emplace_back(i < j ? i : j, i < j ? j : i);
+    }
+  }
+}
+
 }  // namespace fts::sim

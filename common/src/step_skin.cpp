@@ -48,14 +48,23 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   }
   grid.build();
   auto& pairs = skin.skin_pairs;
-  pairs.clear();
   // Two balls each within half_skin of their origins can touch only if their origins
   // are within r_i + r_j + 2 half_skin: a disc test, tighter than the boxes' (about
   // a fifth fewer pairs to predict every tick).
-  grid.for_each_overlapping_pair([&](std::uint32_t i, std::uint32_t j) {
-    const double reach = balls[i].radius + balls[j].radius + 2.0 * h;
-    if (length_sq(balls[j].pos - balls[i].pos) <= reach * reach) pairs.emplace_back(i, j);
-  });
+  // The boxes' pairs, filtered in place without a branch on the answer; the origins and
+  // radii are the balls' own, in arrays denser than the balls.
+  grid.overlapping_pairs(pairs);
+  const Vec2* origin = skin.skin_origin.data();
+  const double* radius = skin.skin_radius.data();
+  std::size_t kept = 0;
+  for (std::size_t q = 0; q < pairs.size(); ++q) {
+    const IndexPair pair = pairs[q];
+    const auto [i, j] = pair;
+    const double reach = radius[i] + radius[j] + 2.0 * h;
+    pairs[kept] = pair;
+    kept += length_sq(origin[j] - origin[i]) <= reach * reach ? 1 : 0;
+  }
+  pairs.resize(kept);
   // Per ball, the same pairs (a counting sort into CSR).
   auto& start = skin.near_start;
   start.assign(n + 1, 0);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "fts/sim/grid_layout.hpp"
@@ -35,10 +36,15 @@ class Grid {
   const Box& box(std::uint32_t i) const { return boxes_[i]; }
   // Indexes boxes()[i] for i in [0, n).
   void build();
-  // Calls fn(i, j) with i < j once for every pair of overlapping boxes, in no
-  // particular order.
+  // Every pair of overlapping boxes once, as (i, j) with i < j, in no particular order
+  // (replaces out's contents).
+  void overlapping_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out);
+  // Calls fn(i, j) for each of those pairs.
   template <class Fn>
-  void for_each_overlapping_pair(Fn&& fn);
+  void for_each_overlapping_pair(Fn&& fn) {
+    overlapping_pairs(found_);
+    for (auto [i, j] : found_) fn(i, j);
+  }
   // Calls fn(j) once for every filed box that may overlap `box`, and for every overflow
   // box (may include non-overlapping ones; callers filter).
   template <class Fn>
@@ -58,43 +64,8 @@ class Grid {
   std::vector<std::uint32_t> home_;   // per box: its cell
   std::vector<std::uint32_t> overflow_;
   std::vector<std::uint8_t> overflow_flag_;  // sized only when there is overflow
-  std::vector<std::uint32_t> hits_;          // one box's overlapping slots during a scan
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> found_;  // for_each_overlapping_pair's
 };
-
-template <class Fn>
-void Grid::for_each_overlapping_pair(Fn&& fn) {
-  // About one candidate in three overlaps: a branch on each test mispredicts often, so
-  // the scan writes every candidate and advances by the test's bit, then calls fn for
-  // the hits.
-  hits_.resize(slots_.size());
-  std::uint32_t* hits = hits_.data();
-  const Slot* slots = slots_.data();
-  const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
-  for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {
-    const Box a = slots[p].box;
-    const std::uint32_t i = slots[p].id;
-    std::uint32_t k = 0;
-    for (std::uint32_t q = p + 1; q < st.right_end; ++q) {
-      hits[k] = q;
-      k += overlap_bit(a, slots[q].box);
-    }
-    for (std::uint32_t q = st.up0; q < st.up1; ++q) {
-      hits[k] = q;
-      k += overlap_bit(a, slots[q].box);
-    }
-    for (std::uint32_t m = 0; m < k; ++m) {
-      const std::uint32_t j = slots[hits[m]].id;
-      fn(i < j ? i : j, i < j ? j : i);
-    }
-  });
-  const std::uint32_t n = static_cast<std::uint32_t>(boxes_.size());
-  for (std::uint32_t i : overflow_) {
-    for (std::uint32_t j = 0; j < n; ++j) {
-      if (j == i || (overflow_flag_[j] && j < i)) continue;
-      if (overlaps(boxes_[i], boxes_[j])) fn(i < j ? i : j, i < j ? j : i);
-    }
-  }
-}
 
 template <class Fn>
 void Grid::query(const Box& box, Fn&& fn) const {
