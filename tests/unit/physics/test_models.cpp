@@ -196,17 +196,33 @@ TEST_CASE("Step buffers: the world owns them; a copy starts empty and steps the 
   }
 }
 
+namespace {
+
+// A walled square arena with an nx x ny lattice of unit balls (radius 1, mass 1), `gap`
+// apart from (x0, y0), all at velocity (vx, vy); ids from 1.
+World lattice(double side, int nx, int ny, double x0, double y0, double gap, double vx, double vy) {
+  World w;
+  w.arena = {side, side, Boundary::walls};
+  std::uint32_t id = 1;
+  for (int gy = 0; gy < ny; ++gy)
+    for (int gx = 0; gx < nx; ++gx, ++id) w.balls.push_back(ball(id, x0 + gap * gx, y0 + gap * gy, vx, vy, 1, 1));
+  return w;
+}
+
+PhysicsSettings continuous_grid() {
+  auto s = settings(Model::continuous);
+  s.broadphase = Broadphase::grid;
+  return s;
+}
+
+}  // namespace
+
 TEST_CASE("Continuous skin: a ball turned round between ticks is predicted again", "[models]") {
   // A lattice drifting as one body: no pair approaches, so every listed pair is put off
   // for many ticks. Then one ball is turned round toward its neighbour 0.5 u away; it
   // stays inside its skin, so only the kept prediction's check can see the new line.
-  World cached;
-  cached.arena = {200, 200, Boundary::walls};
-  std::uint32_t id = 1;
-  for (int gy = 0; gy < 10; ++gy)
-    for (int gx = 0; gx < 10; ++gx, ++id) cached.balls.push_back(ball(id, 20.0 + 2.5 * gx, 20.0 + 2.5 * gy, 10, 0, 1, 1));
-  auto s = settings(Model::continuous);
-  s.broadphase = Broadphase::grid;
+  World cached = lattice(200, 10, 10, 20, 20, 2.5, 10, 0);
+  const auto s = continuous_grid();
   const auto k = make_step_constants(s, 0.01);
   World fresh = cached;
   StepReport rc, rf;
@@ -296,14 +312,10 @@ TEST_CASE("Continuous skin: every ball faster than a new skin leaves it, however
   // 10 u per tick, so each leaves its new skin at once, more balls than the escaped list
   // takes before a rebuild (32 + n / 256 = 63). All of them must be escaped and tested
   // against the top wall, which each reaches within the first tick (turned back, inside).
-  World w;
-  w.arena = {300, 300, Boundary::walls};
-  std::uint32_t id = 1;
-  for (int gy = 0; gy < 89; ++gy)
-    for (int gx = 0; gx < 89; ++gx, ++id) w.balls.push_back(ball(id, 3.0 + 3.0 * gx, 3.0 + 3.0 * gy, 0, 0, 1, 1));
+  World w = lattice(300, 89, 89, 3, 3, 3, 0, 0);
+  std::uint32_t id = static_cast<std::uint32_t>(w.balls.size()) + 1;
   for (int k = 0; k < 70; ++k, ++id) w.balls.push_back(ball(id, 5.0 + 4.0 * k, 290, 0, 1000, 1, 1));
-  auto s = settings(Model::continuous);
-  s.broadphase = Broadphase::grid;
+  const auto s = continuous_grid();
   StepReport rep;
   step(w, s, make_step_constants(s, 0.01), rep);
   CHECK(rep.wall_hits == 70);
