@@ -22,11 +22,11 @@
 // with or without its cache ends in the same bits.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "fts/sim/collide.hpp"
 #include "event_heap.hpp"
+#include "lanes.hpp"
 #include "step_internal.hpp"
 
 namespace fts::sim::detail {
@@ -162,21 +162,6 @@ class Solver {
         if (overlaps(escaped_box_[i], escaped_box_[escaped_[m]])) pair_event(i, escaped_[m], true);
     }
     return !overlaps_.empty();
-  }
-
-  // A vector's two doubles in one 16-byte register (GCC and Clang vectors), as numbers
-  // or as bits.
-  using D2 = double __attribute__((vector_size(16)));
-  using Bits2 = std::uint64_t __attribute__((vector_size(16)));
-  static D2 lanes(const Vec2& v) {
-    D2 r;
-    std::memcpy(&r, &v, sizeof r);
-    return r;
-  }
-  static Bits2 bits2(const Vec2& v) {
-    Bits2 r;
-    std::memcpy(&r, &v, sizeof r);
-    return r;
   }
 
   // The arena's edges, as clear_of_edges reads them.

@@ -51,15 +51,15 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   // Two balls each within half_skin of their origins can touch only if their origins
   // are within r_i + r_j + 2 half_skin: a disc test, tighter than the boxes' (about
   // a fifth fewer pairs to predict every tick).
-  // The boxes' pairs, filtered in place without a branch on the answer; the origins and
-  // radii are the balls' own, in arrays denser than the balls.
+  // The boxes' pairs, filtered in place without a branch on the answer and put in order
+  // (i < j); the origins and radii are the balls' own, in arrays denser than the balls.
   grid.overlapping_pairs(pairs);
   const Vec2* origin = skin.skin_origin.data();
   const double* radius = skin.skin_radius.data();
   std::size_t kept = 0;
   for (std::size_t q = 0; q < pairs.size(); ++q) {
-    const IndexPair pair = pairs[q];
-    const auto [i, j] = pair;
+    const auto [i, j] = pairs[q];
+    const IndexPair pair{i < j ? i : j, i < j ? j : i};
     const double reach = radius[i] + radius[j] + 2.0 * h;
     pairs[kept] = pair;
     kept += length_sq(origin[j] - origin[i]) <= reach * reach ? 1 : 0;

@@ -17,16 +17,11 @@
 namespace fts::sim {
 
 struct Box {
-  double x0, y0, x1, y1;
+  double x0, y0, x1, y1;  // the low corner, then the high one (the pair scan loads each as one)
 };
 
 inline bool overlaps(const Box& a, const Box& b) {
   return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
-}
-// The same test without branches (1 or 0), for scans where the answer is a coin toss.
-inline std::uint32_t overlap_bit(const Box& a, const Box& b) {
-  return static_cast<std::uint32_t>(a.x0 <= b.x1) & static_cast<std::uint32_t>(b.x0 <= a.x1) &
-         static_cast<std::uint32_t>(a.y0 <= b.y1) & static_cast<std::uint32_t>(b.y0 <= a.y1);
 }
 
 class Grid {
@@ -36,14 +31,14 @@ class Grid {
   const Box& box(std::uint32_t i) const { return boxes_[i]; }
   // Indexes boxes()[i] for i in [0, n).
   void build();
-  // Every pair of overlapping boxes once, as (i, j) with i < j, in no particular order
+  // Every pair of overlapping boxes once, as (i, j) or (j, i), in no particular order
   // (replaces out's contents).
   void overlapping_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out);
-  // Calls fn(i, j) for each of those pairs.
+  // Calls fn(i, j) with i < j for each of those pairs.
   template <class Fn>
   void for_each_overlapping_pair(Fn&& fn) {
     overlapping_pairs(found_);
-    for (auto [i, j] : found_) fn(i, j);
+    for (auto [i, j] : found_) fn(i < j ? i : j, i < j ? j : i);
   }
   // Calls fn(j) once for every filed box that may overlap `box`, and for every overflow
   // box (may include non-overlapping ones; callers filter).
@@ -60,7 +55,7 @@ class Grid {
   std::vector<Box> boxes_;
   GridLayout grid_;
   std::vector<std::uint32_t> start_;  // cell c holds slots [start_[c + 1], start_[c + 2])
-  std::vector<Slot> slots_;           // filed boxes in cell order
+  std::vector<Slot> slots_;           // filed boxes in cell order, then padding
   std::vector<std::uint32_t> home_;   // per box: its cell
   std::vector<std::uint32_t> overflow_;
   std::vector<std::uint8_t> overflow_flag_;  // sized only when there is overflow
