@@ -25,8 +25,8 @@
 #include <limits>
 
 #include "fts/sim/collide.hpp"
+#include "continuous_bounds.hpp"
 #include "event_heap.hpp"
-#include "lanes.hpp"
 #include "step_internal.hpp"
 
 namespace fts::sim::detail {
@@ -35,9 +35,6 @@ namespace {
 constexpr std::uint32_t kWallX = 0xffffff00u;
 constexpr std::uint32_t kWallY = 0xffffff01u;
 constexpr std::uint32_t kFall = 0xffffff02u;
-// A listed pair whose balls keep their lines is predicted again after at most this many
-// ticks, however far apart it was (bounds the rounding drift the margins must cover).
-constexpr std::uint32_t kMaxSkip = 16;
 
 // One tick's solve over the world's balls, working in the world's step buffers.
 class Solver {
@@ -164,61 +161,15 @@ class Solver {
     return !overlaps_.empty();
   }
 
-  // The arena's edges, as clear_of_edges reads them.
-  struct Edges {
-    bool walls;
-    double width, height;
-  };
-  // Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
-  // bounds the speed from above, and the four tests run without branches (almost every
-  // ball passes all four).
-  // (x and y in the two lanes: the same IEEE operations as on scalars, lane by lane).
-  [[gnu::always_inline]] static bool clear_of_edges(const Ball& b, double time, const Edges& e) {
-    const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
-    const double inset = e.walls ? b.radius : 0.0;
-    const D2 p = lanes(b.pos), t = {travel, travel};
-    const D2 lo = {inset, inset}, hi = {e.width - inset, e.height - inset};
-    const auto clear = ((p - t) > lo) & ((p + t) < hi);
-    return (clear[0] & clear[1]) != 0;
-  }
-
-  // Whether a ball at pos moving at vel for `time` stays within sqrt(h2) of origin (a
-  // straight path: both ends suffice). Callers pass 0.99 of half_skin, 1 % short of the
-  // box, so that rounding cannot put a ball that passes outside it.
-  [[gnu::always_inline]] static bool stays_within(const Vec2& pos, const Vec2& vel, double time, const Vec2& origin,
-                                                  double h2) {
-    const D2 d = lanes(pos) - lanes(origin);
-    const D2 e = d + lanes(vel) * D2{time, time};
-    const D2 dd = d * d, ee = e * e;
-    return (dd[0] + dd[1] <= h2) & (ee[0] + ee[1] <= h2);
-  }
-
   // Whether ball i's path for the rest of the tick stays within its skin.
   [[gnu::always_inline]] bool in_skin(std::uint32_t i) const {
     const double h = 0.99 * skin_.half_skin;
     return stays_within(B_[i].pos, B_[i].vel, dt_ - T_[i], skin_.skin_origin[i], h * h);
   }
 
-  // Whole ticks, from the start of this one (every clock 0), in which balls i and j on
-  // their present lines certainly do not touch: 0 (predict now) .. kMaxSkip. For t >= 0,
-  // |d + w t|^2 >= |d|^2 + 2 (d.w) t, which stays above reach^2 until t = c / (-2 d.w).
-  // The reach is widened by 1e-6 of itself and by 1e-12 of the arena, far above the
-  // rounding here and the drift of positions re-based every tick for kMaxSkip ticks,
-  // so a skipped tick is one whose prediction would have found nothing.
   [[gnu::always_inline]] std::uint32_t kept_apart_ticks(std::uint32_t i, std::uint32_t j) const {
-    const Ball& a = B_[i];
-    const Ball& b = B_[j];
-    const Vec2 d = b.pos - a.pos;
-    const double reach = (a.radius + b.radius) * (1.0 + 1e-6) + slack_;
-    const double c = length_sq(d) - reach * reach;
-    if (!(c > 0.0)) return 0;
-    const double approach = dot(d, b.vel - a.vel);
-    if (approach >= 0.0) return kMaxSkip;
-    const double ticks = c / (-2.0 * approach * dt_);
-    if (!(ticks >= 1.0)) return 0;  // also NaN
-    return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
+    return ticks_kept_apart(B_[i], B_[j], slack_, dt_);
   }
-
 
   // Escape flags are set only by escape(), which lists the ball: clearing the listed
   // ones clears them all.

@@ -1,0 +1,66 @@
+// The continuous model's conservative tests (internal to fts_common; see
+// step_continuous.cpp): whether a ball can reach an edge or leave its skin within a
+// time, and for how many ticks two balls certainly stay apart. Each errs only toward
+// "maybe": a wrong "maybe" costs a prediction, never a result.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "fts/sim/ball.hpp"
+#include "lanes.hpp"
+
+namespace fts::sim::detail {
+
+// A listed pair whose balls keep their lines is predicted again after at most this many
+// ticks, however far apart it was (bounds the rounding drift the margins must cover).
+constexpr std::uint32_t kMaxSkip = 16;
+
+// The arena's edges, as clear_of_edges reads them.
+struct Edges {
+  bool walls;
+  double width, height;
+};
+// Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
+// bounds the speed from above, and the four tests run without branches, x and y in the
+// two lanes (almost every ball passes all four).
+[[gnu::always_inline]] inline bool clear_of_edges(const Ball& b, double time, const Edges& e) {
+  const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
+  const double inset = e.walls ? b.radius : 0.0;
+  const D2 p = lanes(b.pos), t = {travel, travel};
+  const D2 lo = {inset, inset}, hi = {e.width - inset, e.height - inset};
+  const auto clear = ((p - t) > lo) & ((p + t) < hi);
+  return (clear[0] & clear[1]) != 0;
+}
+
+// Whether a ball at pos moving at vel for `time` stays within sqrt(h2) of origin (a
+// straight path: both ends suffice). Callers pass 0.99 of half_skin, 1 % short of the
+// box, so that rounding cannot put a ball that passes outside it.
+[[gnu::always_inline]] inline bool stays_within(const Vec2& pos, const Vec2& vel, double time, const Vec2& origin,
+                                                double h2) {
+  const D2 d = lanes(pos) - lanes(origin);
+  const D2 e = d + lanes(vel) * D2{time, time};
+  const D2 dd = d * d, ee = e * e;
+  return (dd[0] + dd[1] <= h2) & (ee[0] + ee[1] <= h2);
+}
+
+// Whole ticks of dt, from the start of this one (every clock 0), in which balls a and b
+// on their present lines certainly do not touch: 0 (predict now) .. kMaxSkip. For
+// t >= 0, |d + w t|^2 >= |d|^2 + 2 (d.w) t, which stays above reach^2 until
+// t = c / (-2 d.w). The reach is widened by 1e-6 of itself and by `slack` (1e-12 of the
+// arena), far above the rounding here and the drift of positions re-based every tick
+// for kMaxSkip ticks, so a skipped tick is one whose prediction would have found
+// nothing.
+[[gnu::always_inline]] inline std::uint32_t ticks_kept_apart(const Ball& a, const Ball& b, double slack, double dt) {
+  const Vec2 d = b.pos - a.pos;
+  const double reach = (a.radius + b.radius) * (1.0 + 1e-6) + slack;
+  const double c = length_sq(d) - reach * reach;
+  if (!(c > 0.0)) return 0;
+  const double approach = dot(d, b.vel - a.vel);
+  if (approach >= 0.0) return kMaxSkip;
+  const double ticks = c / (-2.0 * approach * dt);
+  if (!(ticks >= 1.0)) return 0;  // also NaN
+  return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
+}
+
+}  // namespace fts::sim::detail
