@@ -15,20 +15,15 @@ constexpr double kGiantFactor = 4.0;
 
 }  // namespace
 
-void DiscGrid::file(const std::vector<Ball>& balls) {
+void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
   const std::size_t n = balls.size();
   cell_.resize(n);
   giants_.clear();
-  // One pass for the usual case (no giant): mean and largest radius, centre bounds.
-  double sum_r = 0.0, r_max = 0.0;
-  double lo_x = balls[0].pos.x, hi_x = lo_x, lo_y = balls[0].pos.y, hi_y = lo_y;
-  for (const Ball& b : balls) {
-    sum_r += b.radius;
-    r_max = std::max(r_max, b.radius);
-    lo_x = std::min(lo_x, b.pos.x); hi_x = std::max(hi_x, b.pos.x);
-    lo_y = std::min(lo_y, b.pos.y); hi_y = std::max(hi_y, b.pos.y);
-  }
-  double mean_r = sum_r / static_cast<double>(n);
+  // The usual case (no giant) needs nothing more than the bounds: mean and largest
+  // radius, centre bounds.
+  double r_max = bounds.r_max;
+  double lo_x = bounds.lo_x, hi_x = bounds.hi_x, lo_y = bounds.lo_y, hi_y = bounds.hi_y;
+  double mean_r = bounds.sum_r / static_cast<double>(n);
   if (!(mean_r > 0.0) || !std::isfinite(mean_r)) mean_r = 1.0;
   const double giant_r = kGiantFactor * mean_r;
   const bool has_giants = !(r_max <= giant_r);
@@ -84,9 +79,16 @@ void DiscGrid::file(const std::vector<Ball>& balls) {
   }
 }
 
-void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out,
+                              const DiscBounds* bounds) {
   if (balls.empty()) return;
-  file(balls);
+  if (bounds) {
+    file(balls, *bounds);
+  } else {
+    DiscBounds own;
+    for (const Ball& b : balls) own.add(b);
+    file(balls, own);
+  }
   const Slot* slots = slots_.data();
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
   for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {

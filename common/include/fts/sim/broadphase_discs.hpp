@@ -8,7 +8,9 @@
 // not blow up the cell size.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -17,14 +19,31 @@
 
 namespace fts::sim {
 
+// What filing needs before it can lay out the cells: the radii (sum and largest) and the
+// centres' bounds. A caller that passes over the balls anyway (a model's move) adds each
+// ball as it goes and hands the result to touching_pairs, which then skips that pass.
+struct DiscBounds {
+  double sum_r = 0.0, r_max = 0.0;
+  double lo_x = std::numeric_limits<double>::infinity(), hi_x = -std::numeric_limits<double>::infinity();
+  double lo_y = std::numeric_limits<double>::infinity(), hi_y = -std::numeric_limits<double>::infinity();
+  void add(const Ball& b) {
+    sum_r += b.radius;
+    r_max = std::max(r_max, b.radius);
+    lo_x = std::min(lo_x, b.pos.x); hi_x = std::max(hi_x, b.pos.x);
+    lo_y = std::min(lo_y, b.pos.y); hi_y = std::max(hi_y, b.pos.y);
+  }
+};
+
 class DiscGrid {
  public:
   // Appends to `out` every index pair (i < j) with |p_j - p_i|^2 <= (r_i + r_j)^2, the
-  // exact test of the pairs mode, in no particular order.
-  void touching_pairs(const std::vector<Ball>& balls, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out);
+  // exact test of the pairs mode, in no particular order. `bounds`, if given, must be
+  // the DiscBounds of exactly these balls.
+  void touching_pairs(const std::vector<Ball>& balls, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out,
+                      const DiscBounds* bounds = nullptr);
 
  private:
-  void file(const std::vector<Ball>& balls);
+  void file(const std::vector<Ball>& balls, const DiscBounds& bounds);
 
   GridLayout grid_;
   std::vector<std::uint32_t> start_;  // cell c holds sorted slots [start_[c+1], start_[c+2])
