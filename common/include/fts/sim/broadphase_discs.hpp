@@ -2,7 +2,10 @@
 // discs into cell order (a counting sort into structure-of-arrays buffers), then each
 // disc tests two contiguous ranges: the rest of its own cell plus the next cell of its
 // row, and the three cells of the row above. That half stencil visits every pair of
-// neighbouring cells once. Cells are at least one largest diameter wide, so touching
+// neighbouring cells once. Each range is first tested as a window of fixed width, two
+// slots at a time and without branches (the ranges are short and their lengths random,
+// so a loop over them mispredicts its exit at nearly every disc); only a window with a
+// touching pair in it, or a range longer than the window, is walked pair by pair. Cells are at least one largest diameter wide, so touching
 // discs always sit in the same or neighbouring cells. Discs far larger than the mean
 // (a giant, a boss) are kept aside and tested against every disc, so one of them does
 // not blow up the cell size.
@@ -45,14 +48,18 @@ class DiscGrid {
  private:
   void file(const std::vector<Ball>& balls, const DiscBounds& bounds);
 
+  // The cells are grid_'s with a ring of empty cells around them (grid_.nx + 2 columns,
+  // grid_.ny + 2 rows), so every filed disc has the same stencil: no tests for the
+  // grid's edges in the scan.
   GridLayout grid_;
-  std::vector<std::uint32_t> start_;  // cell c holds sorted slots [start_[c+1], start_[c+2])
+  std::uint32_t stride_ = 0;          // grid_.nx + 2
+  std::vector<std::uint32_t> start_;  // cell c holds slots [start_[c+1], start_[c+2]) (filing: counts)
   std::vector<std::uint32_t> cell_;   // per ball: its cell, or kGiant
-  struct Slot {
-    double x, y, r;
-    std::uint32_t id;  // the ball's index
-  };
-  std::vector<Slot> slots_;           // the filed discs in cell order
+  // The filed discs in cell order (structure of arrays), padded at the end so that a
+  // window of fixed width may read past the last one.
+  std::vector<double> x_, y_, r_;
+  std::vector<std::uint32_t> id_;     // the ball's index
+  std::vector<std::uint32_t> slot_cell_;
   std::vector<std::uint32_t> giants_; // ball indices not filed
 };
 
