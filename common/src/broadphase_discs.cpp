@@ -17,7 +17,7 @@ constexpr double kGiantFactor = 4.0;
 // longer ranges are walked. With 2-diameter cells of the gas (about one disc per cell)
 // the right range holds 1.5 discs on average, the upper one 3.
 constexpr std::uint32_t kRightWindow = 4;
-constexpr std::uint32_t kUpWindow = 8;
+constexpr std::uint32_t kUpWindow = 6;
 constexpr std::uint32_t kWindowPad = kUpWindow;
 constexpr double kFar = 1e300;
 
@@ -89,16 +89,26 @@ void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
   double* xs = x_.data();
   double* ys = y_.data();
   double* rs = r_.data();
+  // First only the ball indices in cell order (one small array: random writes stay in
+  // cache even for 10^5 discs), then the discs gathered in that order: sequential
+  // writes, one ball read each, fetched a few slots ahead.
+  std::uint32_t* ids = id_.data();
   for (std::size_t i = n; i-- > 0;) {
     const std::uint32_t c = cell_[i];
     if (has_giants && c == kGiant) continue;
-    const Ball& b = balls[i];
-    const std::uint32_t q = --count[c];
+    ids[--count[c]] = static_cast<std::uint32_t>(i);
+  }
+  const Ball* bs = balls.data();
+  std::uint32_t* cells = slot_cell_.data();
+  constexpr std::uint32_t kAhead = 8;
+  for (std::uint32_t q = 0; q < filed; ++q) {
+    if (q + kAhead < filed) __builtin_prefetch(bs + ids[q + kAhead]);
+    const std::uint32_t i = ids[q];
+    const Ball& b = bs[i];
     xs[q] = b.pos.x;
     ys[q] = b.pos.y;
     rs[q] = b.radius;
-    id_[q] = static_cast<std::uint32_t>(i);
-    slot_cell_[q] = c;
+    cells[q] = cell_[i];
   }
 }
 
