@@ -81,9 +81,10 @@ void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
   start_[ncells + 1] = filed;
   // The padding is far from everything (its squared distances overflow to infinity),
   // so a window that reads it finds nothing there.
-  x_.assign(filed + kWindowPad, kFar);
-  y_.assign(filed + kWindowPad, kFar);
-  r_.assign(filed + kWindowPad, 0.0);
+  for (auto [v, pad] : {std::pair{&x_, kFar}, std::pair{&y_, kFar}, std::pair{&r_, 0.0}}) {
+    v->resize(filed + kWindowPad);
+    std::fill(v->begin() + filed, v->end(), pad);
+  }
   id_.resize(filed);
   slot_cell_.resize(filed);
   double* xs = x_.data();
