@@ -184,7 +184,7 @@ void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport
       separate(a, b, n, reach - std::sqrt(dist_sq));
       unsettled.push_back(i);
       unsettled.push_back(j);
-      if (respond_elastic(a, b, n)) {
+      if (respond_elastic(a, b, contact_direction(a, b))) {
         ++report.collisions;
         report.contacts.push_back({a.id, b.id});
       }
