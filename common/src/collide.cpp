@@ -57,14 +57,22 @@ Vec2 contact_normal(const Ball& a, const Ball& b) {
   return {1.0, 0.0};
 }
 
-bool respond_elastic(Ball& a, Ball& b, Vec2 n) {
-  const double vn = dot(b.vel - a.vel, n);  // < 0: approaching
-  if (!(vn < 0.0)) return false;
+Vec2 contact_direction(const Ball& a, const Ball& b) {
+  const Vec2 d = b.pos - a.pos;
+  const double dd = length_sq(d);
+  if (dd > 0.0 && std::isfinite(dd) && std::isfinite(1.0 / dd)) return d;
+  return contact_normal(a, b);
+}
+
+bool respond_elastic(Ball& a, Ball& b, Vec2 d) {
+  const double vd = dot(b.vel - a.vel, d);  // < 0: approaching
+  if (!(vd < 0.0)) return false;
+  const double f = vd / length_sq(d);  // the normal relative speed over |d|
   // Each ball's share, written so that mass ratios of 1e9 stay finite and exact-ish.
   const double wa = 2.0 / (1.0 + a.mass / b.mass);  // = 2 m_b / (m_a + m_b)
   const double wb = 2.0 / (1.0 + b.mass / a.mass);  // = 2 m_a / (m_a + m_b)
-  a.vel += n * (wa * vn);
-  b.vel -= n * (wb * vn);
+  a.vel += d * (wa * f);
+  b.vel -= d * (wb * f);
   return true;
 }
 

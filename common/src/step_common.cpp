@@ -36,22 +36,32 @@ bool use_grid(const PhysicsSettings& s, std::size_t bodies) {
   return bodies > static_cast<std::size_t>(s.pairs_max_bodies);
 }
 
+namespace {
+
+bool inside_walls(const Ball& b, const Arena& a) {
+  return b.pos.x >= b.radius && b.pos.x <= a.width_u - b.radius && b.pos.y >= b.radius &&
+         b.pos.y <= a.height_u - b.radius;
+}
+
+// A ball outside the walled box, folded back in (any number of reflections).
+void fold_into_walls(Ball& b, const Arena& a, StepReport& report) {
+  const double rx = fold(b.pos.x, b.radius, a.width_u - b.radius);
+  const double ry = fold(b.pos.y, b.radius, a.height_u - b.radius);
+  for (auto [n, v] : {std::pair{rx, &b.vel.x}, std::pair{ry, &b.vel.y}}) {
+    if (n == 0.0) continue;
+    report.wall_hits += static_cast<std::uint64_t>(std::min(n, 1e18));
+    report.wall_impulse += 2.0 * b.mass * std::fabs(*v) * n;
+    if (std::fmod(n, 2.0) == 1.0) *v = -*v;
+  }
+}
+
+}  // namespace
+
 void apply_boundary(World& world, StepReport& report) {
   const Arena& a = world.arena;
   if (a.boundary == Boundary::walls) {
     for (Ball& b : world.balls) {
-      // Most balls are inside: one inlined test instead of two calls to fold().
-      if (b.pos.x >= b.radius && b.pos.x <= a.width_u - b.radius && b.pos.y >= b.radius &&
-          b.pos.y <= a.height_u - b.radius)
-        continue;
-      const double rx = fold(b.pos.x, b.radius, a.width_u - b.radius);
-      const double ry = fold(b.pos.y, b.radius, a.height_u - b.radius);
-      for (auto [n, v] : {std::pair{rx, &b.vel.x}, std::pair{ry, &b.vel.y}}) {
-        if (n == 0.0) continue;
-        report.wall_hits += static_cast<std::uint64_t>(std::min(n, 1e18));
-        report.wall_impulse += 2.0 * b.mass * std::fabs(*v) * n;
-        if (std::fmod(n, 2.0) == 1.0) *v = -*v;
-      }
+      if (!inside_walls(b, a)) fold_into_walls(b, a, report);
     }
     return;
   }
@@ -63,7 +73,54 @@ void apply_boundary(World& world, StepReport& report) {
   world.balls.erase(std::remove_if(world.balls.begin(), world.balls.end(), out), world.balls.end());
 }
 
-void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& grid, std::vector<IndexPair>& out) {
+void advance(World& world, double h, StepReport& report, DiscBounds* bounds, std::vector<std::uint32_t>& unsettled) {
+  unsettled.clear();
+  std::vector<Ball>& balls = world.balls;
+  const Arena& a = world.arena;
+  if (a.boundary != Boundary::walls) {
+    for (Ball& b : balls) b.pos += b.vel * h;
+    apply_boundary(world, report);
+    if (bounds)
+      for (const Ball& b : balls) bounds->add(b);
+    return;
+  }
+  // Two loops, so the one without bounds does not test for them per ball; the bounds
+  // are gathered in a local, which the compiler can keep in registers.
+  const std::uint32_t n = static_cast<std::uint32_t>(balls.size());
+  auto move = [&](std::uint32_t i) -> Ball& {
+    Ball& b = balls[i];
+    b.pos += b.vel * h;
+    if (!inside_walls(b, a)) {
+      fold_into_walls(b, a, report);
+      if (!inside_walls(b, a)) unsettled.push_back(i);  // rounding: settle() folds it again
+    }
+    return b;
+  };
+  if (!bounds) {
+    for (std::uint32_t i = 0; i < n; ++i) move(i);
+    return;
+  }
+  DiscBounds local;
+  for (std::uint32_t i = 0; i < n; ++i) local.add(move(i));
+  *bounds = local;
+}
+
+void settle(World& world, std::vector<std::uint32_t>& unsettled, StepReport& report) {
+  const Arena& a = world.arena;
+  if (a.boundary != Boundary::walls) {
+    apply_boundary(world, report);
+    return;
+  }
+  std::sort(unsettled.begin(), unsettled.end());
+  unsettled.erase(std::unique(unsettled.begin(), unsettled.end()), unsettled.end());
+  for (std::uint32_t i : unsettled) {
+    Ball& b = world.balls[i];
+    if (!inside_walls(b, a)) fold_into_walls(b, a, report);
+  }
+}
+
+void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& grid, std::vector<IndexPair>& out,
+                   const DiscBounds* bounds) {
   out.clear();
   const std::uint32_t n = static_cast<std::uint32_t>(balls.size());
   auto test = [&](std::uint32_t i, std::uint32_t j) {
@@ -75,17 +132,19 @@ void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& gri
       for (std::uint32_t j = i + 1; j < n; ++j) test(i, j);
     return;
   }
-  grid.touching_pairs(balls, out);
+  grid.touching_pairs(balls, out, bounds);
   std::sort(out.begin(), out.end());
 }
 
 void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
-  for (Ball& b : world.balls) b.pos += b.vel * dt;
-  apply_boundary(world, report);
   DiscGrid& grid = world.buffers.discs;
   std::vector<IndexPair>& pairs = world.buffers.pairs;
+  std::vector<std::uint32_t>& unsettled = world.buffers.unsettled;
   auto& balls = world.balls;
-  find_overlaps(balls, use_grid(s, balls.size()), grid, pairs);
+  const bool grid_mode = use_grid(s, balls.size());
+  DiscBounds bounds;
+  advance(world, dt, report, grid_mode ? &bounds : nullptr, unsettled);
+  find_overlaps(balls, grid_mode, grid, pairs, &bounds);
   for (auto [i, j] : pairs) {
     Ball& b1 = balls[i];
     Ball& b2 = balls[j];
@@ -95,9 +154,11 @@ void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& re
     respond_seed(b1, b2);
     ++report.collisions;
     report.contacts.push_back({b1.id, b2.id});
+    unsettled.push_back(i);
+    unsettled.push_back(j);
   }
-  // A push-apart can cross an edge: apply the boundary again so nothing ends outside.
-  apply_boundary(world, report);
+  // A push-apart can cross an edge: fold the moved balls again so nothing ends outside.
+  settle(world, unsettled, report);
 }
 
 void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report) {
@@ -105,11 +166,13 @@ void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport
   const double h = dt / k;
   DiscGrid& grid = world.buffers.discs;
   std::vector<IndexPair>& pairs = world.buffers.pairs;
+  std::vector<std::uint32_t>& unsettled = world.buffers.unsettled;
   auto& balls = world.balls;
   for (int sub = 0; sub < k; ++sub) {
-    for (Ball& b : balls) b.pos += b.vel * h;
-    apply_boundary(world, report);
-    find_overlaps(balls, use_grid(s, balls.size()), grid, pairs);
+    const bool grid_mode = use_grid(s, balls.size());
+    DiscBounds bounds;
+    advance(world, h, report, grid_mode ? &bounds : nullptr, unsettled);
+    find_overlaps(balls, grid_mode, grid, pairs, &bounds);
     for (auto [i, j] : pairs) {
       Ball& a = balls[i];
       Ball& b = balls[j];
@@ -119,12 +182,14 @@ void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport
       if (dist_sq > reach * reach) continue;
       const Vec2 n = contact_normal(a, b);
       separate(a, b, n, reach - std::sqrt(dist_sq));
-      if (respond_elastic(a, b, n)) {
+      unsettled.push_back(i);
+      unsettled.push_back(j);
+      if (respond_elastic(a, b, contact_direction(a, b))) {
         ++report.collisions;
         report.contacts.push_back({a.id, b.id});
       }
     }
-    if (!pairs.empty()) apply_boundary(world, report);
+    if (!pairs.empty()) settle(world, unsettled, report);
   }
 }
 

@@ -414,7 +414,7 @@ class Solver {
     advance(e.b, e.t);
     Ball& a = B_[e.a];
     Ball& b = B_[e.b];
-    if (!respond_elastic(a, b, contact_normal(a, b))) return;
+    if (!respond_elastic(a, b, contact_direction(a, b))) return;
     ++report_.collisions;
     report_.contacts.push_back({a.id, b.id});
     ++S_[e.a];

@@ -17,9 +17,20 @@ bool use_grid(const PhysicsSettings& s, std::size_t bodies);
 // remove balls whose centre left an open rectangle (ids appended to report.fallen).
 void apply_boundary(World& world, StepReport& report);
 
+// The move of a (sub)step: positions advance by vel * h, then the boundary as above, in
+// one pass in a walled box, which also adds every ball to `bounds` (when given) and
+// lists in `unsettled` the balls rounding left outside after their fold.
+void advance(World& world, double h, StepReport& report, DiscBounds* bounds, std::vector<std::uint32_t>& unsettled);
+// After a push-apart: the boundary again, in a walled box only for the balls listed in
+// `unsettled` (the ones pushed plus those advance() listed; the others have not moved
+// since they were folded), in index order, as a pass over every ball would.
+void settle(World& world, std::vector<std::uint32_t>& unsettled, StepReport& report);
+
 // Every overlapping pair (d <= r1 + r2) as index pairs (i < j) in ascending order, so
-// that "pairs" and "grid" resolve contacts in the same order.
-void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& grid, std::vector<IndexPair>& out);
+// that "pairs" and "grid" resolve contacts in the same order. `bounds`: as for
+// DiscGrid::touching_pairs (grid mode only).
+void find_overlaps(const std::vector<Ball>& balls, bool grid_mode, DiscGrid& grid, std::vector<IndexPair>& out,
+                   const DiscBounds* bounds = nullptr);
 
 void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& report);
 void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport& report);

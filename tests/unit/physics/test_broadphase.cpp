@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -61,6 +62,27 @@ TEST_CASE("DiscGrid: the same touching pairs as all pairs", "[broadphase]") {
     const Pairs found = disc_grid(grid, balls);
     CHECK(found.size() == 49);
     CHECK(found == brute_force(balls));
+  }
+  SECTION("a dense cluster (ranges longer than the scan's windows), with and without bounds given") {
+    std::vector<Ball> balls;
+    DiscBounds bounds;
+    for (int i = 0; i < 300; ++i) {
+      balls.push_back(ball(static_cast<BallId>(i + 1), rng.uniform(0.0, 12.0), rng.uniform(0.0, 12.0), 0, 0, 1, 1));
+      bounds.add(balls.back());
+    }
+    Pairs with_bounds;
+    grid.touching_pairs(balls, with_bounds, &bounds);
+    std::sort(with_bounds.begin(), with_bounds.end());
+    CHECK(with_bounds == brute_force(balls));
+    CHECK(disc_grid(grid, balls) == with_bounds);
+  }
+  SECTION("discs as far out as the scan's padding, and not finite ones, meet only what all pairs meets") {
+    std::vector<Ball> balls = {ball(1, 1e300, 1e300, 0, 0, 1, 1), ball(2, 1e300, 1e300, 0, 0, 1, 1),
+                               ball(3, 0, 0, 0, 0, 1, 1), ball(4, 1.5, 0, 0, 0, 1, 1),
+                               ball(5, std::numeric_limits<double>::quiet_NaN(), 0, 0, 0, 1, 1),
+                               ball(6, std::numeric_limits<double>::infinity(), 0, 0, 0, 1, 1)};
+    CHECK(disc_grid(grid, balls) == brute_force(balls));
+    CHECK(disc_grid(grid, balls) == Pairs{{0, 1}, {2, 3}});
   }
   SECTION("far-flung discs (sparse cells) and a single disc") {
     std::vector<Ball> balls = {ball(1, -1e6, 0, 0, 0, 1, 1), ball(2, 1e6, 5, 0, 0, 1, 1), ball(3, 1e6, 6, 0, 0, 1, 1)};

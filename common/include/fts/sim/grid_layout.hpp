@@ -1,6 +1,9 @@
 // The cell layout both broad phases share (Grid over boxes, DiscGrid over discs): square
 // cells over the bounds of the filed centres, row-major, their number bounded, indices
-// clamped; and the half stencil both scan. One rule, so the two cannot drift apart.
+// clamped; and the half stencil both scan (own cell and the next of its row, the three
+// cells above). One rule, so the two cannot drift apart. Grid walks it with the
+// edge-aware helpers below; DiscGrid files into the same cells with a ring of empty ones
+// around them, so that its scan needs no edge tests (broadphase_discs.cpp).
 #pragma once
 
 #include <cmath>

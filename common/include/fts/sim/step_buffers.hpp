@@ -36,6 +36,7 @@ struct StepBuffers {
   DiscGrid discs;                                           // overlap search (seed, discrete)
   Grid grid;                                                // swept boxes (continuous)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // overlapping index pairs
+  std::vector<std::uint32_t> unsettled;  // seed, discrete: balls to fold into the walls again
   // Continuous model: per-ball clock, stamp, liveness, escape flag; the event heap.
   std::vector<double> t;
   std::vector<std::uint32_t> stamp;
