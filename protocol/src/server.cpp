@@ -14,6 +14,38 @@ void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   out_.push_back({to, std::move(bytes)});
 }
 
+Outgoing& ServerEndpoint::next_outgoing(const Address& to) {
+  if (spare_.empty()) {
+    out_.emplace_back();
+  } else {
+    out_.push_back(std::move(spare_.back()));
+    spare_.pop_back();
+  }
+  Outgoing& o = out_.back();
+  o.to.assign(to);  // within the capacity a sent datagram's address left
+  o.bytes.clear();
+  return o;
+}
+
+void ServerEndpoint::emit_sealed(Session& s, const Header& h) {
+  Outgoing& o = next_outgoing(s.address);
+  s.seal.seal(h, payload_, o.bytes);
+  if (o.bytes.size() > kMaxDatagramBytes) {  // never sent; the limits make it unreachable
+    spare_.push_back(std::move(o));
+    out_.pop_back();
+  }
+}
+
+Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) {
+  Header h;
+  h.version = config_.version;
+  h.encoding = s.encoding;
+  h.session = s.session_id;
+  s.acks.stamp(h, now_ms);
+  s.last_send_ms = now_ms;
+  return h;
+}
+
 // The server's own stall (a hitch, a debugger, swap) is not the clients' silence: a gap
 // between two calls longer than stall_threshold_ms moves every session's clocks forward
 // by the gap, so that time-outs and reconnect windows count only time during which the
@@ -206,18 +238,15 @@ void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t
 
 void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool with_results,
                                  std::uint64_t now_ms) {
-  Header h;
-  h.version = config_.version;
-  h.encoding = s.encoding;
-  h.session = s.session_id;
-  s.acks.stamp(h, now_ms);
+  const Header h = session_header(s, now_ms);
   if (with_results) {
     for (auto& r : s.results.collect(h.sequence, now_ms, config_.resend_ms, 3)) messages.push_back(std::move(r));
     for (auto& c : s.chats.collect(h.sequence, now_ms, config_.resend_ms, 2)) messages.push_back(std::move(c));
   }
   if (messages.empty()) messages.push_back(Ping{});
-  s.last_send_ms = now_ms;
-  emit(s.address, encode_sealed(s.seal, h, messages));
+  payload_.clear();
+  append_payload(h.encoding, messages, payload_);
+  emit_sealed(s, h);
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
@@ -228,7 +257,14 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return;
   Session& s = it->second;
-  for (auto& part : s.snapshots.encode(quantized, s.encoding)) send_packet(s, {std::move(part)}, false, now_ms);
+  // Each part straight from the sender's buffers into the sealed datagram: no message
+  // list, no copy of the part.
+  for (const SnapshotMsg& part : s.snapshots.encode(quantized, s.encoding)) {
+    const Header h = session_header(s, now_ms);
+    payload_.clear();
+    append_snapshot_payload(s.encoding, part, payload_);
+    emit_sealed(s, h);
+  }
 }
 
 void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
@@ -369,6 +405,14 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
 }
 
 std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }
+void ServerEndpoint::take_datagrams(std::vector<Outgoing>& batch) {
+  for (Outgoing& o : batch) {
+    if (spare_.size() >= kSpareDatagrams) break;
+    spare_.push_back(std::move(o));
+  }
+  batch.clear();
+  std::swap(batch, out_);
+}
 std::vector<ServerEvent> ServerEndpoint::take_events() { return std::exchange(events_, {}); }
 std::vector<PlayerInput> ServerEndpoint::take_inputs() { return std::exchange(inputs_, {}); }
 bool ServerEndpoint::send_chat(std::uint32_t player_id, const Chat& chat, std::uint64_t) {

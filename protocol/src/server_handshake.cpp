@@ -38,7 +38,7 @@ void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t requ
   h.session = s.session_id;
   s.acks.stamp(h, now_ms);
   auto bytes = encode_sealed(s.seal, h, {w});
-  if (bytes.size() <= request_bytes) emit(s.address, std::move(bytes));
+  if (bytes.size() <= request_bytes) emit(s.address, std::move(bytes));  // rare: not from the pool
 }
 
 void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,

@@ -213,14 +213,19 @@ void GameHost::receive(const std::string& from, std::span<const std::uint8_t> by
 }
 
 std::vector<protocol::Outgoing> GameHost::take_datagrams() {
-  auto out = endpoint_.take_datagrams();
-  for (const auto& d : out) {
+  std::vector<protocol::Outgoing> out;
+  take_datagrams(out);
+  return out;
+}
+
+void GameHost::take_datagrams(std::vector<protocol::Outgoing>& batch) {
+  endpoint_.take_datagrams(batch);
+  for (const auto& d : batch) {
     ++stats_.datagrams_out;
     stats_.bytes_out += d.bytes.size();
     ++stats_.totals.datagrams_out;
     stats_.totals.bytes_out += d.bytes.size();
   }
-  return out;
 }
 
 void GameHost::answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {

@@ -41,6 +41,9 @@ class GameHost {
   // Tells every client the server stops.
   void shutdown(std::uint64_t now_ms);
   std::vector<protocol::Outgoing> take_datagrams();
+  // The same into a batch kept by the sender, whose sent buffers are reused
+  // (ServerEndpoint::take_datagrams).
+  void take_datagrams(std::vector<protocol::Outgoing>& batch);
 
   // The console (JSON in, JSON out; PROTOCOL-free: see README "The host's console").
   // Bad input gets {"ok":false,"error":...} and changes nothing.

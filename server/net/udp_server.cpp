@@ -149,9 +149,9 @@ class Loop {
   // Addresses travel as text through the sans-I/O layers and are parsed back here, so
   // no table of senders can be filled (or flushed) by a flood of spoofed sources.
   void flush() {
-    auto datagrams = host_.take_datagrams();
+    host_.take_datagrams(datagrams_);  // last flush's buffers go back for reuse
     outgoing_.clear();
-    for (const auto& d : datagrams)
+    for (const auto& d : datagrams_)
       if (const auto to = io::endpoint_from_text(d.to)) outgoing_.push_back({*to, d.bytes});
     socket_.send_batch(outgoing_);
   }
@@ -238,6 +238,7 @@ class Loop {
   asio::steady_timer stats_timer_;
   asio::signal_set signals_;
   TickClock clock_;
+  std::vector<protocol::Outgoing> datagrams_;   // reused by flush(): what the host queued
   std::vector<UdpSocket::Outgoing> outgoing_;  // reused by flush()
   std::int64_t epoch_ns_ = 0;
   std::int64_t last_skip_log_ns_ = 0;

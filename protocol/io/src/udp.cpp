@@ -1,8 +1,10 @@
 #include "fts/io/udp.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
+#include <string_view>
 
 #ifdef __linux__
 #include <sys/socket.h>
@@ -18,10 +20,18 @@ std::string to_text(const udp::endpoint& ep) {
 std::optional<udp::endpoint> endpoint_from_text(const std::string& text) {
   const auto colon = text.rfind(':');
   if (colon == std::string::npos) return std::nullopt;
-  std::string host = text.substr(0, colon);
-  if (host.size() >= 2 && host.front() == '[') host = host.substr(1, host.size() - 2);
+  std::string_view host(text.data(), colon);
+  if (!host.empty() && host.front() == '[') {
+    if (host.size() < 2 || host.back() != ']') return std::nullopt;
+    host = host.substr(1, host.size() - 2);
+  }
+  // A NUL-terminated copy on the stack: the server parses every datagram's address, and
+  // an IPv6 one would not fit a string's inline buffer.
+  std::array<char, 64> buffer{};
+  if (host.size() >= buffer.size()) return std::nullopt;
+  std::memcpy(buffer.data(), host.data(), host.size());
   boost::system::error_code ec;
-  const auto address = asio::ip::make_address(host, ec);
+  const auto address = asio::ip::make_address(buffer.data(), ec);
   if (ec) return std::nullopt;
   const unsigned long port = std::strtoul(text.c_str() + colon + 1, nullptr, 10);
   if (port > 65535) return std::nullopt;

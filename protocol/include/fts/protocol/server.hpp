@@ -218,6 +218,10 @@ class ServerEndpoint {
   }
 
   std::vector<Outgoing> take_datagrams();
+  // The same for a sender that keeps its batch: `batch` holds the datagrams sent last
+  // time, whose buffers are kept for the next ones, and gets the queued ones. In the
+  // steady state no datagram allocates (the snapshot path: tests/bench/wire_bench.cpp).
+  void take_datagrams(std::vector<Outgoing>& batch);
   std::vector<ServerEvent> take_events();
   std::vector<PlayerInput> take_inputs();
   std::vector<PlayerCommand> take_commands();
@@ -293,6 +297,12 @@ class ServerEndpoint {
   std::size_t seats_taken_from(std::string_view host) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
+  // A session's next header (its sequence and acks stamped); the send is now.
+  Header session_header(Session& s, std::uint64_t now_ms);
+  // Seals payload_ for `s` under `h` and queues it.
+  void emit_sealed(Session& s, const Header& h);
+  // The next queued datagram to `to`, empty, with the buffers of a sent one if any.
+  Outgoing& next_outgoing(const Address& to);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
   void release(std::uint32_t player_id, const std::string& reason);
   void emit(const Address& to, std::vector<std::uint8_t> bytes);
@@ -312,6 +322,10 @@ class ServerEndpoint {
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;
   std::vector<Outgoing> out_;
+  // Sent datagrams kept for their buffers (at most kSpareDatagrams: beyond, freed).
+  static constexpr std::size_t kSpareDatagrams = 4096;
+  std::vector<Outgoing> spare_;
+  std::vector<std::uint8_t> payload_;  // scratch: the payload being sealed
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;

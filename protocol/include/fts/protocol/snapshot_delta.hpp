@@ -53,7 +53,9 @@ class SnapshotSender {
   // A delta is made only against a base at most this many ticks old (default: 1 s at
   // 100 Hz); a client whose acknowledgements lag further gets a full snapshot.
   explicit SnapshotSender(std::uint32_t max_base_age_ticks = 100, std::uint32_t tick_rate_hz = 100)
-      : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {}
+      : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {
+    history_.reserve(kHistory + 1);  // its one allocation, not one per doubling
+  }
 
   // The parts to send for `current` (delta against the acknowledged snapshot if it is
   // still in the history, else full). The parts live in this sender until the next call.
