@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+
+#include "lanes.hpp"
 
 namespace fts::sim {
 namespace {
@@ -115,17 +116,6 @@ void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
 
 namespace {
 
-// Two lanes of doubles (SSE2 on x86-64, NEON on arm64): the same IEEE operations per
-// lane as the scalar test, so the answers are the same bits.
-using V2d = double __attribute__((vector_size(16)));
-using V2i = std::int64_t __attribute__((vector_size(16)));
-
-V2d load2(const double* p) {
-  V2d v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
 // Whether any of the kWidth slots from `from` touches the disc (x, y, r), two at a time
 // and without a branch. The window may reach past the range the caller wants tested:
 // a touching disc there only costs a walk of the range, which tests exactly.
@@ -133,12 +123,14 @@ template <std::uint32_t kWidth>
 bool window_touches(const double* xs, const double* ys, const double* rs, std::uint32_t from, double x, double y,
                     double r) {
   static_assert(kWidth % 2 == 0);
-  const V2d vx = {x, x}, vy = {y, y}, vr = {r, r};
-  V2i hit = {0, 0};
+  using detail::D2;
+  const D2 vx = {x, x}, vy = {y, y}, vr = {r, r};
+  detail::Bits2 hit = {0, 0};
 #pragma GCC unroll 8
   for (std::uint32_t k = 0; k < kWidth; k += 2) {
-    const V2d dx = load2(xs + from + k) - vx, dy = load2(ys + from + k) - vy, reach = load2(rs + from + k) + vr;
-    hit |= dx * dx + dy * dy <= reach * reach;
+    const D2 dx = detail::lanes(xs + from + k) - vx, dy = detail::lanes(ys + from + k) - vy;
+    const D2 reach = detail::lanes(rs + from + k) + vr;
+    hit |= (detail::Bits2)(dx * dx + dy * dy <= reach * reach);  // all ones where they touch
   }
   return (hit[0] | hit[1]) != 0;
 }
