@@ -139,7 +139,15 @@ class Solver {
     StepBuffers::PairWake* wakes = skin_.pair_wake.data();
     const std::uint32_t* course = skin_.course_tick.data();
     const std::uint32_t tick = tick_;
+    constexpr std::size_t kAhead = 16;
     for (std::size_t p = 0; p < np; ++p) {
+      if (p + kAhead < np) {
+        const auto [fi, fj] = pairs[p + kAhead];
+        __builtin_prefetch(&course[fi]);
+        __builtin_prefetch(&course[fj]);
+        __builtin_prefetch(&B_[fi]);
+        __builtin_prefetch(&B_[fj]);
+      }
       const auto [i, j] = pairs[p];
       StepBuffers::PairWake& w = wakes[p];
       if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
