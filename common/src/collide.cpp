@@ -1,6 +1,7 @@
 #include "fts/sim/collide.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace fts::sim {
 
@@ -60,7 +61,8 @@ Vec2 contact_normal(const Ball& a, const Ball& b) {
 Vec2 contact_direction(const Ball& a, const Ball& b) {
   const Vec2 d = b.pos - a.pos;
   const double dd = length_sq(d);
-  if (dd > 0.0 && std::isfinite(dd) && std::isfinite(1.0 / dd)) return d;
+  // A normal square (not subnormal, not infinite) has a finite reciprocal.
+  if (dd >= std::numeric_limits<double>::min() && dd <= std::numeric_limits<double>::max()) return d;
   return contact_normal(a, b);
 }
 
