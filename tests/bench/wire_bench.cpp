@@ -7,39 +7,27 @@
 //   build/tests/bench/fts-wire-bench --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <memory>
-#include <new>
 #include <string>
 
+#include "../support/count_allocations.hpp"
 #include "../unit/protocol/samples.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
 using namespace fts::protocol;
 
-// Every allocation of the process is counted, so that a benchmark can report how many
-// its loop makes per iteration (counter "allocs"; the goal for the per-client snapshot
-// path is 0 in the steady state).
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-
+// Every allocation of the process is counted (tests/support/count_allocations.cpp), so
+// that a benchmark can report how many its loop makes per iteration (counter "allocs";
+// the goal for the per-client snapshot path is 0 in the steady state).
 namespace {
 
 // Allocations per iteration of a benchmark's loop.
 struct AllocCount {
-  std::uint64_t start = g_allocations.load();
+  std::uint64_t start = fts::test::allocations_so_far();
   void report(benchmark::State& st) const {
-    st.counters["allocs"] = static_cast<double>(g_allocations.load() - start) / static_cast<double>(st.iterations());
+    st.counters["allocs"] = static_cast<double>(fts::test::allocations_so_far() - start) / static_cast<double>(st.iterations());
   }
 };
 

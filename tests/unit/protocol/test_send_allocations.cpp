@@ -2,34 +2,16 @@
 // snapshots (delta against the acknowledged base, MessagePack) go from the sender's
 // buffers through the seal into a datagram whose buffers a sent one left, and the
 // sender's batch swaps with the queue. Every allocation of this test program is counted
-// (a replacement operator new); only the server's calls are inside the counted window.
+// (tests/support/count_allocations.cpp); only the server's calls are inside the window.
 #include <catch2/catch.hpp>
 
-#include <atomic>
-#include <cstdlib>
 #include <memory>
-#include <new>
 #include <string>
 #include <vector>
 
+#include "../../support/count_allocations.hpp"
 #include "harness.hpp"
 #include "samples.hpp"
-
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-// GCC cannot see that these frees match the malloc of the replacement new above.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 using namespace fts::protocol;
 using namespace fts::protocol::test;
@@ -49,10 +31,10 @@ TEST_CASE("Server send path: no allocation per snapshot datagram once warm", "[p
     // A new quantized snapshot per tick, made outside the window as the host makes it
     // once for every client.
     const auto q = std::make_shared<const Snapshot>(quantize(test::advance(s0, static_cast<std::uint32_t>(tick), 0.01)));
-    const std::uint64_t before = g_allocations.load();
+    const std::uint64_t before = fts::test::allocations_so_far();
     h.server.send_snapshot(1, q, h.now);
     h.server.take_datagrams(batch);
-    const std::uint64_t made = g_allocations.load() - before;
+    const std::uint64_t made = fts::test::allocations_so_far() - before;
     if (made) where.push_back(tick * 1000 + static_cast<int>(made));
     if (tick >= 20) {  // warm: buffers grown, the client acknowledging
       counted += made;
