@@ -30,16 +30,14 @@ void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
   giants_.clear();
   // The usual case (no giant) needs nothing more than the bounds: mean and largest
   // radius, centre bounds.
-  double r_max = bounds.r_max;
-  double lo_x = bounds.lo_x, hi_x = bounds.hi_x, lo_y = bounds.lo_y, hi_y = bounds.hi_y;
   double mean_r = bounds.sum_r / static_cast<double>(n);
   if (!(mean_r > 0.0) || !std::isfinite(mean_r)) mean_r = 1.0;
   const double giant_r = kGiantFactor * mean_r;
-  const bool has_giants = !(r_max <= giant_r);
+  const bool has_giants = !(bounds.r_max <= giant_r);
+  DiscBounds f = bounds;  // of the filed discs
   if (has_giants) {
     // Set the giants aside; the cells and bounds come from the others.
-    r_max = 0.0;
-    bool any = false;
+    f = {};
     for (std::size_t i = 0; i < n; ++i) {
       const Ball& b = balls[i];
       if (!(b.radius <= giant_r)) {
@@ -48,18 +46,10 @@ void DiscGrid::file(const std::vector<Ball>& balls, const DiscBounds& bounds) {
         continue;
       }
       cell_[i] = 0;
-      r_max = std::max(r_max, b.radius);
-      if (!any) {
-        lo_x = hi_x = b.pos.x;
-        lo_y = hi_y = b.pos.y;
-        any = true;
-      } else {
-        lo_x = std::min(lo_x, b.pos.x); hi_x = std::max(hi_x, b.pos.x);
-        lo_y = std::min(lo_y, b.pos.y); hi_y = std::max(hi_y, b.pos.y);
-      }
+      f.add(b);
     }
   }
-  grid_ = GridLayout::fit(lo_x, hi_x, lo_y, hi_y, kCellDiameters * 2.0 * r_max, n);
+  grid_ = GridLayout::fit(f.lo_x, f.hi_x, f.lo_y, f.hi_y, kCellDiameters * 2.0 * f.r_max, n);
 
   // Counting sort over the padded cells: start_[c + 1] counts cell c, then (prefix sum)
   // marks its end; filing from the last disc down moves it to the cell's beginning,
