@@ -10,11 +10,6 @@ namespace {
 
 constexpr std::size_t kMacBytes = 16;
 
-void ensure_sodium() {
-  // Idempotent and safe to call more than once; returns -1 only if the library is unusable.
-  [[maybe_unused]] static const int ok = sodium_init();
-}
-
 void put_u64(std::vector<std::uint8_t>& out, std::uint64_t v) {
   for (int i = 7; i >= 0; --i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
 }
@@ -39,6 +34,11 @@ int hex_value(char c) {
 }
 
 }  // namespace
+
+void ensure_sodium() {
+  // Idempotent and safe to call more than once; returns -1 only if the library is unusable.
+  [[maybe_unused]] static const int ok = sodium_init();
+}
 
 bool from_hex(std::string_view hex, std::span<std::uint8_t> out) {
   if (hex.size() != 2 * out.size()) return false;

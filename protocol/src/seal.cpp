@@ -17,8 +17,6 @@ static_assert(crypto_aead_chacha20poly1305_ietf_ABYTES == kSealTagBytes);
 
 constexpr std::size_t kTokenChars = 32;
 
-void ensure_sodium() { [[maybe_unused]] static const int ok = sodium_init(); }
-
 }  // namespace
 
 KxKeyPair kx_keypair_from_seed(const std::array<std::uint8_t, 32>& seed) {

@@ -42,7 +42,6 @@ Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) {
   h.encoding = s.encoding;
   h.session = s.session_id;
   s.acks.stamp(h, now_ms);
-  s.last_send_ms = now_ms;
   return h;
 }
 
@@ -239,6 +238,7 @@ void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t
 void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool with_results,
                                  std::uint64_t now_ms) {
   const Header h = session_header(s, now_ms);
+  s.last_send_ms = now_ms;
   if (with_results) {
     for (auto& r : s.results.collect(h.sequence, now_ms, config_.resend_ms, 3)) messages.push_back(std::move(r));
     for (auto& c : s.chats.collect(h.sequence, now_ms, config_.resend_ms, 2)) messages.push_back(std::move(c));
@@ -261,6 +261,7 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
   // list, no copy of the part.
   for (const SnapshotMsg& part : s.snapshots.encode(quantized, s.encoding)) {
     const Header h = session_header(s, now_ms);
+    s.last_send_ms = now_ms;
     payload_.clear();
     append_snapshot_payload(s.encoding, part, payload_);
     emit_sealed(s, h);

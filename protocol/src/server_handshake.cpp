@@ -32,11 +32,7 @@ void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t requ
   w.max_players = config_.max_players;
   w.timeout_ms = static_cast<std::uint32_t>(config_.timeout_ms);
   w.reconnect_window_ms = static_cast<std::uint32_t>(config_.reconnect_window_ms);
-  Header h;
-  h.version = config_.version;
-  h.encoding = s.encoding;
-  h.session = s.session_id;
-  s.acks.stamp(h, now_ms);
+  const Header h = session_header(s, now_ms);
   auto bytes = encode_sealed(s.seal, h, {w});
   if (bytes.size() <= request_bytes) emit(s.address, std::move(bytes));  // rare: not from the pool
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "fts/protocol/codec.hpp"
 #include "quanta.hpp"
@@ -129,13 +130,14 @@ std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding, 
   return out;
 }
 
-void split_snapshot_into(const SnapshotMsg& whole, Encoding encoding, std::size_t budget,
+void split_snapshot_into(SnapshotMsg& whole, Encoding encoding, std::size_t budget,
                          std::vector<SnapshotMsg>& parts) {
-  // The usual case, one part: copied into the reused part (its lists keep their capacity).
+  // The usual case, one part: swapped into the reused part (both keep their lists'
+  // capacity for the next time).
   if (whole.balls.size() <= kMaxBallsPerMessage && whole.players.size() <= kMaxPlayersPerMessage &&
       whole.events.size() <= kMaxEventsPerMessage && snapshot_payload_bytes(encoding, whole) <= budget) {
     parts.resize(1);
-    parts[0] = whole;
+    std::swap(parts[0], whole);
     return;
   }
   SnapshotMsg message = whole;
@@ -169,7 +171,7 @@ void split_snapshot_into(const SnapshotMsg& whole, Encoding encoding, std::size_
         part.left = message.left;
         part.events = message.events;
       }
-      used.push_back(payload_bytes(encoding, {part}) + kListHeaderSlack);
+      used.push_back(snapshot_payload_bytes(encoding, part) + kListHeaderSlack);
       out.push_back(std::move(part));
     };
     start_part();
@@ -270,8 +272,9 @@ const std::vector<SnapshotMsg>& SnapshotSender::encode(SharedSnapshot current, E
     for (const auto& h : history_)
       if (h->tick == *acked_ && h->tick < current->tick) base = h.get();
   }
-  make_delta(*current, base, tick_rate_hz_, delta_, motions_);
+  make_delta(*current, base, tick_rate_hz_, delta_, motions_);  // resets every field of delta_
   split_snapshot_into(delta_, encoding, budget, parts_);
+  if (history_.capacity() < kHistory) history_.reserve(kHistory);  // once, not per doubling
   std::erase_if(history_, [&](const SharedSnapshot& h) { return h->tick == current->tick; });
   if (history_.size() >= kHistory) history_.erase(history_.begin());
   history_.push_back(std::move(current));

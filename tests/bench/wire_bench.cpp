@@ -97,7 +97,8 @@ void register_sender(const Scene& scene, Encoding enc) {
         append_snapshot_payload(enc, p, out);
       }
     };
-    step();  // the reused buffers grow to size
+    step();  // the reused buffers grow to size (two: the delta and its part swap buffers)
+    step();
     const AllocCount allocs;
     for (auto _ : st) {
       step();

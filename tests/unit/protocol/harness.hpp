@@ -17,23 +17,23 @@ inline ServerKey test_key() {
   return k;
 }
 
-// A datagram from the server to this client, opened with the client's keys (a fresh
-// replay window each time: any datagram, any number of times). A handshake datagram
-// (session 0) is decoded as it is.
-inline Decoded<Datagram> peek(const ClientEndpoint& client, std::span<const std::uint8_t> bytes) {
-  auto h = read_header_any_version(bytes);
-  if (!h || h->session == 0) return decode_datagram(bytes);
-  SealedChannel channel(client.session_keys(), SealDirection::client_to_server, SealDirection::server_to_client);
-  std::vector<std::uint8_t> plain;
-  return open_sealed(channel, bytes, kProtocolVersion, plain);
-}
-
 // The client's channel, or the server's side of it (as_server): fresh sequence state.
 inline SealedChannel channel_of(const ClientEndpoint& client, bool as_server = false) {
   const SessionKeys& k = client.session_keys();
   return as_server ? SealedChannel(SessionKeys{k.tx, k.rx}, SealDirection::server_to_client,
                                    SealDirection::client_to_server)
                    : SealedChannel(k, SealDirection::client_to_server, SealDirection::server_to_client);
+}
+
+// A datagram from the server to this client, opened with the client's keys (a fresh
+// replay window each time: any datagram, any number of times). A handshake datagram
+// (session 0) is decoded as it is.
+inline Decoded<Datagram> peek(const ClientEndpoint& client, std::span<const std::uint8_t> bytes) {
+  auto h = read_header_any_version(bytes);
+  if (!h || h->session == 0) return decode_datagram(bytes);
+  SealedChannel channel = channel_of(client);
+  std::vector<std::uint8_t> plain;
+  return open_sealed(channel, bytes, kProtocolVersion, plain);
 }
 
 // A datagram on the client's session with a header a script chose, sealed with the

@@ -44,5 +44,7 @@ std::array<std::uint8_t, 32> derive_kx_seed(const ServerKey& key);
 std::string to_hex(const std::uint8_t* data, std::size_t size);
 // Lower-case hex of exactly out.size() bytes into `out`; false for anything else.
 bool from_hex(std::string_view hex, std::span<std::uint8_t> out);
+// Initialises libsodium once (the cookies here and the seal, seal.hpp, call it first).
+void ensure_sodium();
 
 }  // namespace fts::protocol

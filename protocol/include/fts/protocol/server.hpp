@@ -297,7 +297,7 @@ class ServerEndpoint {
   std::size_t seats_taken_from(std::string_view host) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
-  // A session's next header (its sequence and acks stamped); the send is now.
+  // A session's next header (its sequence and acks stamped).
   Header session_header(Session& s, std::uint64_t now_ms);
   // Seals payload_ for `s` under `h` and queues it.
   void emit_sealed(Session& s, const Header& h);

@@ -33,9 +33,10 @@ std::int64_t predicted_step(std::int64_t v_q, std::uint32_t ticks, std::uint32_t
 // events are dropped if even that does not fit).
 std::vector<SnapshotMsg> split_snapshot(SnapshotMsg message, Encoding encoding,
                                         std::size_t budget = kMaxPayloadBytes);
-// The same into `parts`, reused: a message that fits in one part is copied into parts[0]
-// without allocating once the lists have grown to size.
-void split_snapshot_into(const SnapshotMsg& message, Encoding encoding, std::size_t budget,
+// The same into `parts`, reused: a message that fits in one part is swapped into
+// parts[0] (no copy, no allocation once the lists have grown to size), which leaves
+// `message` holding the old part; a longer one is copied and split.
+void split_snapshot_into(SnapshotMsg& message, Encoding encoding, std::size_t budget,
                          std::vector<SnapshotMsg>& parts);
 
 // Rebuilds a snapshot from all its parts and its base (nullptr for a full snapshot).
@@ -53,9 +54,7 @@ class SnapshotSender {
   // A delta is made only against a base at most this many ticks old (default: 1 s at
   // 100 Hz); a client whose acknowledgements lag further gets a full snapshot.
   explicit SnapshotSender(std::uint32_t max_base_age_ticks = 100, std::uint32_t tick_rate_hz = 100)
-      : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {
-    history_.reserve(kHistory + 1);  // its one allocation, not one per doubling
-  }
+      : max_base_age_ticks_(max_base_age_ticks), tick_rate_hz_(tick_rate_hz) {}
 
   // The parts to send for `current` (delta against the acknowledged snapshot if it is
   // still in the history, else full). The parts live in this sender until the next call.
