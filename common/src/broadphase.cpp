@@ -25,7 +25,7 @@ constexpr std::uint32_t kRightWindow = 1;
 constexpr std::uint32_t kUpWindow = 4;
 
 void Grid::build() {
-  const std::vector<Box>& boxes = boxes_;
+  const BigVector<Box>& boxes = boxes_;
   const std::size_t n = boxes.size();
   overflow_.clear();
   if (n == 0) {
@@ -101,7 +101,7 @@ void Grid::build() {
   }
 }
 
-void Grid::overlapping_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+void Grid::overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out) {
   // Each slot is tested against two contiguous ranges: the rest of its cell and the
   // next one in its row, then the three cells of the row above. Their lengths vary from
   // slot to slot and about one candidate in three overlaps, so loops over the ranges

@@ -51,31 +51,19 @@ int push_apart_seed(Ball& b1, const Ball& b2, int max_iterations) {
   return steps;
 }
 
-Vec2 contact_normal(const Ball& a, const Ball& b) {
-  const Vec2 d = b.pos - a.pos;
+Vec2 contact_normal(Vec2 pa, Vec2 pb) {
+  const Vec2 d = pb - pa;
   const double dist = length(d);
   if (dist > 0.0 && std::isfinite(1.0 / dist)) return d * (1.0 / dist);
   return {1.0, 0.0};
 }
 
-Vec2 contact_direction(const Ball& a, const Ball& b) {
-  const Vec2 d = b.pos - a.pos;
+Vec2 contact_direction(Vec2 pa, Vec2 pb) {
+  const Vec2 d = pb - pa;
   const double dd = length_sq(d);
   // A normal square (not subnormal, not infinite) has a finite reciprocal.
   if (dd >= std::numeric_limits<double>::min() && dd <= std::numeric_limits<double>::max()) return d;
-  return contact_normal(a, b);
-}
-
-bool respond_elastic(Ball& a, Ball& b, Vec2 d) {
-  const double vd = dot(b.vel - a.vel, d);  // < 0: approaching
-  if (!(vd < 0.0)) return false;
-  const double f = vd / length_sq(d);  // the normal relative speed over |d|
-  // Each ball's share, written so that mass ratios of 1e9 stay finite and exact-ish.
-  const double wa = 2.0 / (1.0 + a.mass / b.mass);  // = 2 m_b / (m_a + m_b)
-  const double wb = 2.0 / (1.0 + b.mass / a.mass);  // = 2 m_a / (m_a + m_b)
-  a.vel += d * (wa * f);
-  b.vel -= d * (wb * f);
-  return true;
+  return contact_normal(pa, pb);
 }
 
 void separate(Ball& a, Ball& b, Vec2 n, double overlap) {

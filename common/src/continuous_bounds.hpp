@@ -24,7 +24,9 @@ struct Edges {
 // Whether ball b, within `time` at its speed, certainly reaches no edge: |vx| + |vy|
 // bounds the speed from above, and the four tests run without branches, x and y in the
 // two lanes (almost every ball passes all four).
-[[gnu::always_inline]] inline bool clear_of_edges(const Ball& b, double time, const Edges& e) {
+// B: a Ball or its working copy (SolverBall), here and below.
+template <class B>
+[[gnu::always_inline]] inline bool clear_of_edges(const B& b, double time, const Edges& e) {
   const double travel = (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * time;
   const double inset = e.walls ? b.radius : 0.0;
   const D2 p = lanes(b.pos), t = {travel, travel};
@@ -51,7 +53,8 @@ struct Edges {
 // arena), far above the rounding here and the drift of positions re-based every tick
 // for kMaxSkip ticks, so a skipped tick is one whose prediction would have found
 // nothing.
-[[gnu::always_inline]] inline std::uint32_t ticks_kept_apart(const Ball& a, const Ball& b, double slack, double dt) {
+template <class B>
+[[gnu::always_inline]] inline std::uint32_t ticks_kept_apart(const B& a, const B& b, double slack, double dt) {
   const Vec2 d = b.pos - a.pos;
   const double reach = (a.radius + b.radius) * (1.0 + 1e-6) + slack;
   const double c = length_sq(d) - reach * reach;

@@ -3,8 +3,10 @@
 // and nothing overlaps, at any speed.
 //
 // Each ball keeps its own clock t_i inside the tick and is advanced lazily. Events are
-// invalidated by per-ball stamps instead of being removed from the heap. All working
-// memory is the world's (World::buffers).
+// invalidated by per-ball stamps instead of being removed from the heap. The solve works
+// on a copy of the balls (StepBuffers::bodies: clock, stamp and what an event needs in
+// one cache line), refreshed from the world where it changed and written back at the
+// end. All working memory is the world's (World::buffers).
 //
 // The broad phase is a skin, kept across ticks (a Verlet list, as molecular dynamics
 // codes keep one): each ball's skin box is its position at the last build +- (radius +
@@ -21,6 +23,7 @@
 // by the same formula and the heap orders events by (time, a, b), so a world stepped
 // with or without its cache ends in the same bits.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -41,8 +44,7 @@ class Solver {
  public:
   Solver(World& world, const PhysicsSettings& s, double dt, StepReport& report)
       : world_(world), balls_(world.balls), dt_(dt), report_(report),
-        grid_mode_(use_grid(s, world.balls.size())), t_(world.buffers.t), stamp_(world.buffers.stamp),
-        alive_(world.buffers.alive), escaped_flag_(world.buffers.escaped_flag),
+        grid_mode_(use_grid(s, world.balls.size())), bodies_(world.buffers.bodies), alive_(world.buffers.alive), escaped_flag_(world.buffers.escaped_flag),
         escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
         heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box), skin_(world.buffers) {}
   Solver(const Solver&) = delete;
@@ -50,20 +52,18 @@ class Solver {
 
   void run() {
     const std::size_t n = balls_.size();
-    // Clocks, stamps and liveness carry over from the last solve while the count of
+    // The working copies and liveness carry over from the last solve while the count of
     // balls stays: finish() leaves every clock at 0 and (no fall) every ball alive, and
-    // a stamp is only compared with itself within one tick (the heap starts empty).
-    if (t_.size() != n) t_.assign(n, 0.0);
-    if (stamp_.size() != n) stamp_.assign(n, 0);
+    // a stamp is only compared with itself within one tick (the heap starts empty). A
+    // copy that differs from its ball is refreshed before the events (initial_events).
+    if (bodies_.size() != n) bodies_.assign(n, SolverBall{});
     if (alive_.size() != n) alive_.assign(n, 1);
     clear_escaped();  // before the resize: the list may hold the last solve's indices
     escaped_flag_.resize(n);
     escaped_box_.resize(n);  // written when a ball escapes, read only after
     // Raw pointers into the buffers, which keep their size for the whole solve: through
     // the vectors every access reloads the data pointer (a store might alias it).
-    B_ = balls_.data();
-    T_ = t_.data();
-    S_ = stamp_.data();
+    B_ = bodies_.data();
     A_ = alive_.data();
     E_ = escaped_flag_.data();
     edges_ = {world_.arena.boundary == Boundary::walls, world_.arena.width_u, world_.arena.height_u};
@@ -88,18 +88,29 @@ class Solver {
   }
 
  private:
-  Vec2 pos_at(std::uint32_t i, double t) const { return B_[i].pos + B_[i].vel * (t - T_[i]); }
+  Vec2 pos_at(std::uint32_t i, double t) const { return B_[i].pos + B_[i].vel * (t - B_[i].t); }
 
   void advance(std::uint32_t i, double t) {
     B_[i].pos = pos_at(i, t);
-    T_[i] = t;
+    B_[i].t = t;
+  }
+
+  BallId id_of(std::uint32_t i) const { return grid_mode_ ? BallId{skin_.skin_id[i]} : balls_[i].id; }
+
+  // Every working copy from its ball (clock 0); course: changed in this solve.
+  void copy_all_balls() {
+    const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const Ball& b = balls_[i];
+      B_[i] = {b.pos, b.vel, b.radius, b.mass, 0.0, 0, tick_};
+    }
   }
 
   Box path_box(std::uint32_t i, double margin_scale) const {
-    const Ball& b = B_[i];
+    const SolverBall& b = B_[i];
     const Vec2 end = pos_at(i, dt_);
     // |vx| + |vy| bounds the speed from above without a square root.
-    const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - T_[i]);
+    const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - b.t);
     const double m = b.radius * (1.0 + 0.05 * margin_scale) + speed_margin;
     return {std::min(b.pos.x, end.x) - m, std::min(b.pos.y, end.y) - m,
             std::max(b.pos.x, end.x) + m, std::max(b.pos.y, end.y) + m};
@@ -112,6 +123,7 @@ class Solver {
     clear_escaped();
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     if (!grid_mode_) {
+      copy_all_balls();
       initial_boundary_events();
       for (std::uint32_t i = 0; i < n; ++i)
         for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
@@ -122,8 +134,10 @@ class Solver {
     tick_ = ++skin_.skin_tick;
     const Fit fit = skin_fits();
     if (fit != Fit::fits) {
+      if (fit == Fit::changed) copy_all_balls();
       build_continuous_skin(balls_, dt_, skin_);
       tick_ = skin_.skin_tick;
+      for (std::uint32_t i = 0; i < n; ++i) B_[i].course = 0;  // before the build's first solve
       // A crowded pass did every ball's course and edge tests; after a change they are
       // done again. Either way a ball faster than the new skin leaves it even now.
       if (fit == Fit::changed) skin_fits();
@@ -137,20 +151,18 @@ class Solver {
     const std::size_t np = skin_.skin_pairs.size();
     const IndexPair* pairs = skin_.skin_pairs.data();
     StepBuffers::PairWake* wakes = skin_.pair_wake.data();
-    const std::uint32_t* course = skin_.course_tick.data();
+    const SolverBall* body = B_;
     const std::uint32_t tick = tick_;
     constexpr std::size_t kAhead = 16;
     for (std::size_t p = 0; p < np; ++p) {
       if (p + kAhead < np) {
         const auto [fi, fj] = pairs[p + kAhead];
-        __builtin_prefetch(&course[fi]);
-        __builtin_prefetch(&course[fj]);
-        __builtin_prefetch(&B_[fi]);
-        __builtin_prefetch(&B_[fj]);
+        __builtin_prefetch(&body[fi]);
+        __builtin_prefetch(&body[fj]);
       }
       const auto [i, j] = pairs[p];
       StepBuffers::PairWake& w = wakes[p];
-      if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
+      if (w.wake > tick && body[i].course < w.seen && body[j].course < w.seen) continue;
       if (E_[i] || E_[j]) continue;
       const std::uint32_t apart = kept_apart_ticks(i, j);
       w.seen = tick;
@@ -172,7 +184,7 @@ class Solver {
   // Whether ball i's path for the rest of the tick stays within its skin.
   [[gnu::always_inline]] bool in_skin(std::uint32_t i) const {
     const double h = 0.99 * skin_.half_skin;
-    return stays_within(B_[i].pos, B_[i].vel, dt_ - T_[i], skin_.skin_origin[i], h * h);
+    return stays_within(B_[i].pos, B_[i].vel, dt_ - B_[i].t, skin_.skin_origin[i], h * h);
   }
 
   [[gnu::always_inline]] std::uint32_t kept_apart_ticks(std::uint32_t i, std::uint32_t j) const {
@@ -205,15 +217,7 @@ class Solver {
     edge_count_ = 0;
     if (!skin_.skin_valid || skin_.skin_id.size() != n || grid_.boxes().size() != n || skin_.skin_dt != dt_)
       return Fit::changed;
-    // A ball whose position or velocity is not what the last solve left changed course;
-    // with no last solve's lines (the first solve since a build or a fall) every ball did.
-    std::uint32_t* course = skin_.course_tick.data();
     const std::uint32_t tick = tick_;
-    if (skin_.end_line.size() != n) {
-      skin_.end_line.resize(n);
-      std::fill_n(course, n, tick);
-    }
-    const StepBuffers::Line* end = skin_.end_line.data();
     // The balls that may reach an edge, written branch-free into a list as long as the
     // balls (edge_count_ of them are real).
     skin_.edge_due.resize(n);
@@ -222,7 +226,8 @@ class Solver {
     const Edges edges = edges_;
     const std::size_t allowed = 32 + n / 256;
     bool crowded = false;
-    const Ball* balls = B_;
+    const Ball* balls = balls_.data();
+    SolverBall* body = B_;
     const std::uint32_t* ids = skin_.skin_id.data();
     const double* radii = skin_.skin_radius.data();
     const Vec2* origins = skin_.skin_origin.data();
@@ -230,10 +235,18 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = balls[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
-      // Compared as bits, two doubles at a time: a changed zero sign counts as a change,
-      // NaN never matches.
-      const Bits2 changed = (bits2(b.pos) ^ bits2(end[i].pos)) | (bits2(b.vel) ^ bits2(end[i].vel));
-      if ((changed[0] | changed[1]) != 0) course[i] = tick;
+      // A ball whose position, velocity or mass is not what the last solve left was
+      // changed from outside: its copy is refreshed and its course changed. Compared as
+      // bits, two doubles at a time: a changed zero sign counts as a change, NaN never
+      // matches.
+      SolverBall& w = body[i];
+      const Bits2 changed = (bits2(b.pos) ^ bits2(w.pos)) | (bits2(b.vel) ^ bits2(w.vel));
+      if ((changed[0] | changed[1] | (std::bit_cast<std::uint64_t>(b.mass) ^ std::bit_cast<std::uint64_t>(w.mass))) != 0) {
+        w.pos = b.pos;
+        w.vel = b.vel;
+        w.mass = b.mass;
+        w.course = tick;
+      }
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       if (!stays_within(b.pos, b.vel, dt, origins[i], h2)) {
         if (escaped_.size() == allowed) {
@@ -271,7 +284,7 @@ class Solver {
 
   [[gnu::always_inline]] void pair_event(std::uint32_t i, std::uint32_t j, bool record_overlap) {
     if (i == j || !A_[i] || !A_[j]) return;
-    const double t0 = std::max(T_[i], T_[j]);
+    const double t0 = std::max(B_[i].t, B_[j].t);
     const Vec2 d = pos_at(j, t0) - pos_at(i, t0);
     const Vec2 w = B_[j].vel - B_[i].vel;
     const double reach = B_[i].radius + B_[j].radius;
@@ -299,7 +312,7 @@ class Solver {
     }
     if (!(t <= dt_)) return;
     const std::uint32_t lo = std::min(i, j), hi = std::max(i, j);
-    heap_.push({t, lo, hi, S_[lo], S_[hi]});
+    heap_.push({t, lo, hi, B_[lo].stamp, B_[hi].stamp});
   }
 
   // boundary_event for every ball at the start of the tick (every clock 0), with the
@@ -313,11 +326,11 @@ class Solver {
 
   // Most balls cannot reach an edge this tick: an inlined test skips the divisions.
   void boundary_event(std::uint32_t i) {
-    if (!clear_of_edges(B_[i], dt_ - T_[i], edges_)) edge_event(i);
+    if (!clear_of_edges(B_[i], dt_ - B_[i].t, edges_)) edge_event(i);
   }
 
   [[gnu::noinline]] void edge_event(std::uint32_t i) {
-    const Ball& b = B_[i];
+    const SolverBall& b = B_[i];
     const Arena& a = world_.arena;
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t kind = kWallX;
@@ -337,14 +350,14 @@ class Solver {
       // Already off the platform (pushed out by a separation): it falls now, whatever
       // its velocity.
       if (!(b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u)) {
-        heap_.push({T_[i], i, kFall, S_[i], 0});
+        heap_.push({b.t, i, kFall, b.stamp, 0});
         return;
       }
       axis(b.pos.x, b.vel.x, 0.0, a.width_u, kFall);
       axis(b.pos.y, b.vel.y, 0.0, a.height_u, kFall);
     }
-    const double t = T_[i] + best;
-    if (t <= dt_) heap_.push({t, i, kind, S_[i], 0});
+    const double t = b.t + best;
+    if (t <= dt_) heap_.push({t, i, kind, b.stamp, 0});
   }
 
   // Events of ball i against everything it may meet in the rest of the tick.
@@ -382,8 +395,8 @@ class Solver {
     while (!heap_.empty()) {
       const Event e = heap_.top();
       heap_.pop();
-      if (!A_[e.a] || S_[e.a] != e.stamp_a) continue;
-      if (e.b < kWallX && (!A_[e.b] || S_[e.b] != e.stamp_b)) continue;
+      if (!A_[e.a] || B_[e.a].stamp != e.stamp_a) continue;
+      if (e.b < kWallX && (!A_[e.b] || B_[e.b].stamp != e.stamp_b)) continue;
       if (++handled > budget) {
         ++report_.event_cap_hits;
         return;
@@ -397,13 +410,13 @@ class Solver {
   }
 
   void wall(const Event& e) {
-    if (grid_mode_) skin_.course_tick[e.a] = tick_;
     advance(e.a, e.t);
-    Ball& b = B_[e.a];
-    ++S_[e.a];
+    SolverBall& b = B_[e.a];
+    b.course = tick_;
+    ++b.stamp;
     if (e.b == kFall) {
       A_[e.a] = 0;
-      report_.fallen.push_back(b.id);
+      report_.fallen.push_back(balls_[e.a].id);
       return;
     }
     double& v = e.b == kWallX ? b.vel.x : b.vel.y;
@@ -417,34 +430,34 @@ class Solver {
   }
 
   void collide(const Event& e) {
-    if (grid_mode_) skin_.course_tick[e.a] = skin_.course_tick[e.b] = tick_;
     advance(e.a, e.t);
     advance(e.b, e.t);
-    Ball& a = B_[e.a];
-    Ball& b = B_[e.b];
-    if (!respond_elastic(a, b, contact_direction(a, b))) return;
+    SolverBall& a = B_[e.a];
+    SolverBall& b = B_[e.b];
+    a.course = b.course = tick_;
+    if (!respond_elastic(a, b, contact_direction(a.pos, b.pos))) return;
     ++report_.collisions;
-    report_.contacts.push_back({a.id, b.id});
-    ++S_[e.a];
-    ++S_[e.b];
+    report_.contacts.push_back({id_of(e.a), id_of(e.b)});
+    ++a.stamp;
+    ++b.stamp;
     refresh(e.a);
     refresh(e.b);
   }
 
   void finish() {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
-    // Every ball to the end of the tick, its clock back to 0 for the next solve, and
-    // (grid mode) what the next solve compares the balls with (skin_fits).
-    if (grid_mode_) skin_.end_line.resize(n);
-    StepBuffers::Line* end = grid_mode_ ? skin_.end_line.data() : nullptr;
+    // Every ball to the end of the tick and back into the world; its copy's clock back to
+    // 0, the copy being what the next solve compares the ball with (skin_fits).
+    Ball* balls = balls_.data();
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (A_[i]) B_[i].pos = pos_at(i, dt_);
-      T_[i] = 0.0;
-      if (end) end[i] = {B_[i].pos, B_[i].vel};
+      SolverBall& w = B_[i];
+      if (A_[i]) w.pos = pos_at(i, dt_);
+      w.t = 0.0;
+      balls[i].pos = w.pos;
+      balls[i].vel = w.vel;
     }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
-      skin_.skin_valid = false;       // the indices shift
-      skin_.end_line.clear();
+      skin_.skin_valid = false;       // the indices shift (the copies are made again)
       alive_.clear();                 // the next solve starts them all alive again
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
@@ -462,19 +475,16 @@ class Solver {
   double dt_;
   StepReport& report_;
   bool grid_mode_;
-  std::vector<double>& t_;
-  std::vector<std::uint32_t>& stamp_;
-  std::vector<std::uint8_t>& alive_;
-  std::vector<std::uint8_t>& escaped_flag_;
+  BigVector<SolverBall>& bodies_;
+  BigVector<std::uint8_t>& alive_;
+  BigVector<std::uint8_t>& escaped_flag_;
   std::vector<std::uint32_t>& escaped_;
   std::vector<IndexPair>& overlaps_;
   Grid& grid_;
   EventHeap heap_;
-  std::vector<Box>& escaped_box_;
+  BigVector<Box>& escaped_box_;
   StepBuffers& skin_;
-  Ball* B_ = nullptr;
-  double* T_ = nullptr;
-  std::uint32_t* S_ = nullptr;
+  SolverBall* B_ = nullptr;
   std::uint8_t* A_ = nullptr;
   std::uint8_t* E_ = nullptr;
   Edges edges_{};

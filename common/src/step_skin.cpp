@@ -36,7 +36,7 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   skin.skin_origin.resize(n);
   skin.skin_id.resize(n);
   skin.skin_radius.resize(n);
-  std::vector<Box>& boxes = grid.boxes();
+  BigVector<Box>& boxes = grid.boxes();
   boxes.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     const Ball& b = balls[i];
@@ -81,7 +81,6 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   }
   // Nothing predicted yet: every pair is due, and the solve count starts again.
   skin.pair_wake.assign(pairs.size(), {});
-  skin.course_tick.assign(n, 0);
   skin.skin_tick = 1;
   skin.skin_dt = dt;
   skin.skin_valid = true;

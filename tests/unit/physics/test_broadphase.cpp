@@ -99,7 +99,7 @@ TEST_CASE("Grid: the same overlapping boxes as all pairs; a query offers every o
     INFO("round " << round);
     const int n = 1 + static_cast<int>(rng.uniform(0.0, 400.0));
     const double side = rng.uniform(5.0, 150.0);
-    std::vector<Box>& boxes = grid.boxes();
+    auto& boxes = grid.boxes();
     boxes.clear();
     for (int i = 0; i < n; ++i) {
       double w = rng.uniform(0.5, 3.0), h = rng.uniform(0.5, 3.0);

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "fts/sim/big_vector.hpp"
+
 #include "fts/sim/grid_layout.hpp"
 
 namespace fts::sim {
@@ -27,13 +29,13 @@ inline bool overlaps(const Box& a, const Box& b) {
 class Grid {
  public:
   // The boxes to index, owned by the grid: fill, then build().
-  std::vector<Box>& boxes() { return boxes_; }
+  BigVector<Box>& boxes() { return boxes_; }
   const Box& box(std::uint32_t i) const { return boxes_[i]; }
   // Indexes boxes()[i] for i in [0, n).
   void build();
   // Every pair of overlapping boxes once, as (i, j) or (j, i), in no particular order
   // (replaces out's contents).
-  void overlapping_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out);
+  void overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out);
   // Calls fn(i, j) with i < j for each of those pairs.
   template <class Fn>
   void for_each_overlapping_pair(Fn&& fn) {
@@ -52,14 +54,14 @@ class Grid {
     Box box;
     std::uint32_t id;
   };
-  std::vector<Box> boxes_;
+  BigVector<Box> boxes_;
   GridLayout grid_;
-  std::vector<std::uint32_t> start_;  // cell c holds slots [start_[c + 1], start_[c + 2])
-  std::vector<Slot> slots_;           // filed boxes in cell order, then padding
-  std::vector<std::uint32_t> home_;   // per box: its cell
+  BigVector<std::uint32_t> start_;  // cell c holds slots [start_[c + 1], start_[c + 2])
+  BigVector<Slot> slots_;           // filed boxes in cell order, then padding
+  BigVector<std::uint32_t> home_;   // per box: its cell
   std::vector<std::uint32_t> overflow_;
   std::vector<std::uint8_t> overflow_flag_;  // sized only when there is overflow
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> found_;  // for_each_overlapping_pair's
+  BigVector<std::pair<std::uint32_t, std::uint32_t>> found_;  // for_each_overlapping_pair's
 };
 
 template <class Fn>

@@ -13,12 +13,15 @@ void respond_seed(Ball& b1, Ball& b2);
 // Returns the number of unit steps taken.
 int push_apart_seed(Ball& b1, const Ball& b2, int max_iterations = 4096);
 
-// Unit contact normal from a to b; for coincident centres a fixed deterministic +x.
-Vec2 contact_normal(const Ball& a, const Ball& b);
+// Unit contact normal from a centre at pa to one at pb; for coincident centres a fixed
+// deterministic +x.
+Vec2 contact_normal(Vec2 pa, Vec2 pb);
+inline Vec2 contact_normal(const Ball& a, const Ball& b) { return contact_normal(a.pos, b.pos); }
 // The direction from a's centre to b's for respond_elastic: the centres' difference
 // itself, or contact_normal where its square is not a usable divisor (coincident,
 // underflowing or overflowing).
-Vec2 contact_direction(const Ball& a, const Ball& b);
+Vec2 contact_direction(Vec2 pa, Vec2 pb);
+inline Vec2 contact_direction(const Ball& a, const Ball& b) { return contact_direction(a.pos, b.pos); }
 // Elastic impulse along d (from a towards b, any length) if the pair approaches.
 // Returns true when an impulse was applied. Written with d and its square rather than a
 // unit normal: d / |d| comes out a few ulp off unit length, and at contact the error had
@@ -26,7 +29,19 @@ Vec2 contact_direction(const Ball& a, const Ball& b);
 // power of two in the gas), so every collision added energy: gas-1000 gained 5.8e-9 of
 // 50 000 per 10^4 ticks, linearly. With d in the numerator and its square in the
 // denominator the rounding errors have no preferred sign (BENCHMARKS.md, issue 18).
-bool respond_elastic(Ball& a, Ball& b, Vec2 d);
+// B is a Ball or the continuous model's working copy of one (anything with vel and mass).
+template <class B>
+bool respond_elastic(B& a, B& b, Vec2 d) {
+  const double vd = dot(b.vel - a.vel, d);  // < 0: approaching
+  if (!(vd < 0.0)) return false;
+  const double f = vd / length_sq(d);  // the normal relative speed over |d|
+  // Each ball's share, written so that mass ratios of 1e9 stay finite and exact-ish.
+  const double wa = 2.0 / (1.0 + a.mass / b.mass);  // = 2 m_b / (m_a + m_b)
+  const double wb = 2.0 / (1.0 + b.mass / a.mass);  // = 2 m_a / (m_a + m_b)
+  a.vel += d * (wa * f);
+  b.vel -= d * (wb * f);
+  return true;
+}
 // Removes the overlap along n, each ball moving in proportion to the other's mass.
 void separate(Ball& a, Ball& b, Vec2 n, double overlap);
 
