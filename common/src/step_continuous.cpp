@@ -57,6 +57,7 @@ class Solver {
     // a stamp is only compared with itself within one tick (the heap starts empty). A
     // copy that differs from its ball is refreshed before the events (initial_events).
     if (bodies_.size() != n) bodies_.assign(n, SolverBall{});
+    if (skin_.course.size() != n) skin_.course.assign(n, 0);
     if (alive_.size() != n) alive_.assign(n, 1);
     clear_escaped();  // before the resize: the list may hold the last solve's indices
     escaped_flag_.resize(n);
@@ -64,6 +65,7 @@ class Solver {
     // Raw pointers into the buffers, which keep their size for the whole solve: through
     // the vectors every access reloads the data pointer (a store might alias it).
     B_ = bodies_.data();
+    C_ = skin_.course.data();
     A_ = alive_.data();
     E_ = escaped_flag_.data();
     edges_ = {world_.arena.boundary == Boundary::walls, world_.arena.width_u, world_.arena.height_u};
@@ -102,7 +104,8 @@ class Solver {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = balls_[i];
-      B_[i] = {b.pos, b.vel, b.radius, b.mass, 0.0, 0, tick_};
+      B_[i] = {b.pos, b.vel, b.radius, b.mass, 0.0, 0, 0};
+      C_[i] = tick_;
     }
   }
 
@@ -137,7 +140,11 @@ class Solver {
       if (fit == Fit::changed) copy_all_balls();
       build_continuous_skin(balls_, dt_, skin_);
       tick_ = skin_.skin_tick;
-      for (std::uint32_t i = 0; i < n; ++i) B_[i].course = 0;  // before the build's first solve
+      const std::uint32_t* start = skin_.near_start.data();
+      for (std::uint32_t i = 0; i < n; ++i) {
+        C_[i] = 0;  // before the build's first solve
+        B_[i].near = start[i];
+      }
       // A crowded pass did every ball's course and edge tests; after a change they are
       // done again. Either way a ball faster than the new skin leaves it even now.
       if (fit == Fit::changed) skin_fits();
@@ -151,18 +158,20 @@ class Solver {
     const std::size_t np = skin_.skin_pairs.size();
     const IndexPair* pairs = skin_.skin_pairs.data();
     StepBuffers::PairWake* wakes = skin_.pair_wake.data();
-    const SolverBall* body = B_;
+    const std::uint32_t* course = C_;
     const std::uint32_t tick = tick_;
     constexpr std::size_t kAhead = 16;
     for (std::size_t p = 0; p < np; ++p) {
       if (p + kAhead < np) {
         const auto [fi, fj] = pairs[p + kAhead];
-        __builtin_prefetch(&body[fi]);
-        __builtin_prefetch(&body[fj]);
+        __builtin_prefetch(&course[fi]);
+        __builtin_prefetch(&course[fj]);
+        __builtin_prefetch(&B_[fi]);
+        __builtin_prefetch(&B_[fj]);
       }
       const auto [i, j] = pairs[p];
       StepBuffers::PairWake& w = wakes[p];
-      if (w.wake > tick && body[i].course < w.seen && body[j].course < w.seen) continue;
+      if (w.wake > tick && course[i] < w.seen && course[j] < w.seen) continue;
       if (E_[i] || E_[j]) continue;
       const std::uint32_t apart = kept_apart_ticks(i, j);
       w.seen = tick;
@@ -245,7 +254,7 @@ class Solver {
         w.pos = b.pos;
         w.vel = b.vel;
         w.mass = b.mass;
-        w.course = tick;
+        C_[i] = tick;
       }
       // in_skin(i) at the start of the tick (every clock is 0), without the reloads.
       if (!stays_within(b.pos, b.vel, dt, origins[i], h2)) {
@@ -380,11 +389,10 @@ class Solver {
     } else {
       // The neighbours' lines are asked for together before the first is used (at 10^5
       // balls each is a miss; one after another they would wait in turn).
-      const std::uint32_t* near = skin_.near.data();
-      const std::uint32_t begin = skin_.near_start[i], end = skin_.near_start[i + 1];
-      for (std::uint32_t k = begin; k < end; ++k) __builtin_prefetch(&B_[near[k]]);
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const std::uint32_t j = near[k];
+      const std::uint32_t* near = skin_.near.data() + B_[i].near;
+      for (const std::uint32_t* k = near; *k != kEndOfNear; ++k) __builtin_prefetch(&B_[*k]);
+      for (const std::uint32_t* k = near; *k != kEndOfNear; ++k) {
+        const std::uint32_t j = *k;
         if (!E_[j]) pair_event(i, j, false);
       }
     }
@@ -417,7 +425,7 @@ class Solver {
   void wall(const Event& e) {
     advance(e.a, e.t);
     SolverBall& b = B_[e.a];
-    b.course = tick_;
+    C_[e.a] = tick_;
     ++b.stamp;
     if (e.b == kFall) {
       A_[e.a] = 0;
@@ -437,7 +445,7 @@ class Solver {
   void collide(const Event& e) {
     if (grid_mode_) {  // what refresh() reads next, asked for before the response
       for (std::uint32_t i : {e.a, e.b}) {
-        __builtin_prefetch(&skin_.near_start[i]);
+        __builtin_prefetch(&skin_.near[B_[i].near]);
         __builtin_prefetch(&skin_.skin_origin[i]);
       }
     }
@@ -445,7 +453,7 @@ class Solver {
     advance(e.b, e.t);
     SolverBall& a = B_[e.a];
     SolverBall& b = B_[e.b];
-    a.course = b.course = tick_;
+    C_[e.a] = C_[e.b] = tick_;
     if (!respond_elastic(a, b, contact_direction(a.pos, b.pos))) return;
     ++report_.collisions;
     report_.contacts.push_back({id_of(e.a), id_of(e.b)});
@@ -496,6 +504,7 @@ class Solver {
   BigVector<Box>& escaped_box_;
   StepBuffers& skin_;
   SolverBall* B_ = nullptr;
+  std::uint32_t* C_ = nullptr;  // StepBuffers::course
   std::uint8_t* A_ = nullptr;
   std::uint8_t* E_ = nullptr;
   Edges edges_{};

@@ -65,9 +65,11 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
     kept += length_sq(origin[j] - origin[i]) <= reach * reach ? 1 : 0;
   }
   pairs.resize(kept);
-  // Per ball, the same pairs (a counting sort into CSR).
+  // Per ball, the same pairs (a counting sort into CSR), each ball's list ended by
+  // kEndOfNear.
   auto& start = skin.near_start;
-  start.assign(n + 1, 0);
+  start.assign(n + 1, 1);
+  start[0] = 0;
   for (auto [i, j] : pairs) {
     ++start[i + 1];
     ++start[j + 1];
@@ -79,6 +81,7 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
     skin.near[skin.near_fill[i]++] = j;
     skin.near[skin.near_fill[j]++] = i;
   }
+  for (std::uint32_t i = 0; i < n; ++i) skin.near[start[i + 1] - 1] = kEndOfNear;
   // Nothing predicted yet: every pair is due, and the solve count starts again.
   skin.pair_wake.assign(pairs.size(), {});
   skin.skin_tick = 1;

@@ -25,7 +25,7 @@ struct TimedEvent {
   std::uint32_t stamp_a, stamp_b;   // the balls' stamps when it was predicted
 };
 
-// The continuous model's working copy of a ball: all an event reads or writes about a
+// The continuous model's working copy of a ball: what an event reads or writes about a
 // ball in one cache line (at 10^5 balls, the separate arrays it replaced cost an event
 // one miss each). Between solves it holds what the last solve left (pos at the end of
 // the tick, t = 0), against which the next one finds the balls changed from outside.
@@ -34,8 +34,10 @@ struct alignas(64) SolverBall {
   double radius, mass;
   double t;                 // the ball's clock within the tick: pos is where it is at t
   std::uint32_t stamp;      // bumped by each of its events (an event names both stamps)
-  std::uint32_t course;     // grid mode: the last solve in which its line changed
+  std::uint32_t near;       // grid mode: where its neighbours start in StepBuffers::near
 };
+// Ends each ball's neighbours in StepBuffers::near.
+inline constexpr std::uint32_t kEndOfNear = 0xffffffffu;
 static_assert(sizeof(SolverBall) == 64);
 }  // namespace detail
 
@@ -61,25 +63,28 @@ struct StepBuffers {
   std::vector<detail::TimedEvent> heap;
   // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
   // the last build +- (radius + half_skin); `grid` indexes those boxes and `skin_pairs`
-  // lists the pairs whose boxes overlap (i < j; `near` the same per ball, CSR). A ball
+  // lists the pairs whose boxes overlap (i < j; `near` the same per ball, each ball's
+  // list ended by kEndOfNear, so that a ball's copy holding where its list starts is
+  // all a refresh needs to read it). A ball
   // whose whole path stays within half_skin of its `skin_origin` can only meet its listed
   // neighbours and the balls that left their own skin (step_continuous.cpp).
   BigVector<Vec2> skin_origin;
   BigVector<std::uint32_t> skin_id;   // the ball ids and radii it was built for: any
   BigVector<double> skin_radius;      // change (a ball added, removed, resized) rebuilds
   BigVector<std::pair<std::uint32_t, std::uint32_t>> skin_pairs;
-  BigVector<std::uint32_t> near_start;  // ball i's neighbours: near[near_start[i] .. near_start[i + 1])
+  BigVector<std::uint32_t> near_start;  // ball i's neighbours: near[near_start[i]] .. kEndOfNear
   BigVector<std::uint32_t> near;
   BigVector<std::uint32_t> near_fill;   // build scratch
   // Predictions kept across ticks (grid mode): skin pair p was last predicted at the
   // start of solve `seen` and cannot meet before the start of solve `wake` while both
-  // balls keep their lines; bodies[i].course is the last solve in which ball i's line
-  // changed (an event, or a change between solves: its position or velocity differs
-  // from what the previous solve left).
+  // balls keep their lines; course[i] is the last solve in which ball i's line changed
+  // (an event, or a change between solves: its position, velocity or mass differs from
+  // what the previous solve left).
   struct PairWake {
     std::uint32_t seen = 0, wake = 0;
   };
   BigVector<PairWake> pair_wake;  // parallel to skin_pairs
+  BigVector<std::uint32_t> course;
   std::uint32_t skin_tick = 0;  // solves in grid mode
   double skin_dt = 0.0;         // the tick the skin and the wakes were made for
   double half_skin = 0.0;
