@@ -57,7 +57,12 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   const Vec2* origin = skin.skin_origin.data();
   const double* radius = skin.skin_radius.data();
   std::size_t kept = 0;
+  constexpr std::size_t kAhead = 16;  // the pairs come in cell order, the balls at random
   for (std::size_t q = 0; q < pairs.size(); ++q) {
+    if (q + kAhead < pairs.size()) {
+      __builtin_prefetch(&origin[pairs[q + kAhead].first]);
+      __builtin_prefetch(&origin[pairs[q + kAhead].second]);
+    }
     const auto [i, j] = pairs[q];
     const IndexPair pair{i < j ? i : j, i < j ? j : i};
     const double reach = radius[i] + radius[j] + 2.0 * h;
