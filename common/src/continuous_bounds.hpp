@@ -1,13 +1,21 @@
 // The continuous model's conservative tests (internal to fts_common; see
 // step_continuous.cpp): whether a ball can reach an edge or leave its skin within a
 // time, and for how many ticks two balls certainly stay apart. Each errs only toward
-// "maybe": a wrong "maybe" costs a prediction, never a result.
+// "maybe": a wrong "maybe" costs a prediction, never a result. And the small pieces of
+// the solve that need none of its state (a path's box, the push-apart of a pile).
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include "fts/sim/ball.hpp"
+#include "fts/sim/collide.hpp"
+#include "fts/sim/step_buffers.hpp"
+#include "fts/sim/physics.hpp"
 #include "lanes.hpp"
 
 namespace fts::sim::detail {
@@ -64,6 +72,37 @@ template <class B>
   const double ticks = c / (-2.0 * approach * dt);
   if (!(ticks >= 1.0)) return 0;  // also NaN
   return ticks >= static_cast<double>(kMaxSkip) ? kMaxSkip : static_cast<std::uint32_t>(ticks);
+}
+
+// The box around ball b's path from its clock to the end of the tick (dt), widened by
+// its radius; margin_scale > 0 widens it a little more (an escaped ball's box, which
+// must hold its path until its next event whatever the rounding).
+[[gnu::always_inline]] inline Box box_of_path(const SolverBall& b, double dt, double margin_scale) {
+  const Vec2 end = b.pos + b.vel * (dt - b.t);
+  // |vx| + |vy| bounds the speed from above without a square root.
+  const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt - b.t);
+  const double m = b.radius * (1.0 + 0.05 * margin_scale) + speed_margin;
+  return {std::min(b.pos.x, end.x) - m, std::min(b.pos.y, end.y) - m, std::max(b.pos.x, end.x) + m,
+          std::max(b.pos.y, end.y) + m};
+}
+
+// Pushes apart each listed pair of balls (in the list's order) that still overlaps.
+inline void separate_pairs(std::vector<Ball>& balls, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+  for (auto [i, j] : pairs) {
+    Ball& a = balls[i];
+    Ball& b = balls[j];
+    const double reach = a.radius + b.radius;
+    const double d = length(b.pos - a.pos);
+    if (d < reach) separate(a, b, contact_normal(a, b), reach - d);
+  }
+}
+
+// Every ball's centre into a walled arena (at its middle where the ball is wider).
+inline void clamp_into_walls(std::vector<Ball>& balls, const Arena& a) {
+  for (Ball& b : balls) {
+    b.pos.x = std::clamp(b.pos.x, std::min(b.radius, a.width_u * 0.5), std::max(a.width_u - b.radius, a.width_u * 0.5));
+    b.pos.y = std::clamp(b.pos.y, std::min(b.radius, a.height_u * 0.5), std::max(a.height_u - b.radius, a.height_u * 0.5));
+  }
 }
 
 }  // namespace fts::sim::detail

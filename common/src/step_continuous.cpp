@@ -44,8 +44,8 @@ class Solver {
  public:
   Solver(World& world, const PhysicsSettings& s, double dt, StepReport& report)
       : world_(world), balls_(world.balls), dt_(dt), report_(report),
-        grid_mode_(use_grid(s, world.balls.size())), bodies_(world.buffers.bodies), alive_(world.buffers.alive), escaped_flag_(world.buffers.escaped_flag),
-        escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
+        grid_mode_(use_grid(s, world.balls.size())), bodies_(world.buffers.bodies), alive_(world.buffers.alive),
+        escaped_flag_(world.buffers.escaped_flag), escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
         heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box), skin_(world.buffers) {}
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
@@ -74,14 +74,8 @@ class Solver {
     // pushed apart; then every pair is searched again from clean positions.
     if (initial_events() && !overlaps_.empty()) {
       std::sort(overlaps_.begin(), overlaps_.end());
-      for (auto [i, j] : overlaps_) {
-        Ball& a = balls_[i];
-        Ball& b = balls_[j];
-        const double reach = a.radius + b.radius;
-        const double d = length(b.pos - a.pos);
-        if (d < reach) separate(a, b, contact_normal(a, b), reach - d);
-      }
-      if (world_.arena.boundary == Boundary::walls) clamp_all_into_walls();
+      separate_pairs(balls_, overlaps_);
+      if (world_.arena.boundary == Boundary::walls) clamp_into_walls(balls_, world_.arena);
       world_.buffers.skin_valid = false;  // the balls moved
       initial_events();
     }
@@ -109,15 +103,7 @@ class Solver {
     }
   }
 
-  Box path_box(std::uint32_t i, double margin_scale) const {
-    const SolverBall& b = B_[i];
-    const Vec2 end = pos_at(i, dt_);
-    // |vx| + |vy| bounds the speed from above without a square root.
-    const double speed_margin = margin_scale * (std::fabs(b.vel.x) + std::fabs(b.vel.y)) * (dt_ - b.t);
-    const double m = b.radius * (1.0 + 0.05 * margin_scale) + speed_margin;
-    return {std::min(b.pos.x, end.x) - m, std::min(b.pos.y, end.y) - m,
-            std::max(b.pos.x, end.x) + m, std::max(b.pos.y, end.y) + m};
-  }
+  Box path_box(std::uint32_t i, double margin_scale) const { return box_of_path(B_[i], dt_, margin_scale); }
 
   // The first events of the tick; returns whether overlapping balls were found.
   bool initial_events() {
@@ -280,14 +266,6 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const double ex = B_[i].vel.x * dt, ey = B_[i].vel.y * dt;
       if (!(ex * ex + ey * ey <= h2)) escape(i);
-    }
-  }
-
-  void clamp_all_into_walls() {
-    const Arena& a = world_.arena;
-    for (Ball& b : balls_) {
-      b.pos.x = std::clamp(b.pos.x, std::min(b.radius, a.width_u * 0.5), std::max(a.width_u - b.radius, a.width_u * 0.5));
-      b.pos.y = std::clamp(b.pos.y, std::min(b.radius, a.height_u * 0.5), std::max(a.height_u - b.radius, a.height_u * 0.5));
     }
   }
 
