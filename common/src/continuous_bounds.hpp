@@ -87,7 +87,8 @@ template <class B>
 }
 
 // Pushes apart each listed pair of balls (in the list's order) that still overlaps.
-inline void separate_pairs(std::vector<Ball>& balls, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+inline void separate_pairs(std::vector<Ball>& balls,
+                           const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
   for (auto [i, j] : pairs) {
     Ball& a = balls[i];
     Ball& b = balls[j];
@@ -100,8 +101,9 @@ inline void separate_pairs(std::vector<Ball>& balls, const std::vector<std::pair
 // Every ball's centre into a walled arena (at its middle where the ball is wider).
 inline void clamp_into_walls(std::vector<Ball>& balls, const Arena& a) {
   for (Ball& b : balls) {
-    b.pos.x = std::clamp(b.pos.x, std::min(b.radius, a.width_u * 0.5), std::max(a.width_u - b.radius, a.width_u * 0.5));
-    b.pos.y = std::clamp(b.pos.y, std::min(b.radius, a.height_u * 0.5), std::max(a.height_u - b.radius, a.height_u * 0.5));
+    const double half_w = a.width_u * 0.5, half_h = a.height_u * 0.5;
+    b.pos.x = std::clamp(b.pos.x, std::min(b.radius, half_w), std::max(a.width_u - b.radius, half_w));
+    b.pos.y = std::clamp(b.pos.y, std::min(b.radius, half_h), std::max(a.height_u - b.radius, half_h));
   }
 }
 

@@ -45,8 +45,9 @@ class Solver {
   Solver(World& world, const PhysicsSettings& s, double dt, StepReport& report)
       : world_(world), balls_(world.balls), dt_(dt), report_(report),
         grid_mode_(use_grid(s, world.balls.size())), bodies_(world.buffers.bodies), alive_(world.buffers.alive),
-        escaped_flag_(world.buffers.escaped_flag), escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs), grid_(world.buffers.grid),
-        heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box), skin_(world.buffers) {}
+        escaped_flag_(world.buffers.escaped_flag), escaped_(world.buffers.escaped), overlaps_(world.buffers.pairs),
+        grid_(world.buffers.grid), heap_(world.buffers.heap), escaped_box_(world.buffers.escaped_box),
+        skin_(world.buffers) {}
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
 
@@ -92,7 +93,6 @@ class Solver {
   }
 
   BallId id_of(std::uint32_t i) const { return grid_mode_ ? BallId{skin_.skin_id[i]} : balls_[i].id; }
-
   // Every working copy from its ball (clock 0); course: changed in this solve.
   void copy_all_balls() {
     const std::uint32_t n = static_cast<std::uint32_t>(balls_.size());
@@ -230,13 +230,13 @@ class Solver {
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = balls[i];
       if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
-      // A ball whose position, velocity or mass is not what the last solve left was
-      // changed from outside: its copy is refreshed and its course changed. Compared as
-      // bits, two doubles at a time: a changed zero sign counts as a change, NaN never
-      // matches.
+      // A ball whose position, velocity or mass is not what the last solve left was changed
+      // from outside: its copy is refreshed and its course changed. Compared as bits: a
+      // changed zero sign counts as a change, NaN never matches.
       SolverBall& w = body[i];
       const Bits2 changed = (bits2(b.pos) ^ bits2(w.pos)) | (bits2(b.vel) ^ bits2(w.vel));
-      if ((changed[0] | changed[1] | (std::bit_cast<std::uint64_t>(b.mass) ^ std::bit_cast<std::uint64_t>(w.mass))) != 0) {
+      const std::uint64_t mass = std::bit_cast<std::uint64_t>(b.mass) ^ std::bit_cast<std::uint64_t>(w.mass);
+      if ((changed[0] | changed[1] | mass) != 0) {
         w.pos = b.pos;
         w.vel = b.vel;
         w.mass = b.mass;
