@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <algorithm>
 #include <utility>
@@ -84,6 +85,38 @@ template <class B>
   const double m = b.radius * (1.0 + 0.05 * margin_scale) + speed_margin;
   return {std::min(b.pos.x, end.x) - m, std::min(b.pos.y, end.y) - m, std::max(b.pos.x, end.x) + m,
           std::max(b.pos.y, end.y) + m};
+}
+
+// An edge event's code in place of the second ball's index.
+constexpr std::uint32_t kWallX = 0xffffff00u;
+constexpr std::uint32_t kWallY = 0xffffff01u;
+constexpr std::uint32_t kFall = 0xffffff02u;
+
+struct EdgeHit {
+  double after;        // time from the ball's clock; infinity: none
+  std::uint32_t edge;  // kWallX, kWallY or kFall
+};
+// The first edge ball b reaches on its line: a wall (walls), or an open edge it falls
+// from — at once when it is already off the platform (pushed out by a separation),
+// whatever its velocity.
+inline EdgeHit first_edge(const SolverBall& b, const Arena& a) {
+  EdgeHit hit{std::numeric_limits<double>::infinity(), kWallX};
+  auto axis = [&](double p, double v, double lo, double hi, std::uint32_t edge) {
+    double t = hit.after;
+    if (v < 0.0) t = p <= lo ? 0.0 : (lo - p) / v;
+    else if (v > 0.0) t = p >= hi ? 0.0 : (hi - p) / v;
+    if (t < hit.after) hit = {t, edge};
+  };
+  if (a.boundary == Boundary::walls) {
+    axis(b.pos.x, b.vel.x, b.radius, a.width_u - b.radius, kWallX);
+    axis(b.pos.y, b.vel.y, b.radius, a.height_u - b.radius, kWallY);
+  } else if (!(b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u)) {
+    hit = {0.0, kFall};
+  } else {
+    axis(b.pos.x, b.vel.x, 0.0, a.width_u, kFall);
+    axis(b.pos.y, b.vel.y, 0.0, a.height_u, kFall);
+  }
+  return hit;
 }
 
 // Pushes apart each listed pair of balls (in the list's order) that still overlaps.

@@ -35,10 +35,6 @@
 namespace fts::sim::detail {
 namespace {
 
-constexpr std::uint32_t kWallX = 0xffffff00u;
-constexpr std::uint32_t kWallY = 0xffffff01u;
-constexpr std::uint32_t kFall = 0xffffff02u;
-
 // One tick's solve over the world's balls, working in the world's step buffers.
 class Solver {
  public:
@@ -62,7 +58,7 @@ class Solver {
     if (alive_.size() != n) alive_.assign(n, 1);
     clear_escaped();  // before the resize: the list may hold the last solve's indices
     escaped_flag_.resize(n);
-    escaped_box_.resize(n);  // written when a ball escapes, read only after
+    skin_.escaped_slot.resize(n);  // written when a ball escapes, read only after
     // Raw pointers into the buffers, which keep their size for the whole solve: through
     // the vectors every access reloads the data pointer (a store might alias it).
     B_ = bodies_.data();
@@ -171,7 +167,7 @@ class Solver {
         if (!E_[j] && (grid_.is_overflow(j) || overlaps(now, grid_.box(j)))) pair_event(i, j, true);
       });
       for (std::size_t m = k + 1; m < escaped_.size(); ++m)
-        if (overlaps(escaped_box_[i], escaped_box_[escaped_[m]])) pair_event(i, escaped_[m], true);
+        if (overlaps(escaped_box_[k], escaped_box_[m])) pair_event(i, escaped_[m], true);
     }
     return !overlaps_.empty();
   }
@@ -192,12 +188,14 @@ class Solver {
     for (std::uint32_t i : escaped_)
       if (i < escaped_flag_.size()) escaped_flag_[i] = 0;
     escaped_.clear();
+    escaped_box_.clear();
   }
 
   void escape(std::uint32_t i) {
     E_[i] = 1;
+    skin_.escaped_slot[i] = static_cast<std::uint32_t>(escaped_.size());
     escaped_.push_back(i);
-    escaped_box_[i] = path_box(i, 0.1);
+    escaped_box_.push_back(path_box(i, 0.1));
   }
 
   enum class Fit { fits, crowded, changed };
@@ -318,33 +316,9 @@ class Solver {
 
   [[gnu::noinline]] void edge_event(std::uint32_t i) {
     const SolverBall& b = B_[i];
-    const Arena& a = world_.arena;
-    double best = std::numeric_limits<double>::infinity();
-    std::uint32_t kind = kWallX;
-    auto axis = [&](double p, double v, double lo, double hi, std::uint32_t k) {
-      double t = best;
-      if (v < 0.0) t = p <= lo ? 0.0 : (lo - p) / v;
-      else if (v > 0.0) t = p >= hi ? 0.0 : (hi - p) / v;
-      if (t < best) {
-        best = t;
-        kind = k;
-      }
-    };
-    if (a.boundary == Boundary::walls) {
-      axis(b.pos.x, b.vel.x, b.radius, a.width_u - b.radius, kWallX);
-      axis(b.pos.y, b.vel.y, b.radius, a.height_u - b.radius, kWallY);
-    } else {
-      // Already off the platform (pushed out by a separation): it falls now, whatever
-      // its velocity.
-      if (!(b.pos.x >= 0.0 && b.pos.x <= a.width_u && b.pos.y >= 0.0 && b.pos.y <= a.height_u)) {
-        heap_.push({b.t, i, kFall, b.stamp, 0});
-        return;
-      }
-      axis(b.pos.x, b.vel.x, 0.0, a.width_u, kFall);
-      axis(b.pos.y, b.vel.y, 0.0, a.height_u, kFall);
-    }
-    const double t = b.t + best;
-    if (t <= dt_) heap_.push({t, i, kind, b.stamp, 0});
+    const EdgeHit hit = first_edge(b, world_.arena);
+    const double t = b.t + hit.after;
+    if (t <= dt_) heap_.push({t, i, hit.edge, b.stamp, 0});
   }
 
   // Events of ball i against everything it may meet in the rest of the tick.
@@ -356,7 +330,7 @@ class Solver {
     }
     const Box now = path_box(i, 0.0);
     if (E_[i]) {
-      escaped_box_[i] = path_box(i, 0.1);  // its path until its next event
+      escaped_box_[skin_.escaped_slot[i]] = path_box(i, 0.1);  // its path until its next event
     } else if (!in_skin(i)) {
       escape(i);
     }
@@ -376,8 +350,9 @@ class Solver {
     }
     // An escaped ball's box holds its path until its next event (the small margin
     // covers rounding), so the test skips only pairs that cannot meet.
-    for (std::uint32_t j : escaped_)
-      if (overlaps(now, escaped_box_[j])) pair_event(i, j, false);
+    const Box* boxes = escaped_box_.data();  // dense, in the list's order
+    for (std::size_t k = 0; k < escaped_.size(); ++k)
+      if (overlaps(now, boxes[k])) pair_event(i, escaped_[k], false);
   }
 
   void process() {
@@ -386,6 +361,11 @@ class Solver {
     while (!heap_.empty()) {
       const Event e = heap_.top();
       heap_.pop();
+      if (!heap_.empty()) {  // the next event's balls, asked for while this one is handled
+        const Event& next = heap_.top();
+        __builtin_prefetch(&B_[next.a]);
+        if (next.b < kWallX) __builtin_prefetch(&B_[next.b]);
+      }
       if (!A_[e.a] || B_[e.a].stamp != e.stamp_a) continue;
       if (e.b < kWallX && (!A_[e.b] || B_[e.b].stamp != e.stamp_b)) continue;
       if (++handled > budget) {
@@ -479,7 +459,7 @@ class Solver {
   std::vector<IndexPair>& overlaps_;
   Grid& grid_;
   EventHeap heap_;
-  BigVector<Box>& escaped_box_;
+  std::vector<Box>& escaped_box_;
   StepBuffers& skin_;
   SolverBall* B_ = nullptr;
   std::uint32_t* C_ = nullptr;  // StepBuffers::course

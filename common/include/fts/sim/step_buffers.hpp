@@ -58,7 +58,8 @@ struct StepBuffers {
   BigVector<std::uint8_t> alive;
   BigVector<std::uint8_t> escaped_flag;
   std::vector<std::uint32_t> escaped;
-  BigVector<Box> escaped_box;  // an escaped ball's path box until its next event
+  std::vector<Box> escaped_box;  // per escaped ball, in escaped's order: its path box until its next event
+  BigVector<std::uint32_t> escaped_slot;  // per ball, while escaped: its place in escaped
   BigVector<std::uint32_t> edge_due;  // balls that may reach an edge this tick (grid mode; a prefix)
   std::vector<detail::TimedEvent> heap;
   // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
