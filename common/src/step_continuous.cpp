@@ -124,7 +124,7 @@ class Solver {
       tick_ = skin_.skin_tick;
       const std::uint32_t* start = skin_.near_start.data();
       for (std::uint32_t i = 0; i < n; ++i) {
-        C_[i] = 0;  // before the build's first solve
+        C_[i] = tick_;  // every ball "changed": every pair is due (build_continuous_skin)
         B_[i].near = start[i];
       }
       // A crowded pass did every ball's course and edge tests; after a change they are

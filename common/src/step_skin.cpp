@@ -87,9 +87,16 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
     skin.near[skin.near_fill[j]++] = i;
   }
   for (std::uint32_t i = 0; i < n; ++i) skin.near[start[i + 1] - 1] = kEndOfNear;
-  // Nothing predicted yet: every pair is due, and the solve count starts again.
-  skin.pair_wake.assign(pairs.size(), {});
-  skin.skin_tick = 1;
+  // Nothing predicted yet, every pair due: the wakes are only sized, for the solver marks
+  // every ball's course with this solve, later than any wake was seen (writing them all
+  // took longer than the pair scan's filter at 10^5). When the solve count nears
+  // overflow it starts again, and then every wake is cleared.
+  if (skin.skin_tick >= (1u << 30)) {
+    skin.pair_wake.assign(pairs.size(), {});
+    skin.skin_tick = 1;
+  } else {
+    skin.pair_wake.resize(pairs.size());
+  }
   skin.skin_dt = dt;
   skin.skin_valid = true;
   ++skin.skin_builds;
