@@ -124,7 +124,9 @@ class Solver {
       tick_ = skin_.skin_tick;
       const std::uint32_t* start = skin_.near_start.data();
       for (std::uint32_t i = 0; i < n; ++i) {
-        C_[i] = tick_;  // every ball "changed": every pair is due (build_continuous_skin)
+        // Every ball "changed" in the last solve: no earlier than any wake was seen, so
+        // every pair is due now, and before this solve's, so pairs may sleep after it.
+        C_[i] = tick_ - 1;
         B_[i].near = start[i];
       }
       // A crowded pass did every ball's course and edge tests; after a change they are

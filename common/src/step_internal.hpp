@@ -37,8 +37,8 @@ void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport
 void step_continuous(World& world, const PhysicsSettings& s, double dt, StepReport& report);
 
 // Rebuilds the continuous model's skin for these balls and tick (skin_pairs, near,
-// origins; the wakes only sized: the caller marks every ball's course with the solve
-// count, skin_tick, after the build): step_skin.cpp.
+// origins; the wakes only sized: after the build the caller marks every ball's course
+// with the solve before skin_tick, which makes every pair due): step_skin.cpp.
 void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffers& skin);
 
 }  // namespace fts::sim::detail

@@ -88,9 +88,9 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   }
   for (std::uint32_t i = 0; i < n; ++i) skin.near[start[i + 1] - 1] = kEndOfNear;
   // Nothing predicted yet, every pair due: the wakes are only sized, for the solver marks
-  // every ball's course with this solve, later than any wake was seen (writing them all
-  // took longer than the pair scan's filter at 10^5). When the solve count nears
-  // overflow it starts again, and then every wake is cleared.
+  // every ball's course with the last solve, no earlier than any wake was seen (writing
+  // them all took longer than the pair scan's filter at 10^5). When the solve count
+  // nears overflow it starts again, and then every wake is cleared.
   if (skin.skin_tick >= (1u << 30)) {
     skin.pair_wake.assign(pairs.size(), {});
     skin.skin_tick = 1;
