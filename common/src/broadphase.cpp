@@ -101,7 +101,14 @@ void Grid::build() {
   }
 }
 
-void Grid::overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+void Grid::overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out) { scan_pairs<false>(out); }
+
+void Grid::overlapping_disc_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+  scan_pairs<true>(out);
+}
+
+template <bool kDiscs>
+void Grid::scan_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out) {
   // Each slot is tested against two contiguous ranges: the rest of its cell and the
   // next one in its row, then the three cells of the row above. Their lengths vary from
   // slot to slot and about one candidate in three overlaps, so loops over the ranges
@@ -110,6 +117,8 @@ void Grid::overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>&
   // only for a longer range), unrolled, the slots past its end masked off, the box test
   // on both axes at once, and every candidate is written out and kept by its bit. The
   // pair is written as found (ordering it here compiled to a branch that mispredicts).
+  // For discs the test is on doubled centres and full widths, (sum_b - sum_a)^2 <=
+  // (width_a + width_b)^2: no division, nothing but the two slots read.
   std::size_t count = 0;
   const std::uint32_t* begin = start_.data() + 1;  // cell c is [begin[c], begin[c + 1])
   for_each_stencil_slot(grid_, begin, [&](std::uint32_t p, const HalfStencil& st) {
@@ -119,14 +128,26 @@ void Grid::overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>&
     auto* dst = out.data();
     const Slot* slots = slots_.data();
     const detail::D2 a_lo = detail::lanes(&slots[p].box.x0), a_hi = detail::lanes(&slots[p].box.x1);
+    const detail::D2 a_sum = a_lo + a_hi;
+    const double a_width = a_hi[0] - a_lo[0];
     const std::uint32_t i = slots[p].id;
     auto window = [&]<std::uint32_t kWidth>(std::uint32_t q, std::uint32_t end) {
       for (std::uint32_t w = 0; w < kWidth; ++w) {
         const Box& b = slots[q + w].box;
-        // overlaps(): a.x0 <= b.x1 & a.y0 <= b.y1 & b.x0 <= a.x1 & b.y0 <= a.y1.
-        const auto both = (a_lo <= detail::lanes(&b.x1)) & (detail::lanes(&b.x0) <= a_hi);
+        const detail::D2 b_lo = detail::lanes(&b.x0), b_hi = detail::lanes(&b.x1);
+        std::uint32_t hit;
+        if constexpr (kDiscs) {
+          const detail::D2 d = (b_lo + b_hi) - a_sum;
+          const double reach = a_width + (b_hi[0] - b_lo[0]);
+          const detail::D2 dd = d * d;
+          hit = dd[0] + dd[1] <= reach * reach ? 1u : 0u;
+        } else {
+          // overlaps(): a.x0 <= b.x1 & a.y0 <= b.y1 & b.x0 <= a.x1 & b.y0 <= a.y1.
+          const auto both = (a_lo <= b_hi) & (b_lo <= a_hi);
+          hit = static_cast<std::uint32_t>(both[0] & both[1] & 1);
+        }
         dst[count] = {i, slots[q + w].id};
-        count += static_cast<std::uint32_t>(both[0] & both[1] & 1) & static_cast<std::uint32_t>(q + w < end);
+        count += hit & static_cast<std::uint32_t>(q + w < end);
       }
     };
     window.template operator()<kRightWindow>(p + 1, st.right_end);

@@ -36,6 +36,10 @@ class Grid {
   // Every pair of overlapping boxes once, as (i, j) or (j, i), in no particular order
   // (replaces out's contents).
   void overlapping_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out);
+  // For square boxes: the pairs whose inscribed discs overlap (centre distance at most
+  // the sum of half widths, up to rounding), the same way; pairs with an overflow box
+  // are kept when their boxes overlap.
+  void overlapping_disc_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out);
   // Calls fn(i, j) with i < j for each of those pairs.
   template <class Fn>
   void for_each_overlapping_pair(Fn&& fn) {
@@ -50,6 +54,8 @@ class Grid {
   const std::vector<std::uint32_t>& overflow() const { return overflow_; }
 
  private:
+  template <bool kDiscs>
+  void scan_pairs(BigVector<std::pair<std::uint32_t, std::uint32_t>>& out);
   struct Slot {
     Box box;
     std::uint32_t id;
