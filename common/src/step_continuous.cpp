@@ -110,8 +110,8 @@ class Solver {
     if (!grid_mode_) {
       copy_all_balls();
       initial_boundary_events();
-      for (std::uint32_t i = 0; i < n; ++i)
-        for (std::uint32_t j = i + 1; j < n; ++j) pair_event(i, j, true);
+      for (std::uint32_t i = 0; i < n; ++i)  // every ball is alive at the start of a solve
+        for (std::uint32_t j = i + 1; j < n; ++j) predict(i, j, true);
       skin_.skin_valid = false;  // the wakes assume every solve saw the balls
       return !overlaps_.empty();
     }
@@ -270,7 +270,11 @@ class Solver {
   }
 
   [[gnu::always_inline]] void pair_event(std::uint32_t i, std::uint32_t j, bool record_overlap) {
-    if (i == j || !A_[i] || !A_[j]) return;
+    if (i != j && A_[i] && A_[j]) predict(i, j, record_overlap);
+  }
+
+  // The pair's event, if they meet in the rest of the tick (two live balls).
+  [[gnu::always_inline]] void predict(std::uint32_t i, std::uint32_t j, bool record_overlap) {
     const double t0 = std::max(B_[i].t, B_[j].t);
     const Vec2 d = pos_at(j, t0) - pos_at(i, t0);
     const Vec2 w = B_[j].vel - B_[i].vel;
