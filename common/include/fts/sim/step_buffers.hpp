@@ -58,17 +58,17 @@ struct StepBuffers {
   BigVector<std::uint8_t> alive;
   BigVector<std::uint8_t> escaped_flag;
   std::vector<std::uint32_t> escaped;
-  std::vector<Box> escaped_box;  // per escaped ball, in escaped's order: its path box until its next event
+  std::vector<Box> escaped_box;  // per escaped ball, in escaped's order: its path until its next event
   BigVector<std::uint32_t> escaped_slot;  // per ball, while escaped: its place in escaped
   BigVector<std::uint32_t> edge_due;  // balls that may reach an edge this tick (grid mode; a prefix)
   std::vector<detail::TimedEvent> heap;
   // Continuous model, grid mode: the skin cache. Each ball's skin box is its position at
   // the last build +- (radius + half_skin); `grid` indexes those boxes and `skin_pairs`
-  // lists the pairs whose boxes overlap (i < j; `near` the same per ball, each ball's
-  // list ended by kEndOfNear, so that a ball's copy holding where its list starts is
-  // all a refresh needs to read it). A ball
-  // whose whole path stays within half_skin of its `skin_origin` can only meet its listed
-  // neighbours and the balls that left their own skin (step_continuous.cpp).
+  // lists the pairs whose skin discs overlap (i < j; `near` the same per ball, each list
+  // ended by kEndOfNear, so that the ball's copy, holding where its list starts, is all
+  // a refresh reads first). A ball whose whole path stays within half_skin of its
+  // `skin_origin` can only meet its listed neighbours and the balls that left their own
+  // skin (step_continuous.cpp).
   BigVector<Vec2> skin_origin;
   BigVector<std::uint32_t> skin_id;   // the ball ids and radii it was built for: any
   BigVector<double> skin_radius;      // change (a ball added, removed, resized) rebuilds
