@@ -9,8 +9,8 @@
 // end. All working memory is the world's (World::buffers).
 //
 // The broad phase is a skin, kept across ticks (a Verlet list, as molecular dynamics
-// codes keep one): each ball's skin box is its position at the last build +- (radius +
-// half_skin), and the pairs whose skin boxes overlap are listed once per build. A ball
+// codes keep one): each ball's skin is the disc of radius + half_skin around its position
+// at the last build, and the pairs whose skins overlap are listed once per build. A ball
 // whose path in a tick stays within half_skin of where the skin was built can only meet
 // its listed neighbours. A ball whose path leaves its skin (at the start of a tick, or
 // after a collision) joins a small "escaped" list: it finds its partners with a query of
@@ -232,7 +232,7 @@ class Solver {
       if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
       // A ball whose position, velocity or mass is not what the last solve left was changed
       // from outside: its copy is refreshed and its course changed. Compared as bits: a
-      // changed zero sign counts as a change, NaN never matches.
+      // changed zero sign counts as a change, and so does any change of a NaN's bits.
       SolverBall& w = body[i];
       const Bits2 changed = (bits2(b.pos) ^ bits2(w.pos)) | (bits2(b.vel) ^ bits2(w.vel));
       const std::uint64_t mass = std::bit_cast<std::uint64_t>(b.mass) ^ std::bit_cast<std::uint64_t>(w.mass);
@@ -441,11 +441,11 @@ class Solver {
     }
     if (!report_.fallen.empty()) {  // only a fall ends a ball's life
       skin_.skin_valid = false;       // the indices shift (the copies are made again)
-      alive_.clear();                 // the next solve starts them all alive again
       std::size_t out = 0;
       for (std::uint32_t i = 0; i < n; ++i)
-        if (alive_[i]) balls_[out++] = balls_[i];
+        if (A_[i]) balls_[out++] = balls_[i];
       balls_.resize(out);
+      alive_.clear();  // the next solve starts them all alive again (read above, cleared after)
     }
     if (report_.event_cap_hits > 0) {
       // Out of budget (a jammed pile): leave no ball outside the arena.

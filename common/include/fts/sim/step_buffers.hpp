@@ -1,9 +1,10 @@
 // The memory one physics step works in, owned by the world that is stepped (as Box2D
 // v3's world owns its per-step stack): no thread_local scratch, no buffer borrowed from
-// elsewhere. Capacity survives a step, and one cache: the continuous model's skin grid
-// (below), which is checked against the balls at every step and rebuilt when it no longer
-// covers them, so results never depend on it. Copying a world copies no buffers: the
-// copy starts with empty ones (and builds its own cache), and steps to the same bits.
+// elsewhere. Capacity survives a step, and the continuous model's caches: its skin grid
+// and its working copies of the balls (below), checked against the balls at every step,
+// refreshed where a ball changed and rebuilt when they no longer cover them, so results
+// never depend on them. Copying a world copies no buffers: the copy starts with empty
+// ones (and builds its own caches), and steps to the same bits.
 #pragma once
 
 #include <cstdint>
