@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "../../support/count_allocations.hpp"
@@ -50,4 +51,36 @@ TEST_CASE("Server send path: no allocation per snapshot datagram once warm", "[p
   INFO(counted << " allocations for " << datagrams << " datagrams; ticks that allocated:" << ticks);
   REQUIRE(datagrams >= 40);
   CHECK(counted == 0);
+}
+
+TEST_CASE("Server send path: a snapshot datagram is PROTOCOL.md's, a list holding the one part", "[protocol]") {
+  // The direct path (append_snapshot_payload into the seal) must put on the wire what the
+  // document describes and what the general encoder wrote before it: opened with the
+  // client's keys and decoded as any payload, the datagram holds exactly one `snap`
+  // message, and encoding that list again gives the same plaintext bytes.
+  for (Encoding enc : {Encoding::msgpack, Encoding::json}) {
+    INFO((enc == Encoding::json ? "json" : "msgpack"));
+    Harness h;
+    ClientConfig config = named("ann");
+    config.encoding = enc;
+    Peer& p = h.add_client(config);
+    p.client.connect(h.now);
+    REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+    h.server.take_datagrams();
+    SealedChannel reader(p.client.session_keys(), SealDirection::client_to_server, SealDirection::server_to_client);
+    h.server.send_snapshot(1, std::make_shared<const Snapshot>(quantize(test::sample_snapshot(8, 48))), h.now);
+    const auto datagrams = h.server.take_datagrams();
+    REQUIRE_FALSE(datagrams.empty());
+    for (const Outgoing& o : datagrams) {
+      std::vector<std::uint8_t> plain;
+      const auto opened = open_sealed(reader, o.bytes, kProtocolVersion, plain);
+      REQUIRE(opened.ok());
+      CHECK(opened->header.encoding == enc);
+      REQUIRE(opened->messages.size() == 1);
+      CHECK(std::holds_alternative<SnapshotMsg>(opened->messages[0]));
+      std::vector<std::uint8_t> again;
+      append_payload(enc, opened->messages, again);
+      CHECK(again == plain);
+    }
+  }
 }
