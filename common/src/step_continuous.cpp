@@ -224,16 +224,15 @@ class Solver {
     const Ball* balls = balls_.data();
     SolverBall* body = B_;
     const std::uint32_t* ids = skin_.skin_id.data();
-    const double* radii = skin_.skin_radius.data();
     const Vec2* origins = skin_.skin_origin.data();
     const double h = 0.99 * skin_.half_skin, h2 = h * h, dt = dt_;
     for (std::uint32_t i = 0; i < n; ++i) {
       const Ball& b = balls[i];
-      if (b.id.value != ids[i] || b.radius != radii[i]) return Fit::changed;
+      SolverBall& w = body[i];  // its radius is the one the skin was built for
+      if (b.id.value != ids[i] || b.radius != w.radius) return Fit::changed;
       // A ball whose position, velocity or mass is not what the last solve left was changed
       // from outside: its copy is refreshed and its course changed. Compared as bits: a
       // changed zero sign counts as a change, and so does any change of a NaN's bits.
-      SolverBall& w = body[i];
       const Bits2 changed = (bits2(b.pos) ^ bits2(w.pos)) | (bits2(b.vel) ^ bits2(w.vel));
       const std::uint64_t mass = std::bit_cast<std::uint64_t>(b.mass) ^ std::bit_cast<std::uint64_t>(w.mass);
       if ((changed[0] | changed[1] | mass) != 0) {

@@ -35,14 +35,12 @@ void build_continuous_skin(const std::vector<Ball>& balls, double dt, StepBuffer
   skin.half_skin = h;
   skin.skin_origin.resize(n);
   skin.skin_id.resize(n);
-  skin.skin_radius.resize(n);
   BigVector<Box>& boxes = grid.boxes();
   boxes.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     const Ball& b = balls[i];
     skin.skin_origin[i] = b.pos;
     skin.skin_id[i] = b.id.value;
-    skin.skin_radius[i] = b.radius;
     const double m = b.radius + h;
     boxes[i] = {b.pos.x - m, b.pos.y - m, b.pos.x + m, b.pos.y + m};
   }

@@ -71,8 +71,9 @@ struct StepBuffers {
   // `skin_origin` can only meet its listed neighbours and the balls that left their own
   // skin (step_continuous.cpp).
   BigVector<Vec2> skin_origin;
-  BigVector<std::uint32_t> skin_id;   // the ball ids and radii it was built for: any
-  BigVector<double> skin_radius;      // change (a ball added, removed, resized) rebuilds
+  // The ball ids it was built for (the radii are the balls' copies'): any change (a ball
+  // added, removed, resized) rebuilds.
+  BigVector<std::uint32_t> skin_id;
   BigVector<std::pair<std::uint32_t, std::uint32_t>> skin_pairs;
   BigVector<std::uint32_t> near_start;  // ball i's neighbours: near[near_start[i]] .. kEndOfNear
   BigVector<std::uint32_t> near;
