@@ -51,9 +51,7 @@ int push_apart_seed(Ball& b1, const Ball& b2, int max_iterations) {
   return steps;
 }
 
-Vec2 contact_normal(Vec2 pa, Vec2 pb) {
-  const Vec2 d = pb - pa;
-  const double dist = length(d);
+Vec2 unit_normal(Vec2 d, double dist) {
   if (dist > 0.0 && std::isfinite(1.0 / dist)) return d * (1.0 / dist);
   return {1.0, 0.0};
 }

@@ -126,8 +126,9 @@ inline void separate_pairs(std::vector<Ball>& balls,
     Ball& a = balls[i];
     Ball& b = balls[j];
     const double reach = a.radius + b.radius;
-    const double d = length(b.pos - a.pos);
-    if (d < reach) separate(a, b, contact_normal(a, b), reach - d);
+    const Vec2 d = b.pos - a.pos;
+    const double dist = length(d);
+    if (dist < reach) separate(a, b, unit_normal(d, dist), reach - dist);
   }
 }
 

@@ -186,8 +186,8 @@ void step_discrete(World& world, const PhysicsSettings& s, double dt, StepReport
       const double reach = a.radius + b.radius;
       const double dist_sq = length_sq(d);
       if (dist_sq > reach * reach) continue;
-      const Vec2 n = contact_normal(a, b);
-      separate(a, b, n, reach - std::sqrt(dist_sq));
+      const double dist = std::sqrt(dist_sq);
+      separate(a, b, unit_normal(d, dist), reach - dist);
       unsettled.push_back(i);
       unsettled.push_back(j);
       if (respond_elastic(a, b, contact_direction(a, b))) {

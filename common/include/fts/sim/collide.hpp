@@ -13,9 +13,12 @@ void respond_seed(Ball& b1, Ball& b2);
 // Returns the number of unit steps taken.
 int push_apart_seed(Ball& b1, const Ball& b2, int max_iterations = 4096);
 
+// d / dist for d of length dist (a caller that has the length already); a fixed
+// deterministic +x where that is no usable unit vector (dist zero, NaN or tiny).
+Vec2 unit_normal(Vec2 d, double dist);
 // Unit contact normal from a centre at pa to one at pb; for coincident centres a fixed
 // deterministic +x.
-Vec2 contact_normal(Vec2 pa, Vec2 pb);
+inline Vec2 contact_normal(Vec2 pa, Vec2 pb) { return unit_normal(pb - pa, length(pb - pa)); }
 inline Vec2 contact_normal(const Ball& a, const Ball& b) { return contact_normal(a.pos, b.pos); }
 // The direction from a's centre to b's for respond_elastic: the centres' difference
 // itself, or contact_normal where its square is not a usable divisor (coincident,
