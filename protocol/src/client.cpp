@@ -104,14 +104,14 @@ std::uint32_t ClientEndpoint::hold_input(InputFrame frame, std::uint64_t now_ms)
 
 std::uint32_t ClientEndpoint::send_command(CommandOp op, char item, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
-  const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}, {}});
+  const std::uint32_t rid = commands_.push(Command{0, op, op == CommandOp::buy ? item : char{0}, {}, {}});
   send_packet(now_ms);
   return rid;
 }
 
 std::uint32_t ClientEndpoint::send_chat(const std::string& text, std::uint64_t now_ms) {
   if (state_ != ClientState::connected) return 0;
-  Command c{0, CommandOp::chat, 0, {}};
+  Command c{0, CommandOp::chat, 0, {}, {}};
   // Text on the wire is printable ASCII (a datagram with anything else is refused whole,
   // and a refused reliable command would block the ones after it): the rest becomes '?'.
   for (char ch : text.substr(0, kMaxTextBytes)) c.text += (ch >= 0x20 && ch < 0x7f) ? ch : '?';

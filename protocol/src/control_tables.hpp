@@ -66,13 +66,16 @@ inline const auto kErrorFields =
                     F<Error, std::string, Text>{"msg", &Error::message, {0, kMaxTextBytes}});
 
 // ---- cmd (4.6): lenient on purpose: an op or item the server cannot apply still reads,
-// so that the command is consumed and answered instead of blocking the reliable channel.
+// and a field of the wrong type, range or length reads as its default with its key in
+// Command::fault, so that the command is consumed and answered instead of blocking the
+// reliable channel. Only the rid must read: without it there is nothing to answer. The
+// chat text takes any bytes (the server cleans it).
 inline const auto kCommandFields = std::make_tuple(
     F<Command, std::uint32_t, U32>{"rid", &Command::rid, {0, kAnyU32}},
-    F<Command, CommandOp, OpenNamed<CommandOp, 6>>{
-        "op", &Command::op, {{"buy", "ready", "again", "unknown", "chat", "rooms"}, CommandOp::unknown}},
-    F<Command, char, Key>{"item", &Command::item, {}, Presence::nonzero},
-    F<Command, std::string, Text>{"text", &Command::text, {0, kMaxTextBytes}, Presence::nonzero});
+    F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 6>>>{
+        "op", &Command::op, {{{"buy", "ready", "again", "unknown", "chat", "rooms"}, CommandOp::unknown}}},
+    F<Command, char, Tolerant<Key>>{"item", &Command::item, {}, Presence::nonzero},
+    F<Command, std::string, Tolerant<AnyText>>{"text", &Command::text, {{kMaxTextBytes}}, Presence::nonzero});
 
 // ---- result (4.7)
 inline const auto kResultFields = std::make_tuple(
@@ -93,6 +96,9 @@ inline const auto kChatFields = std::make_tuple(
 inline const std::tuple<> kPingFields{};
 
 // ---- bye (4.9)
-inline const auto kByeFields = std::make_tuple(F<Bye, std::string, Text>{"reason", &Bye::reason, {0, kMaxTextBytes}});
+// A reason that does not read (not text, or not printable) reads as "": a bye is never
+// lost to its reason.
+inline const auto kByeFields =
+    std::make_tuple(F<Bye, std::string, Tolerant<Text>>{"reason", &Bye::reason, {{0, kMaxTextBytes}}});
 
 }  // namespace fts::protocol::wire

@@ -114,6 +114,25 @@ struct Key {
   }
 };
 
+// A field whose bad value costs the message nothing but that field (PROTOCOL.md 4.6,
+// 4.12): a value of the wrong type, out of range or too long is skipped, the field keeps
+// its default, and read_map notes the field's key in the message's `fault` (if it has
+// one), so that the receiver answers the message instead of dropping its datagram.
+template <class K>
+struct Tolerant {
+  K kind;
+  template <class W, class T>
+  void put(W& w, const T& v) const { kind.put(w, v); }
+  template <class T>
+  void get(MsgpackReader& r, T& v) const {
+    const std::size_t start = r.pos();
+    kind.get(r, v);
+    if (!r.failed()) return;
+    v = T{};
+    r.skip_faulty(start);
+  }
+};
+
 // An enum carried by name: names[i] is the wire text of value i.
 template <class E, std::size_t N>
 struct Named {
@@ -266,6 +285,7 @@ void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
   for (std::size_t i = 0; i < n && !r.failed(); ++i) {
     const std::string_view k = r.str(kMaxTextBytes);
     if (r.failed()) return;
+    const std::size_t faults = r.faults();
     bool matched = false;
     std::size_t index = 0;
     std::apply(
@@ -277,6 +297,8 @@ void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
         },
         table);
     if (!matched) r.skip();
+    if constexpr (requires { m.fault = std::string(k); })
+      if (r.faults() != faults && m.fault.empty()) m.fault = std::string(k);
   }
   std::size_t index = 0;
   std::apply(

@@ -30,6 +30,7 @@ std::string_view to_string(Reject reason) {
     case Reject::replayed: return "replayed";
     case Reject::bad_key: return "bad_key";
     case Reject::takeover_limited: return "takeover_limited";
+    case Reject::bad_field: return "bad_field";
     case Reject::count_: break;
   }
   return "unknown";

@@ -139,15 +139,17 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
   handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
 }
 
-std::size_t ServerEndpoint::seats_taken_from(std::string_view host) const {
+// A spectator holds no seat (PROTOCOL.md 5.6): it counts against its own cap per host.
+std::size_t ServerEndpoint::sessions_from(std::string_view host, bool spectators) const {
   return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-    return !kv.second.quit && host_of(kv.second.address) == host;
+    return !kv.second.quit && kv.second.spectator == spectators && host_of(kv.second.address) == host;
   }));
 }
 
 std::size_t ServerEndpoint::seats_taken() const {
-  return static_cast<std::size_t>(
-      std::count_if(sessions_.begin(), sessions_.end(), [](const auto& kv) { return !kv.second.quit; }));
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [](const auto& kv) {
+    return !kv.second.quit && !kv.second.spectator;
+  }));
 }
 
 std::size_t ServerEndpoint::seats_in_room(std::uint32_t room) const {
@@ -217,10 +219,12 @@ void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t
       }
       if (auto why = s.commands.accept(*c)) rejects_.add(*why);
       for (auto& cmd : s.commands.take()) {
-        commands_.push_back({s.player_id, s.room, cmd});
         ++s.unanswered;
         s.last_active_ms = now_ms;
         s.played = true;
+        // A field that did not read: answered here, never applied (PROTOCOL.md 4.6).
+        if (!cmd.fault.empty()) answer_fault(s, cmd, now_ms);
+        else commands_.push_back({s.player_id, s.room, cmd});
       }
       if (s.commands.buffered() + s.unanswered > config_.max_pending_commands)
         return overflow(s, "commands", now_ms);
@@ -282,6 +286,18 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
   s.results.push(Result{0, command_rid, ok, std::move(code), std::move(message)});
   // Sent by the next update(), batched with the session's other due results.
   if (s.results.pending() > config_.max_pending_results) overflow(s, "results", now_ms);
+}
+
+void ServerEndpoint::answer_fault(Session& s, const Command& c, std::uint64_t now_ms) {
+  rejects_.add(Reject::bad_field);
+  // op and item have their own codes (the same as an unknown op or item); any other
+  // field is "field".
+  const std::string code = c.fault == "op" || c.fault == "item" ? c.fault : "field";
+  const std::string why = c.fault == "op"     ? "op must be text: buy, ready, again, chat or rooms"
+                          : c.fault == "item" ? "item must be one printable character: m s a r l x b"
+                          : c.fault == "text" ? "text must be text of at most 200 bytes"
+                                              : c.fault + " is not valid";
+  send_result(s.player_id, c.rid, false, code, "command not applied: " + why, now_ms);
 }
 
 // A session over a queue cap: what it queued is forgotten and it is closed, as yojimbo

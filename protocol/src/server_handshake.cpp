@@ -156,10 +156,13 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
     return refuse_full(from, enc, request_bytes);
-  if (seats_taken_from(host_of(from)) >= config_.max_sessions_per_address) {
+  // A spectate hello asks for no seat: it is held to the host's spectator cap instead.
+  const bool watching = hello.join == "spectate";
+  const std::size_t cap = watching ? config_.max_spectators_per_address : config_.max_sessions_per_address;
+  if (sessions_from(host_of(from), watching) >= cap) {
     rejects_.add(Reject::address_full);
-    const std::string text = "this address has " + std::to_string(config_.max_sessions_per_address) +
-                             " players already; no more from it";
+    const std::string text = "this address has " + std::to_string(cap) +
+                             (watching ? " spectators" : " players") + " already; no more from it";
     reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
     return;
   }

@@ -230,6 +230,16 @@ class MsgpackReader {
   }
   std::size_t pos() const { return pos_; }
   void seek(std::size_t pos) { pos_ = pos < b_.size() ? pos : b_.size(); }
+  // A tolerant field (fields.hpp) that could not be read: the failure is forgotten, the
+  // value at `start` skipped (the payload was validated whole, so it can be) and counted.
+  void skip_faulty(std::size_t start) {
+    failed_ = false;
+    reason_ = Reject::garbage;
+    seek(start);
+    skip();
+    ++faults_;
+  }
+  std::size_t faults() const { return faults_; }
   std::span<const std::uint8_t> bytes(std::size_t from, std::size_t to) const { return b_.subspan(from, to - from); }
   bool at_end() const { return pos_ >= b_.size(); }
   std::size_t remaining() const { return b_.size() - pos_; }
@@ -421,6 +431,7 @@ class MsgpackReader {
   std::span<const std::uint8_t> b_;
   std::size_t pos_ = 0;
   bool failed_ = false;
+  std::size_t faults_ = 0;
   Reject reason_ = Reject::garbage;
 };
 

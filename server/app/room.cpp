@@ -18,6 +18,8 @@ std::string result_message(const sim::CommandResult& r) {
     return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
   }
   if (r.code == sim::Refusal::no_player) return "not in the match";
+  // An unknown item has no name of its own (r.item is only a default then).
+  if (r.code == sim::Refusal::unknown_item) return "no such item; the shop sells m s a r l x b";
   const std::string item(sim::to_string(r.item));
   if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
   return item + " not bought: " + std::string(sim::to_string(r.code));

@@ -12,6 +12,15 @@ try:
 except ImportError:  # a Python of its own (pyenv, venv) next to Debian's python3-nacl
     sys.path.append("/usr/lib/python3/dist-packages")
     import nacl.bindings as nb
+try:
+    import msgpack  # Debian: python3-msgpack (only the MessagePack sessions need it)
+except ImportError:
+    if "/usr/lib/python3/dist-packages" not in sys.path:
+        sys.path.append("/usr/lib/python3/dist-packages")
+    try:
+        import msgpack
+    except ImportError:
+        msgpack = None
 
 VERSION = 3
 HEADER_BYTES = 21
@@ -21,6 +30,25 @@ C2S, S2C, HELLO_TOKEN = 1, 2, 3
 
 def header(session=0, seq=0, ack=0, ack_bits=0, delay=0, encoding=0, version=VERSION):
     return b"FTSP" + struct.pack(">HBIHHIH", version, encoding, session, seq, ack, ack_bits, delay)
+
+
+JSON, MSGPACK = 0, 1  # the header's encoding flags (PROTOCOL.md 2, 3)
+
+
+def encode(messages, encoding):
+    if encoding == MSGPACK:
+        return msgpack.packb(messages, use_bin_type=True)
+    return json.dumps(messages, separators=(",", ":")).encode()
+
+
+def decode(body, encoding):
+    """The messages of a payload, or None if it does not parse."""
+    try:
+        if encoding == MSGPACK:
+            return msgpack.unpackb(body, raw=False)
+        return json.loads(body.decode())
+    except Exception:  # ValueError, msgpack's ExtraData / UnpackValueError
+        return None
 
 
 def nonce(direction, sequence):
@@ -63,17 +91,24 @@ class Session:
     """One client's side of a JSON session after the handshake: seals what it sends
     (its own sequence), opens what the server sends (no replay window: a test script)."""
 
-    def __init__(self, session_id, rx, tx):
-        self.id, self.rx, self.tx = session_id, rx, tx
+    def __init__(self, session_id, rx, tx, encoding=JSON):
+        self.id, self.rx, self.tx, self.encoding = session_id, rx, tx, encoding
         self.seq = 0
         self.newest = 0
+        self.seen = set()  # extended sequences opened (for the header's ack and ack bits)
 
     def datagram(self, messages, seq=None):
         if seq is None:
             self.seq = self.seq % 65535 + 1
             seq = self.seq
-        body = json.dumps(messages, separators=(",", ":")).encode()
-        return seal(self.tx, C2S, seq, header(self.id, seq), body)
+        body = encode(messages, self.encoding)
+        # Acknowledges what arrived (PROTOCOL.md 2, 6), so reliable results stop coming again.
+        ack = self.newest & 0xFFFF
+        bits = 0
+        for i in range(32):
+            if self.newest - 1 - i in self.seen:
+                bits |= 1 << i
+        return seal(self.tx, C2S, seq, header(self.id, seq, ack=ack, ack_bits=bits, encoding=self.encoding), body)
 
     def open(self, data):
         """The messages of a datagram of this session, or None."""
@@ -84,16 +119,20 @@ class Session:
         if body is None:
             return None
         self.newest = max(self.newest, seq)
-        return json.loads(body.decode())
+        self.seen.add(seq)
+        if len(self.seen) > 256:
+            self.seen = {x for x in self.seen if x > self.newest - 64}
+        return decode(body, self.encoding)
 
 
 class Handshake:
     """The client side of the handshake (PROTOCOL.md 5): hellos with this attempt's key,
     the challenge's key, the sealed welcome."""
 
-    def __init__(self, name, nonce_value, token=""):
+    def __init__(self, name, nonce_value, token="", encoding=JSON, join="", room=""):
         self.pk, self.sk = nb.crypto_kx_keypair()
         self.name, self.nonce, self.token = name, nonce_value, token
+        self.encoding, self.join, self.room = encoding, join, room
         self.cookie = ""
         self.rx = self.tx = None
         self.session = None  # a Session once welcomed
@@ -104,9 +143,12 @@ class Handshake:
         box = token_box(self.tx, self.pk, self.token) if self.token and self.tx else ""
         msg = {"t": "hello", "name": self.name, "token": box, "cookie": self.cookie,
                "nonce": f"{self.nonce:016x}", "key": self.pk.hex(), "pad": ""}
-        body = json.dumps([msg]).encode()
-        msg["pad"] = "." * max(0, 512 - HEADER_BYTES - len(body))
-        return header() + json.dumps([msg]).encode()
+        if self.join:
+            msg["join"], msg["room"] = self.join, self.room
+        # 512 bytes at least (5.1); a longer pad may need a longer MessagePack length prefix.
+        while HEADER_BYTES + len(encode([msg], self.encoding)) < 512:
+            msg["pad"] += "." * (512 - HEADER_BYTES - len(encode([msg], self.encoding)))
+        return header(encoding=self.encoding) + encode([msg], self.encoding)
 
     def receive(self, data):
         """Feeds one datagram; returns True when the hello should be sent again now."""
@@ -114,11 +156,8 @@ class Handshake:
             return False
         session = struct.unpack(">I", data[7:11])[0]
         if session == 0:
-            try:
-                msgs = json.loads(data[HEADER_BYTES:].decode())
-            except ValueError:
-                return False
-            for m in msgs:
+            msgs = decode(data[HEADER_BYTES:], data[6] & 3)
+            for m in msgs or []:
                 if m.get("t") == "challenge" and not self.cookie:
                     self.cookie = m["cookie"]
                     self.rx, self.tx = client_keys(self.pk, self.sk, bytes.fromhex(m["key"]))
@@ -127,7 +166,7 @@ class Handshake:
                     self.error = m["code"]
             return False
         if self.session is None and self.rx is not None:
-            s = Session(session, self.rx, self.tx)
+            s = Session(session, self.rx, self.tx, self.encoding)
             msgs = s.open(data)
             for m in msgs or []:
                 if m.get("t") == "welcome":

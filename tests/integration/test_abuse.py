@@ -9,6 +9,9 @@ command_flood: a scripted session sends 150 datagrams/s of 24 commands each and 
 forged:       a scripted session's address and session id with unsealed commands, tampered
               and replayed datagrams: each dropped and counted (forged, replayed), no
               command answered, and the session goes on.
+bad_fields:   every cmd op with every kind of bad field (wrong type, control bytes, too
+              long, UTF-8), in JSON and MessagePack: each command answered with its code,
+              and the reliable channel goes on (issue 25: a control byte stalled it).
 Scripted sessions speak PROTOCOL.md directly (JSON encoding, sealed with PyNaCl as in
 sealed.py) from Python sockets."""
 import json, os, socket, struct, sys, time
@@ -24,12 +27,12 @@ class Script:
     """One handshake from its own port (sealed.Handshake, PROTOCOL.md 5 and 5.7); resends
     its hello every 250 ms like a client. Once welcomed, `session` seals what it sends."""
 
-    def __init__(self, port, nonce):
+    def __init__(self, port, nonce, **hello):
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.sock.bind((FLOOD_HOST, 0))
         self.sock.setblocking(False)
         self.server = ("127.0.0.1", port)
-        self.hs = sealed.Handshake(f"script{nonce % 100}", nonce)
+        self.hs = sealed.Handshake(f"script{nonce % 100}", nonce, **hello)
         self.last_hello = 0.0
 
     @property
@@ -98,6 +101,17 @@ def test_address_full():
         print(f"welcomed {len(welcomed)}, refused {refused}")
         check(len(welcomed) == 4, f"4 sessions from one host, got {len(welcomed)}")
         check(refused == ["address_full"] * 4, f"4 address_full refusals, got {refused}")
+        # A spectator holds no seat (PROTOCOL.md 5.6): the full host may still watch, up
+        # to its own spectator cap (8), and the 9th spectator is refused.
+        code = welcomed[0].hs.welcome.get("room")
+        check(code, f"no room code in the welcome: {welcomed[0].hs.welcome}")
+        watchers = [Script(srv.port, 0xac00 + i, join="spectate", room=code) for i in range(9)]
+        for w in watchers:  # one at a time: which one is the 9th is then certain
+            handshake_all([w], 10)
+        watching = [w for w in watchers if w.session and w.hs.welcome.get("spectator") is True]
+        print(f"spectators from the full host: {len(watching)} welcomed, refused {[w.error for w in watchers if w.error]}")
+        check(len(watching) == 8, f"8 spectators from a host with 4 seats, got {len(watching)}")
+        check(watchers[8].error == "address_full", f"the 9th spectator: {watchers[8].error}")
         # The welcomed scripts keep their sessions alive while a real player joins.
         bot = start_bots("--connect", srv.address, "--name", "real", "--behavior", "hunter", "--duration", "4")
         deadline = time.monotonic() + 4
@@ -203,6 +217,79 @@ def test_forged():
         check(answered[0]["rid"] == 1, f"result: {answered[0]}")
 
 
+def answers(script, want, timeout_s, chats=None):
+    """Pumps the script's session (heartbeats carry its acks) until results for every
+    rid in `want` arrived; returns {cmd rid: result}. Chat lines go to `chats`."""
+    got = {}
+    last = [0.0]
+
+    def done():
+        for m in script.received():
+            if m.get("t") == "result":
+                got.setdefault(m["cmd"], m)
+            elif m.get("t") == "chat" and chats is not None and m["rid"] not in [c["rid"] for c in chats]:
+                chats.append(m)
+        if time.monotonic() - last[0] > 0.05:
+            script.sock.sendto(script.session.datagram([{"t": "input", "ack": 0, "f": []}]), script.server)
+            last[0] = time.monotonic()
+        return all(r in got for r in want)
+    wait_for(done, timeout_s, f"results for commands {sorted(set(want) - set(got))}")
+    return got
+
+
+def bad_field_cases():
+    """(cmd without its rid, the result code it must get). Every op, every kind of bad
+    field; a bad field is answered with the field's code and never applied."""
+    cases = []
+    for op in ("buy", "ready", "again", "chat", "rooms", "dance"):
+        for key, value, code in (("item", 7, "item"), ("item", "\x01", "item"), ("item", ["m"], "item"),
+                                 ("text", 5, "field"), ("text", "x" * 300, "field"), ("text", {"a": 1}, "field")):
+            cases.append(({"op": op, key: value}, code))
+    for value in (5, "\x01buy", ["buy"], "b" * 300):
+        cases.append(({"op": value}, "op"))
+    # Meaning, not shape: answered by the game or the host as PROTOCOL.md 4.6 says.
+    cases += [({"op": "buy", "item": "z"}, "item"), ({"op": "buy", "item": "mm"}, "item"),
+              ({"op": "dance"}, "op"), ({"op": "buy", "item": "m", "zz": [1, {"q": 2}]}, "phase"),
+              ({"op": "chat", "text": "ctl\x01x"}, "ok"), ({"op": "chat", "text": "\x01\x02\x1b"}, "empty"),
+              ({"op": "chat", "text": "\u00fcn\u00efcode"}, "ok"), ({"op": "rooms"}, "ok")]
+    return cases
+
+
+def test_bad_fields():
+    for encoding in (sealed.JSON, sealed.MSGPACK):
+        with Server("--stats-interval-ms", "200", "--log-format", "json") as srv:
+            script = Script(srv.port, 0xbad0 + encoding, encoding=encoding)
+            handshake_all([script], 10)
+            check(script.session is not None, f"the script was refused: {script.error}")
+            cases = bad_field_cases()
+            chats = []
+            # One command per datagram, each waited for: a stalled channel shows at once.
+            for rid, (fields, code) in enumerate(cases, start=1):
+                script.sock.sendto(script.session.datagram([{"t": "cmd", "rid": rid, **fields}]), script.server)
+                got = answers(script, [rid], 5, chats)[rid]
+                check(got["code"] == code, f"{fields}: answered {got}, want code {code}")
+                check(got["ok"] == (code == "ok"), f"{fields}: {got}")
+                if code == "item":
+                    check("mass" not in got["msg"], f"an unknown item's answer names mass: {got}")
+            # The channel goes on: seven chat lines after the control byte, all answered
+            # (the first two fill the burst of 5 with the lines above; the rest are "rate").
+            first = len(cases) + 1
+            for rid in range(first, first + 7):
+                script.sock.sendto(script.session.datagram([{"t": "cmd", "rid": rid, "op": "chat", "text": "hi"}]),
+                                   script.server)
+            got = answers(script, range(first, first + 7), 5, chats)
+            codes = [got[r]["code"] for r in range(first, first + 7)]
+            check(codes[0] == "ok" and all(c in ("ok", "rate") for c in codes), f"chat after the bad ones: {codes}")
+            # The cleaned lines: the control byte dropped, each UTF-8 letter one '?'.
+            wait_for(lambda: answers(script, [], 1, chats) is not None and len(chats) >= 3, 5, "the chat lines")
+            texts = [c["text"] for c in chats]
+            print(f"encoding {encoding}: {len(cases)} commands answered; chat codes after them {codes}; "
+                  f"lines relayed {texts}")
+            check(texts[:3] == ["ctlx", "?n?code", "hi"], f"the relayed lines: {texts}")
+            wait_for(lambda: drops_logged(srv).get("bad_field", 0) >= 6 * 6 + 4, 5, "bad_field counted in the stats")
+            print(f"drops: {drops_logged(srv)}")
+
+
 def stats_lines(srv):
     return [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
 
@@ -268,4 +355,4 @@ def test_soak_flood():
 
 if __name__ == "__main__":
     sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood,
-                   "forged": test_forged, "soak_flood": test_soak_flood}))
+                   "forged": test_forged, "soak_flood": test_soak_flood, "bad_fields": test_bad_fields}))

@@ -29,7 +29,7 @@ TEST_CASE("Join fields: hello join/room, welcome room/spectator, cmd rooms round
   w.spectator = true;
   const std::vector<Message> messages = {Hello{"cat", "", "", "..", "00112233445566ff", "spectate", "KXBQT"},
                                          Hello{"dan", "", "", "..", "00112233445566fe", "create", ""}, w,
-                                         Command{4, CommandOp::rooms, 0, {}}};
+                                         Command{4, CommandOp::rooms, 0, {}, {}}};
   for (Encoding enc : {Encoding::json, Encoding::msgpack})
     for (const auto& m : messages) CHECK(round_trip(m, enc) == m);
 }

@@ -140,11 +140,11 @@ TEST_CASE("Limits: commands past the cap drop the session", "[protocol][limits]"
   SECTION("delivered and not answered") {
     Flooder f(config);
     std::vector<Message> batch;
-    for (std::uint32_t rid = 1; rid <= 32; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}});
+    for (std::uint32_t rid = 1; rid <= 32; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}, {}});
     f.raw(batch);
     CHECK(f.h.server.rejects()[Reject::overflow] == 0);
     batch.clear();
-    for (std::uint32_t rid = 33; rid <= 41; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}});
+    for (std::uint32_t rid = 33; rid <= 41; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}, {}});
     f.raw(batch);
     CHECK(f.h.server.rejects()[Reject::overflow] == 1);
     CHECK(f.h.server.take_commands().empty());  // what it queued is not handed to the game
@@ -155,7 +155,7 @@ TEST_CASE("Limits: commands past the cap drop the session", "[protocol][limits]"
     std::uint32_t rid = 1;
     for (int packet = 0; packet < 10 && !f.h.server.connected_players().empty(); ++packet) {
       std::vector<Message> batch;
-      for (int i = 0; i < 32; ++i) batch.push_back(Command{rid++, CommandOp::buy, 'm', {}});
+      for (int i = 0; i < 32; ++i) batch.push_back(Command{rid++, CommandOp::buy, 'm', {}, {}});
       f.raw(batch);
       for (const auto& c : f.h.server.take_commands())
         f.h.server.send_result(c.player_id, c.command.rid, false, "coins", "no", f.h.now);
@@ -166,12 +166,12 @@ TEST_CASE("Limits: commands past the cap drop the session", "[protocol][limits]"
   SECTION("buffered out of order") {
     Flooder f(config);
     std::vector<Message> batch;
-    for (std::uint32_t rid = 2; rid <= 33; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}});
+    for (std::uint32_t rid = 2; rid <= 33; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}, {}});
     f.raw(batch);  // 32 held: rid 1 is missing
     CHECK(f.h.server.take_commands().empty());
     CHECK(f.h.server.rejects()[Reject::overflow] == 0);
     batch.clear();
-    for (std::uint32_t rid = 100; rid <= 108; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}});
+    for (std::uint32_t rid = 100; rid <= 108; ++rid) batch.push_back(Command{rid, CommandOp::buy, 'm', {}, {}});
     f.raw(batch);
     CHECK(f.h.server.rejects()[Reject::overflow] == 1);
   }

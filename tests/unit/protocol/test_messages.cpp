@@ -69,7 +69,7 @@ TEST_CASE("golden bytes", "[protocol][messages][golden]") {
     CHECK(payload == R"([{"t":"ping"}])");
   }
   SECTION("command in JSON") {
-    const auto bytes = encode_datagram(h, {Command{1, CommandOp::buy, 'm', {}}});
+    const auto bytes = encode_datagram(h, {Command{1, CommandOp::buy, 'm', {}, {}}});
     const std::string payload(bytes.begin() + kHeaderBytes, bytes.end());
     CHECK(payload == R"([{"t":"cmd","rid":1,"op":"buy","item":"m"}])");
   }

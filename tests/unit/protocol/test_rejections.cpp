@@ -271,7 +271,7 @@ TEST_CASE("client rejections", "[protocol][reject]") {
     Header h;
     h.session = read_header(c.valid)->session;
     h.sequence = 999;
-    client.receive(seal_as(client, h, {Command{1, CommandOp::ready, 0, {}}}, true), c.h.now);
+    client.receive(seal_as(client, h, {Command{1, CommandOp::ready, 0, {}, {}}}, true), c.h.now);
     CHECK(client.rejects()[Reject::unexpected] == 1);
   }
   SECTION("garbage") {

@@ -48,7 +48,7 @@ TEST_CASE("duplicates and packets too far behind are refused", "[protocol][ack]"
 
 TEST_CASE("reliable receiver delivers in order exactly once", "[protocol][reliable]") {
   ReliableReceiver<Command> rx;
-  auto cmd = [](std::uint32_t rid) { return Command{rid, CommandOp::ready, 0, {}}; };
+  auto cmd = [](std::uint32_t rid) { return Command{rid, CommandOp::ready, 0, {}, {}}; };
   CHECK_FALSE(rx.accept(cmd(2)));
   CHECK(rx.take().empty());
   CHECK(rx.accept(cmd(2)) == Reject::stale);
@@ -63,7 +63,7 @@ TEST_CASE("reliable receiver delivers in order exactly once", "[protocol][reliab
 
 TEST_CASE("reliable sender resends until acknowledged", "[protocol][reliable]") {
   ReliableSender<Command> tx;
-  tx.push(Command{0, CommandOp::buy, 'm', {}});
+  tx.push(Command{0, CommandOp::buy, 'm', {}, {}});
   CHECK(tx.collect(1, 0, 100, 8).size() == 1);
   CHECK(tx.collect(2, 50, 100, 8).empty());  // too early to resend
   CHECK(tx.collect(3, 100, 100, 8).size() == 1);

@@ -151,7 +151,7 @@ TEST_CASE("Sealed: a forged datagram is dropped and counted, nothing changes", "
   // clear, and 16 bytes where a tag would be.
   Header h = *read_header(good, kProtocolVersion);
   h.sequence = static_cast<std::uint16_t>(h.sequence + 30000);
-  auto forged = encode_datagram(h, {Command{1, CommandOp::buy, 'm', {}}, Command{2, CommandOp::ready, 0, {}}});
+  auto forged = encode_datagram(h, {Command{1, CommandOp::buy, 'm', {}, {}}, Command{2, CommandOp::ready, 0, {}, {}}});
   forged.resize(forged.size() + kSealTagBytes, 0);
   c.h.server.receive(c.p->address, forged, c.h.now);
 

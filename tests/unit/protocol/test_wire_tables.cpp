@@ -56,7 +56,7 @@ TEST_CASE("Wire tables: messages from another writer (keys sorted, \"t\" last) d
        R"("tick_rate_hz":100,"timeout_ms":10000,"token":"bcf8ef0b804a8357ee42dd8334a3619d"}])",
        Welcome{1, "bcf8ef0b804a8357ee42dd8334a3619d", 100, 20, 500, 300, 8, 10000, 60000, 3, 0, false,
                {0.02, 1.1, 1.1}}},
-      {R"([{"item":"m","op":"buy","rid":1,"t":"cmd"}])", Command{1, CommandOp::buy, 'm', {}}},
+      {R"([{"item":"m","op":"buy","rid":1,"t":"cmd"}])", Command{1, CommandOp::buy, 'm', {}, {}}},
       {R"([{"cmd":1,"code":"ok","msg":"bought mass: 41 -> 42","ok":true,"rid":1,"t":"result"}])",
        Result{1, 1, true, "ok", "bought mass: 41 -> 42"}},
       {R"([{"from":0,"name":"host","rid":2,"t":"chat","text":"bye"}])", Chat{2, 0, "host", "bye"}},

@@ -76,9 +76,9 @@ TEST_CASE("Host sessions: a command that cannot be applied is answered, and the 
   auto header = protocol::read_header(real[0]);
   REQUIRE(header);
   const std::vector<protocol::Message> messages = {protocol::Input{0, {}},
-                                                   protocol::Command{1, protocol::CommandOp::unknown, 0, {}},
-                                                   protocol::Command{2, protocol::CommandOp::buy, 'z', {}},
-                                                   protocol::Command{3, protocol::CommandOp::buy, 0, {}}};
+                                                   protocol::Command{1, protocol::CommandOp::unknown, 0, {}, {}},
+                                                   protocol::Command{2, protocol::CommandOp::buy, 'z', {}, {}},
+                                                   protocol::Command{3, protocol::CommandOp::buy, 0, {}, {}}};
   // Sealed with the client's keys in place of its own datagram (same header).
   protocol::SealedChannel channel(rig.client.session_keys(), protocol::SealDirection::client_to_server,
                                   protocol::SealDirection::server_to_client);

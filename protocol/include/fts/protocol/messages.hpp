@@ -100,6 +100,9 @@ struct Command {
   CommandOp op = CommandOp::ready;
   char item = 0;  // buy only: an item's shop key (m s a r l x b); 0 when missing or not one character
   std::string text;  // chat only: the line said (<= kMaxTextBytes; the server cuts and cleans it)
+  // Not on the wire: the key of the first field a receiver could not read ("" when all
+  // read). The server answers such a command without applying it (PROTOCOL.md 4.6).
+  std::string fault;
   bool operator==(const Command&) const = default;
 };
 

@@ -35,6 +35,7 @@ enum class Reject : std::uint8_t {
   replayed,           // a sealed datagram whose sequence was seen already or is older than the window
   bad_key,            // a handshake key exchange public key missing or refused
   takeover_limited,   // over the address's rate of token take-overs
+  bad_field,          // a cmd field that did not read: the cmd is answered, not applied; the datagram goes on
   count_
 };
 

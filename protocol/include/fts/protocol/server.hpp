@@ -98,6 +98,8 @@ struct ServerConfig {
   // Fair slots. Seated sessions from one host (households share one NAT address); the
   // next new player from it gets error "address_full".
   std::size_t max_sessions_per_address = 4;
+  // Spectators hold no seat; connected spectators from one host, apart from its seats.
+  std::size_t max_spectators_per_address = 8;
   // Handshake datagrams (session 0) per host; over it they are dropped (rate_limited).
   std::uint32_t hellos_per_s = 10;
   std::uint32_t hello_burst = 10;
@@ -284,6 +286,7 @@ class ServerEndpoint {
   AddressState* address_state(std::string_view host, std::uint64_t now_ms);
   void forget_quiet_addresses(std::uint64_t now_ms);
   void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
+  void answer_fault(Session& s, const Command& c, std::uint64_t now_ms);
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
                     std::size_t request_bytes, std::uint64_t now_ms);
   void handle_session(Session& s, const Datagram& d, std::uint64_t now_ms);
@@ -294,7 +297,7 @@ class ServerEndpoint {
                      const SessionKeys& keys, std::uint64_t now_ms);
   void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
   std::size_t seats_taken() const;
-  std::size_t seats_taken_from(std::string_view host) const;
+  std::size_t sessions_from(std::string_view host, bool spectators) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   // A session's next header (its sequence and acks stamped).
