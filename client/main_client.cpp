@@ -23,6 +23,7 @@
 #include "ui/interpolate.hpp"
 #include "ui/link_meters.hpp"
 #include "ui/panel.hpp"
+#include "ui/pointer_steer.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 #include "ui/session_store.hpp"
@@ -52,6 +53,7 @@ class Game {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
     conn_.connect(now_ms());
     last_rx_ms_ = now_ms();
+    connect_ms_ = now_ms();
     open_socket();
     flush();
     frame();
@@ -81,9 +83,23 @@ class Game {
     opts_.fresh = true;
     conn_ = proto::ClientConnection(connection_config(opts_, store_), /*resume_when_lost=*/true);
     conn_.connect(now);
+    connect_ms_ = now;
     noted_attempt_ = 0;
     open_socket();
     note("The old session has expired: playing as a new player.");
+  }
+
+  // Back after an idle kick: the saved token takes the player (and its coins) back into
+  // its room while the server keeps it (the reconnect window); after that, a new player.
+  void rejoin(std::uint64_t now) {
+    idle_ = false;
+    conn_ = proto::ClientConnection(connection_config(opts_, store_), /*resume_when_lost=*/true);
+    conn_.connect(now);
+    connect_ms_ = now;
+    last_rx_ms_ = now;
+    noted_attempt_ = 0;
+    open_socket();
+    note("Coming back...");
   }
 
   // A fresh local port for each attempt: to the server a reconnect is a new address
@@ -144,8 +160,13 @@ class Game {
   }
 
   // The chat line being typed takes every key: Enter sends, Esc cancels.
+  // A report of the pointer or the window's focus, not a key a person pressed.
+  static bool not_a_key(const KeyEvent& e) {
+    return e.key == Key::mouse || e.key == Key::focus_in || e.key == Key::focus_out;
+  }
+
   void chat_key(const KeyEvent& e, std::uint64_t now) {
-    if (e.action == KeyAction::release || e.key == Key::mouse) return;
+    if (e.action == KeyAction::release || not_a_key(e)) return;
     if (e.key == Key::escape || e.key == Key::ctrl_c) {
       view_.chat_open = false;
       view_.chat_draft.clear();
@@ -164,13 +185,18 @@ class Game {
   }
 
   void handle_key(const KeyEvent& e, std::uint64_t now) {
+    if (e.key == Key::focus_out) steer_.stop();  // a window without the focus steers nothing
+    if (idle_ && e.action != KeyAction::release && !not_a_key(e)) {  // kicked as idle: q leaves, any key plays
+      if (e.key == Key::ctrl_c || (e.key == Key::character && e.ch == 'q')) return finish(0, "");
+      return rejoin(now);
+    }
     if (view_.chat_open) return chat_key(e, now);
     const Action a = action_of(e, phase());
     const bool connected = conn_.state() == proto::ClientState::connected;
     // Quitting asks first: q (or Ctrl-C) once asks, q or y again quits, any other key stays.
     const bool yes = e.key == Key::character && e.ch == 'y';
     if (quit_asked_ && (a.kind == ActionKind::quit || yes)) return finish(0, "");
-    if (quit_asked_ && e.action != KeyAction::release && e.key != Key::mouse) {  // a moved pointer is no answer
+    if (quit_asked_ && e.action != KeyAction::release && !not_a_key(e)) {  // a moved pointer is no answer
       quit_asked_ = false;
       view_.status.clear();
       note("Staying.");
@@ -184,13 +210,11 @@ class Game {
         return;
       case ActionKind::move:
         if (auto d = direction_of(e)) hold_.on_key(*d, e, now);
-        view_.mouse_steering = false;  // the keys take over until the pointer moves again
+        steer_.stop();  // the keys take over until the pointer moves again
         break;
       case ActionKind::pointer:
         if (!opts_.mouse) break;
-        pointer_col_ = e.col;
-        pointer_row_ = e.row;
-        if (e.action == KeyAction::press) view_.mouse_steering = true;
+        if (e.action == KeyAction::press) aim_at(e.col, e.row);
         if (!e.motion && e.action == KeyAction::press && e.button == 0 && phase() == proto::Phase::play) fire_ = true;
         break;
       case ActionKind::chat:
@@ -225,8 +249,9 @@ class Game {
   void send_input(std::uint64_t now) {
     if (conn_.state() != proto::ClientState::connected) return;
     proto::InputFrame f;
-    if (phase() == proto::Phase::play && view_.mouse_steering) {
-      const Steer st = mouse_steer();
+    if (phase() != proto::Phase::play) steer_.stop();
+    if (phase() == proto::Phase::play && steer_.active()) {
+      const Steer st = mouse_steer(now);
       f.move_x = static_cast<std::int8_t>(st.x);
       f.move_y = static_cast<std::int8_t>(st.y);
     } else if (phase() == proto::Phase::play) {
@@ -235,6 +260,7 @@ class Game {
     } else {
       hold_.release_all();
     }
+    view_.mouse_steering = steer_.active();
     f.fire = fire_;
     // The lean uplink (PROTOCOL.md 4.5), as the bots: a frame on change (at most every
     // 20 ms; a fire is kept until then) and a keep-alive every 50 ms.
@@ -242,17 +268,28 @@ class Game {
     fire_ = false;
   }
 
-  // Toward the pointer, per axis, from where our ball is drawn; within a cell of it: still.
-  Steer mouse_steer() const {
+  // The pointer's cell as a point of the platform: steering starts (or ends, off it).
+  void aim_at(int col, int row) {
+    const proto::Snapshot* s = buffer_.newest();
+    if (s == nullptr || s->phase != proto::Phase::play) return;
+    const Viewport v = arena_viewport(last_size_, view_, *s);
+    const bool on = col >= v.col0 && col < v.col0 + v.cols && row >= v.row0 && row < v.row0 + v.rows;
+    steer_.aim(v.x_of(col), v.y_of(row), on);
+  }
+
+  // The thrust toward the aim (ui/pointer_steer.hpp) for our ball in the newest snapshot,
+  // which acts after the snapshot's age plus half a round trip.
+  Steer mouse_steer(std::uint64_t now) {
     const proto::Snapshot* s = buffer_.newest();
     if (s == nullptr) return {};
-    for (const auto& b : s->balls) {
-      if (b.kind != proto::BallKind::player || b.owner != view_.my_player_id) continue;
-      const Viewport v = arena_viewport(last_size_, view_, *s);
-      const double px = v.x_of(pointer_col_), py = v.y_of(pointer_row_);
-      return {steer_toward(b.x, 0, px, 0, v.units_per_col()).x, steer_toward(0, b.y, 0, py, v.units_per_row()).y};
-    }
-    return {};
+    const PlayerState* me = find_player(*s, view_.my_player_id);
+    std::optional<SteerBall> ball;
+    for (const auto& b : s->balls)
+      if (b.kind == proto::BallKind::player && b.owner == view_.my_player_id && me != nullptr)
+        ball = SteerBall{b.id, b.x, b.y, b.vx, b.vy, b.radius, me->accel_u_per_s2, me->vmax_u_per_s};
+    const double age_s = std::max(0.0, clock_.tick_at(now) - static_cast<double>(s->tick)) / clock_rate();
+    const double rtt_s = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms / 1000.0 : 0.0;
+    return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, age_s + rtt_s / 2);
   }
 
   void absorb(std::uint64_t now) {
@@ -267,6 +304,7 @@ class Game {
       view_.shop_terms = w.shop;
       view_.tick_rate_hz = w.tick_rate_hz;
       clock_.set_tick_rate(w.tick_rate_hz);
+      events_.start_at(w.server_tick);  // not what happened here before we came back
       view_.room = room_label(w.room, w.spectator);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
       if (!w.room.empty()) {
@@ -316,18 +354,36 @@ class Game {
     const S st = conn_.state();
     if (st == S::refused && endpoint.error() && endpoint.error()->code == "bad_token" && !opts_.fresh)
       return start_fresh(now);
+    if (idle_) return;
+    if (st == S::refused && endpoint.error() && endpoint.error()->code == "idle") {
+      // The server treats an idle player as one who quit: its seat is free, its progress
+      // kept for the reconnect window. Stay, and come back on a key (issue 26).
+      idle_ = true;
+      steer_.stop();
+      view_.chat_open = false;
+      note("Idle for a while: you left the match. Your coins are kept " + std::to_string(reconnect_window_s()) +
+           " s.");
+      view_.status = "idle: press a key to play again, q to quit";
+      return;
+    }
     if (st == S::refused) {
       const auto& err = endpoint.error();
       return finish(1, "server: " + (err ? sanitize(err->message, 200) : std::string("refused")));
     }
+    // How long until the client gives up, so that a wrong address is not a blank wait.
+    const std::uint64_t limit = proto::ClientConfig{}.connect_timeout_ms, spent = now - connect_ms_;
+    const std::string connecting = "connecting to " + opts_.host + ":" + opts_.port + "... " +
+                                   std::to_string(spent < limit ? (limit - spent + 999) / 1000 : 0) + " s";
     if (conn_.token().empty()) {
       if (st == S::timed_out) return finish(1, "no answer from the server at " + opts_.host + ":" + opts_.port);
-      view_.status = "connecting to " + opts_.host + ":" + opts_.port + "...";
+      view_.status = connecting;
       return;
     }
     if (conn_.gone()) return finish(1, "connection lost: the server is gone");
     const bool silent = now - last_rx_ms_ > 2000;
-    view_.status = (silent || st != S::connected) ? "connection lost, reconnecting..." : "";
+    // Not welcomed yet on this connection (a saved token being tried): connecting, not lost.
+    if (noted_attempt_ == 0 && st != S::connected) view_.status = connecting;
+    else view_.status = (silent || st != S::connected) ? "connection lost, reconnecting..." : "";
     view_.ping_ms = endpoint.stats().rtt_ms > 0 ? endpoint.stats().rtt_ms : -1;
     view_.loss_percent = loss_.percent();
   }
@@ -399,12 +455,14 @@ class Game {
   ViewState view_;
   std::map<std::uint32_t, char> pending_buys_;
   std::set<std::uint32_t> pending_chats_;  // rids of chat lines awaiting their result
-  int pointer_col_ = 0, pointer_row_ = 0;  // the mouse pointer's cell
+  PointerSteering steer_;  // mouse steering: toward the pointer, arriving there
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120;
   static constexpr std::size_t kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
   std::uint64_t last_rx_ms_ = 0;
+  std::uint64_t connect_ms_ = 0;  // when the current connection attempt began
+  bool idle_ = false;             // kicked as idle: waiting for a key to come back
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
   bool fire_ = false;

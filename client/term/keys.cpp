@@ -49,6 +49,15 @@ long param(const std::vector<std::vector<long>>& f, std::size_t i, std::size_t j
   return f[i][j];
 }
 
+// A character outside ASCII, typed: the chat line shows and sends it as '?' (the screen
+// and the wire carry printable ASCII); it is no command key.
+KeyEvent typed_elsewhere() {
+  KeyEvent e;
+  e.key = Key::character;
+  e.text = '?';
+  return e;
+}
+
 // One complete CSI sequence: parameters (without a leading private marker) and final byte.
 std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, bool& kitty_answer) {
   if (!params.empty() && params[0] == '<') {
@@ -71,6 +80,11 @@ std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, boo
     // CSI ? flags u: the query's answer; releases come only with "report event types".
     if (final_byte == 'u') kitty_answer = (param(parse_params(params.substr(1)), 0, 0, 0) & 2) != 0;
     return std::nullopt;
+  }
+  if (params.empty() && (final_byte == 'I' || final_byte == 'O')) {  // focus reporting (1004)
+    KeyEvent e;
+    e.key = final_byte == 'I' ? Key::focus_in : Key::focus_out;
+    return e;
   }
   const auto f = parse_params(params);
   const long mods = param(f, 1, 0, 1) - 1;  // bits: 1 shift, 2 alt, 4 ctrl
@@ -100,6 +114,8 @@ std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, boo
         e.key = Key::character;
         e.ch = static_cast<char>(std::tolower(static_cast<int>(code)));
         e.text = (mods & 1) != 0 ? static_cast<char>(std::toupper(static_cast<int>(code))) : e.ch;
+      } else if (code >= 0xa0 && code < 0xe000) {
+        return typed_elsewhere();  // a letter outside ASCII (below the private-use keys)
       } else {
         return std::nullopt;  // modifiers alone, function keys: not ours
       }
@@ -118,6 +134,15 @@ std::vector<KeyEvent> KeyDecoder::feed(std::string_view bytes) {
   std::size_t i = 0;
   while (i < buffer_.size()) {
     const auto c = static_cast<unsigned char>(buffer_[i]);
+    if (c >= 0xc2 && c <= 0xf4) {  // a UTF-8 letter: one '?' typed, never dropped unseen
+      const std::size_t n = c < 0xe0 ? 2 : c < 0xf0 ? 3 : 4;
+      std::size_t k = 1;
+      while (k < n && i + k < buffer_.size() && (static_cast<unsigned char>(buffer_[i + k]) & 0xc0) == 0x80) ++k;
+      if (k < n && i + k >= buffer_.size()) break;  // the rest of it is still on its way
+      out.push_back(typed_elsewhere());
+      i += k;  // a sequence cut short ends at the byte that broke it
+      continue;
+    }
     if (c != 0x1b) {
       const KeyEvent e = from_char(c);
       if (e.key != Key::none) out.push_back(e);

@@ -15,7 +15,11 @@
 
 namespace fts::client {
 
-enum class Key : std::uint8_t { none, up, down, left, right, space, enter, escape, ctrl_c, character, tab, backspace, mouse };
+// focus_in / focus_out: the terminal window gained or lost the focus (xterm's focus
+// reporting, mode 1004, turned on with the mouse): CSI I and CSI O.
+enum class Key : std::uint8_t {
+  none, up, down, left, right, space, enter, escape, ctrl_c, character, tab, backspace, mouse, focus_in, focus_out
+};
 enum class KeyAction : std::uint8_t { press, repeat, release };
 
 struct KeyEvent {
@@ -41,9 +45,10 @@ inline constexpr int kKittyFlags = 1 | 2 | 8;
 std::string kitty_push();
 inline constexpr std::string_view kKittyPop = "\x1b[<u";
 inline constexpr std::string_view kKittyQuery = "\x1b[?u";
-// xterm mouse reporting: any-motion tracking (1003) in the SGR form (1006), and off again.
-inline constexpr std::string_view kMouseOn = "\x1b[?1003h\x1b[?1006h";
-inline constexpr std::string_view kMouseOff = "\x1b[?1006l\x1b[?1003l";
+// xterm mouse reporting: any-motion tracking (1003) in the SGR form (1006), with focus
+// reporting (1004: mouse steering ends when the window loses the focus), and off again.
+inline constexpr std::string_view kMouseOn = "\x1b[?1003h\x1b[?1006h\x1b[?1004h";
+inline constexpr std::string_view kMouseOff = "\x1b[?1004l\x1b[?1006l\x1b[?1003l";
 
 class KeyDecoder {
  public:

@@ -26,7 +26,7 @@ bool g_atexit_registered = false;
 // Leave the alternate screen, show the cursor, reset colours, pop the kitty flags.
 constexpr char kRestore[] = "\x1b[0m\x1b[?25h\x1b[?1049l";
 constexpr char kKittyPopBytes[] = "\x1b[<u";
-constexpr char kMouseOffBytes[] = "\x1b[?1006l\x1b[?1003l";
+constexpr char kMouseOffBytes[] = "\x1b[?1004l\x1b[?1006l\x1b[?1003l";
 
 void raw_write(const char* data, std::size_t n) {
   while (n > 0) {

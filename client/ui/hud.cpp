@@ -142,6 +142,9 @@ std::string refusal_text(const std::string& code, const std::string& server_mess
     return "not enough coins";
   }
   if (code == "owned") return "you already have " + what + ": it is bought once";
+  // Out of lives, the shop is closed to us while it is open to the others (issue 26).
+  if (code == "phase" && me != nullptr && me->lives <= 0)
+    return "you are out of lives: you play again when this match ends";
   if (code == "phase") return "not now: the shop is closed";
   if (code == "dead") return "you are out of the match: watching";
   if (code == "item") return "there is no such item in the shop";

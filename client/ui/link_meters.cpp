@@ -26,6 +26,7 @@ std::vector<protocol::Event> EventFeed::fresh(const protocol::Snapshot& s) {
     if (e.seq > last_seq_) out.push_back(e);
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
   if (!out.empty()) last_seq_ = out.back().seq;
+  std::erase_if(out, [&](const auto& e) { return e.tick < since_tick_; });
   return out;
 }
 

@@ -32,9 +32,13 @@ class EventFeed {
  public:
   // The events of `s` newer than every event passed before, in seq order.
   std::vector<protocol::Event> fresh(const protocol::Snapshot& s);
+  // A (re)joined session sees the room's recent events again, some from before it came:
+  // events of ticks before `tick` (the welcome's server tick) are not fresh.
+  void start_at(std::uint32_t tick) { since_tick_ = tick; }
 
  private:
   std::uint32_t last_seq_ = 0;
+  std::uint32_t since_tick_ = 0;
 };
 
 }  // namespace fts::client

@@ -266,10 +266,17 @@ std::string footer_text(const Snapshot& s, const ViewState& view, int cols) {
   }
   if (!view.replay_footer.empty()) return view.replay_footer;
   std::string text;
+  const PlayerState* me = find_player(s, view.my_player_id);
+  const bool out = me != nullptr && me->lives <= 0 && !me->alive;
   if (s.phase == Phase::play && watching(s, view)) {
     const PlayerState* f = find_player(s, followed(s, view));
     text = std::string("Watching ") + (f != nullptr ? sanitize(f->name, 16) : "the match") +
            "   Tab: next player   Chat: t   Quit: q";
+    if (out) text += "   Out of lives: you play again when this match ends";
+  } else if (s.phase == Phase::shop && out) {
+    // The shop is the others': nothing to buy, nothing to ready (GAME_RULES: a player
+    // with no lives left is out and watches until every player is out).
+    text = "Out of lives: you play again when this match ends (all out)   Chat: t   Quit: q";
   } else {
     text = help_line(s.phase);
     if (s.phase == Phase::play && view.mouse_steering) text += "   (mouse steering)";

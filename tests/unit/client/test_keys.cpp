@@ -105,7 +105,7 @@ TEST_CASE("vi keys steer like the arrows", "[client][keys]") {
 
 TEST_CASE("SGR mouse reports decode to the pointer's cell", "[client][keys][mouse]") {
   KeyDecoder d;
-  CHECK(kMouseOn == "\x1b[?1003h\x1b[?1006h");
+  CHECK(kMouseOn == "\x1b[?1003h\x1b[?1006h\x1b[?1004h");  // any motion, SGR form, focus reports
   auto ev = d.feed("\x1b[<35;10;5M\x1b[<0;1;1M\x1b[<0;120;40m\x1b[<64;3;3M");
   REQUIRE(ev.size() == 4);
   CHECK(ev[0].key == Key::mouse);
