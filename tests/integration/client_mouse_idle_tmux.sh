@@ -4,6 +4,7 @@
 #     platform's top row, then nothing. The ball goes there and stops: the footer's
 #     "(mouse steering)" goes away by itself and the player keeps all three lives (before,
 #     the thrust never ended and the ball coasted off the edge, three lives in ~10 s).
+#  0. Connecting to an address with no server says so and counts down.
 #  2. The idle kick does not end the client: after --idle-timeout-ms without input the
 #     client stays, says so, and a key brings the player back with its coins.
 # Every wait polls the pane or the server log against a deadline.
@@ -21,6 +22,16 @@ PANES=(ann)
 
 # The server logs falls at debug level; the idle time-out is short so the test is too.
 start_server "$SERVER" --log-level debug --idle-timeout-ms 6000
+
+# 0. No server at an address: the client says where it is connecting and counts down
+# (before, an empty field for 12 s, then "no answer").
+tm new-session -d -s nobody -x 100 -y 30 "TERM=xterm-256color XDG_STATE_HOME='$WORK/state0' '$CLIENT' --connect 127.0.0.1:9 --name zed --no-kitty --quick; echo CLIENT_EXIT=\$?; sleep 600"
+PANES=(nobody)
+wait_for nobody 3 'connecting to 127\.0\.0\.1:9\.\.\. (9|10) s'
+wait_for nobody 5 'connecting to 127\.0\.0\.1:9\.\.\. [5-7] s'
+tm kill-session -t nobody
+echo "no server: the client says it is connecting and counts down"
+PANES=(ann)
 
 cmd="TERM=xterm-256color XDG_STATE_HOME='$WORK/state' '$CLIENT' --connect 127.0.0.1:$PORT --name ann --no-kitty --quick; echo CLIENT_EXIT=\$?; sleep 600"
 tm new-session -d -s ann -x 100 -y 30 "$cmd"

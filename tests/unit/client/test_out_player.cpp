@@ -1,0 +1,44 @@
+// An out player (no lives left) is told what it can do and when it plays again (issue 26:
+// with 0 coins the footer offered "Buy: m s a r l x b" and `m` said "the shop is closed"
+// while it was open for the others).
+#include <catch2/catch.hpp>
+
+#include "seed_situation.hpp"
+#include "ui/hud.hpp"
+#include "ui/panel.hpp"
+
+using namespace fts::client;
+using fts::protocol::Phase;
+
+TEST_CASE("An out player's footer says when it plays again, in the shop and while watching", "[client][watch]") {
+  auto s = test::seed_snapshot(Phase::shop);
+  s.players[0].lives = 0;
+  s.players[0].alive = false;
+  s.players[0].coins = 0;
+  auto other = test::seed_player();
+  other.id = 2;
+  other.name = "bob";
+  s.players.push_back(other);
+  ViewState view;
+  view.my_player_id = 1;
+  const std::string shop = footer_text(s, view, 120);
+  CHECK(shop.find("Buy:") == std::string::npos);
+  CHECK(shop.find("you play again when this match ends") != std::string::npos);
+  s.phase = Phase::play;
+  const std::string play = footer_text(s, view, 200);
+  CHECK(play.rfind("Watching bob", 0) == 0);
+  CHECK(play.find("you play again when this match ends") != std::string::npos);
+  // Still in the match: the shop's keys as before.
+  s.players[0].lives = 1;
+  s.players[0].alive = true;
+  s.phase = Phase::shop;
+  CHECK(footer_text(s, view, 120).rfind("Buy: m s a r l x b", 0) == 0);
+}
+
+TEST_CASE("A buy refused for the phase tells an out player why, not 'the shop is closed'", "[client][hud]") {
+  auto me = test::seed_player();
+  me.lives = 0;
+  CHECK(refusal_text("phase", "", 'm', &me) == "you are out of lives: you play again when this match ends");
+  me.lives = 2;
+  CHECK(refusal_text("phase", "", 'm', &me) == "not now: the shop is closed");
+}
