@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # End to end, what a new player hit (issue 26), driven in tmux as a person would:
+#  0. Connecting to an address with no server says so and counts down.
 #  1. Mouse steering arrives: a few pointer-motion reports (SGR, `\e[<35;COL;ROWM`) at the
 #     platform's top row, then nothing. The ball goes there and stops: the footer's
 #     "(mouse steering)" goes away by itself and the player keeps all three lives (before,
 #     the thrust never ended and the ball coasted off the edge, three lives in ~10 s).
-#  0. Connecting to an address with no server says so and counts down.
 #  2. The idle kick does not end the client: after --idle-timeout-ms without input the
 #     client stays, says so, and a key brings the player back with its coins.
 # Every wait polls the pane or the server log against a deadline.
