@@ -17,8 +17,8 @@
 #include "app/options.hpp"
 #include "app/room_journals.hpp"
 #include "host/journal.hpp"
-#include "host/record.hpp"
-#include "host/text.hpp"
+#include "fts/room/record.hpp"
+#include "fts/room/text.hpp"
 #include "net/console.hpp"
 #include "net/udp_server.hpp"
 
@@ -70,14 +70,14 @@ int main(int argc, char** argv) {
   if (!options.replay_path.empty()) {
     std::ifstream in(options.replay_path);
     if (!in) return fail("--replay: cannot read " + options.replay_path);
-    auto r = host::replay_record(in);
+    auto r = room::replay_record(in);
     if (auto* err = std::get_if<std::string>(&r)) {
       std::cerr << "fts-server: replay of " << options.replay_path << " FAILED: " << *err << "\n";
       return 1;
     }
-    const auto& rep = std::get<host::ReplayReport>(r);
+    const auto& rep = std::get<room::ReplayReport>(r);
     std::cout << R"({"replay":")" << options.replay_path << R"(","ticks":)" << rep.ticks << R"(,"hashes_checked":)"
-              << rep.hashes_checked << R"(,"state_hash":")" << host::hex16(rep.final_hash) << "\"}\n";
+              << rep.hashes_checked << R"(,"state_hash":")" << room::hex16(rep.final_hash) << "\"}\n";
     return 0;
   }
 

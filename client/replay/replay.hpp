@@ -13,25 +13,15 @@
 #include <vector>
 
 #include "fts/protocol/snapshot.hpp"
+#include "fts/room/record.hpp"
+#include "fts/room/stepper.hpp"
 #include "fts/sim/match.hpp"
 
 namespace fts::client {
 
-struct TapeLine {
-  std::int64_t tick = 0;
-  sim::TickInputs inputs;
-};
-
-struct Tape {
-  std::uint64_t seed = 0;
-  sim::MatchConfig config;
-  std::vector<TapeLine> lines;  // in tick order
-  std::vector<std::pair<std::int64_t, std::string>> hashes;  // (tick, hex) to check
-  std::int64_t last_tick = 0;   // the last tick the record names
-};
-
-// Reads a whole record; an error names the line. Bounded: at most max_lines lines.
-std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_lines = 5'000'000);
+// The record's reader is fts_room's, as the server's (one format, one reader).
+using room::load_tape;
+using room::Tape;
 
 // Playback speeds (x), from a table: - and + step through it.
 inline constexpr std::array<double, 5> kReplaySpeeds = {0.5, 1, 2, 4, 8};
@@ -53,9 +43,9 @@ class Replay {
   void slower() { speed_ = speed_ > 0 ? speed_ - 1 : 0; }
   double speed() const { return kReplaySpeeds[speed_]; }
   bool paused() const { return paused_; }
-  bool at_end() const { return state_.tick >= tape_.last_tick; }
+  bool at_end() const { return state().tick >= tape_.last_tick; }
 
-  const sim::MatchState& state() const { return state_; }
+  const sim::MatchState& state() const { return room_.match(); }
   const Tape& tape() const { return tape_; }
   // What a client would have been sent now, with the recent events.
   protocol::Snapshot snapshot() const;
@@ -69,15 +59,13 @@ class Replay {
   void step_once();
 
   Tape tape_;
-  sim::MatchState state_;
+  room::RoomStepper room_;  // the server rooms' stepper: the same events window
   std::size_t next_line_ = 0;
   std::size_t next_hash_ = 0;
   std::size_t speed_ = 1;  // x1
   bool paused_ = false;
   double carry_ticks_ = 0;
-  std::deque<protocol::Event> recent_;
   std::vector<protocol::Event> fresh_;
-  std::uint32_t event_seq_ = 0;
   std::string mismatch_;
 };
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "app/snapshot_build.hpp"
+#include "fts/room/snapshot_build.hpp"
 #include "fts/protocol/limits.hpp"
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 
 namespace fts::server {
 namespace {
@@ -349,7 +349,7 @@ void GameHost::close_room(std::uint32_t id, const std::string& code, const std::
   r.seal();
   log_record(spdlog::level::info, "room_closed",
              {{"room", id}, {"code", r.code()}, {"reason", code}, {"tick", r.match().tick},
-              {"state_hash", host::hex16(sim::match_hash(r.match()))}, {"record", r.record_path()}});
+              {"state_hash", room::hex16(sim::match_hash(r.match()))}, {"record", r.record_path()}});
   endpoint_.forget_room(id);
   rooms_.erase(it);
   if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
@@ -373,7 +373,7 @@ nlohmann::ordered_json GameHost::room_json(const Room& r) const {
   j["phase"] = std::string(sim::to_string(r.match().phase));
   j["tick"] = r.match().tick;
   j["seed"] = r.seed();
-  j["state_hash"] = host::hex16(sim::match_hash(r.match()));
+  j["state_hash"] = room::hex16(sim::match_hash(r.match()));
   return j;
 }
 

@@ -4,13 +4,13 @@
 
 #include "app/game_host.hpp"
 #include "app/room_codes.hpp"
-#include "app/snapshot_build.hpp"
+#include "fts/room/snapshot_build.hpp"
 
 namespace fts::server {
 
 std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutput& out) {
   std::vector<protocol::Event> wire;
-  append_wire_events(tick + 1, out.events, wire);
+  room::append_wire_events(tick + 1, out.events, wire);
   return static_cast<std::uint32_t>(wire.size());
 }
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "host/match_config_json.hpp"
+#include "fts/room/match_config_json.hpp"
 
 namespace fts::server {
 
@@ -15,7 +15,7 @@ std::variant<sim::MatchConfig, std::string> resolve_match_config(Options& option
     if (!in) return "--config: cannot read " + options.config_path;
     std::stringstream text;
     text << in.rdbuf();
-    auto c = host::parse_match_config(text.str());
+    auto c = room::parse_match_config(text.str());
     if (auto* err = std::get_if<std::string>(&c)) return options.config_path + ": " + *err;
     config = std::get<sim::MatchConfig>(c);
     // The server's clock runs whole ticks per second, in the range --tick-rate allows.

@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <memory>
 
-#include "app/snapshot_build.hpp"
 #include "fts/sim/match_view.hpp"
 
 namespace fts::server {
 namespace {
-
-constexpr std::size_t kRecentEvents = 48;
 
 // The sentence of a command's result.
 std::string result_message(const sim::CommandResult& r) {
@@ -46,7 +43,7 @@ Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t se
       private_(is_private),
       seed_(seed),
       input_expiry_ms_(options.input_expiry_ms),
-      match_(sim::make_match(config, seed)) {
+      stepper_(config, seed) {
   ticks_per_snapshot_ = std::max<std::uint32_t>(1, options.tick_rate_hz / std::max<std::uint32_t>(1, options.snapshot_rate_hz));
 }
 
@@ -59,7 +56,7 @@ bool Room::record_to(const std::string& path, const std::string& version) {
 }
 
 void Room::record_to(std::ostream& out, const std::string& version) {
-  recorder_ = std::make_unique<host::RecordWriter>(out, seed_, match_.cfg, version);
+  recorder_ = std::make_unique<room::RecordWriter>(out, seed_, stepper_.match().cfg, version);
 }
 
 void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
@@ -146,7 +143,7 @@ sim::TickInputs Room::gather(std::uint64_t now_ms) {
     // Inputs of players that have not joined the match (yet) have nothing to apply; their
     // commands still go to the step, which answers them.
     const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });
-    if (sim::find_player(match_, id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
+    if (sim::find_player(stepper_.match(), id) || joining || !t.commands.empty()) in.players.push_back(std::move(t));
   }
   return in;
 }
@@ -176,19 +173,19 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
               log_record(e.ok ? spdlog::level::info : refused_log_.level(now_ms), "purchase",
                          {{"player", e.player}, {"item", std::string(sim::to_string(e.item))}, {"ok", e.ok},
                           {"reason", std::string(sim::to_string(e.reason))}, {"price", e.price}, {"coins", e.coins_after}, {"room", id_},
-                          {"tick", match_.tick}});
+                          {"tick", stepper_.match().tick}});
             },
             [&](const sim::GameOver& e) { log_record(spdlog::level::info, "game_over", {{"level", e.level}, {"room", id_}}); },
             [&](const sim::EnemyDefeated& e) {
               log_record(spdlog::level::debug, "enemy_defeated",
-                         {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", match_.tick}});
+                         {{"enemy", e.enemy}, {"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", stepper_.match().tick}});
             },
             [&](const sim::PlayerFell& e) {
               log_record(spdlog::level::debug, "player_fell", {{"player", e.player}, {"lives", e.lives_left}, {"room", id_}});
             },
             [&](const sim::InterestPaid& e) {
               log_record(spdlog::level::debug, "interest",
-                         {{"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", match_.tick}});
+                         {{"player", e.player}, {"coins", e.coins}, {"room", id_}, {"tick", stepper_.match().tick}});
             },
             [](const auto&) {},  // the rest is not logged
         },
@@ -199,27 +196,19 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
 
 void Room::tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   const sim::TickInputs in = gather(now_ms);
-  if (recorder_) recorder_->inputs(match_.tick, in);
-  if (journal_) journal_->inputs(match_.tick, in);
-  const sim::TickOutput stepped = sim::step(match_, in);
-  if (recorder_) recorder_->stepped(match_);
+  if (recorder_) recorder_->inputs(stepper_.match().tick, in);
+  if (journal_) journal_->inputs(stepper_.match().tick, in);
+  const sim::TickOutput stepped = stepper_.step(in);
+  if (recorder_) recorder_->stepped(stepper_.match());
   answer(stepped.results, endpoint, now_ms);
   log_events(stepped.events, endpoint, now_ms);
-
-  std::vector<protocol::Event> wire;
-  append_wire_events(match_.tick, stepped.events, wire);
-  for (auto& w : wire) {
-    w.seq = ++event_seq_;
-    recent_.push_back(w);
-  }
-  while (recent_.size() > kRecentEvents) recent_.pop_front();
   if (journal_) {
-    journal_->stepped(match_, event_seq_);
-    if (match_.tick % 1000 == 0) watch_journal();
+    journal_->stepped(stepper_.match(), stepper_.event_seq());
+    if (stepper_.match().tick % 1000 == 0) watch_journal();
   }
 
-  endpoint.set_server_tick(id_, static_cast<std::uint32_t>(match_.tick));
-  if (match_.tick % ticks_per_snapshot_ == 0) send_snapshots(endpoint, now_ms);
+  endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
+  if (stepper_.match().tick % ticks_per_snapshot_ == 0) send_snapshots(endpoint, now_ms);
 }
 
 void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
@@ -227,12 +216,12 @@ void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_
   if (members.empty()) return;
   // Quantized once per tick; each client gets only its delta against that.
   const auto snap = std::make_shared<const protocol::Snapshot>(
-      protocol::quantize(build_snapshot(sim::make_view(match_), recent_)));
+      protocol::quantize(stepper_.snapshot()));
   for (auto id : members) endpoint.send_snapshot(id, snap, now_ms);
 }
 
 void Room::seal() {
-  if (recorder_ && match_.tick % host::kRecordHashEvery != 0) recorder_->hash_line(match_);
+  if (recorder_ && stepper_.match().tick % room::kRecordHashEvery != 0) recorder_->hash_line(stepper_.match());
   flush();
 }
 
@@ -242,17 +231,15 @@ void Room::flush() {
   if (journal_) journal_->flush();
 }
 
-void Room::resume_from(const host::ResumedRoom& room) {
-  match_ = room.state;
-  event_seq_ = room.event_seq;
-}
+void Room::resume_from(const host::ResumedRoom& room) { stepper_ = room::RoomStepper(room.state, room.event_seq); }
 
 void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint) {
   std::vector<host::JournalSession> sessions;
   for (const auto& s : endpoint.sessions())
     if (s.room == id_ && !s.spectator)
       sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected});
-  journal_ = std::make_unique<host::JournalWriter>(std::move(config), match_.cfg, match_, event_seq_, std::move(sessions));
+  journal_ = std::make_unique<host::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),
+                                                   std::move(sessions));
 }
 
 std::unique_ptr<host::JournalWriter> Room::finish_journal() {
@@ -263,9 +250,9 @@ std::unique_ptr<host::JournalWriter> Room::finish_journal() {
 void Room::journal_session(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
   if (!journal_ || e.spectator) return;
   using K = protocol::ServerEvent::Kind;
-  if (e.kind == K::released) return journal_->released(match_.tick, e.player_id);
+  if (e.kind == K::released) return journal_->released(stepper_.match().tick, e.player_id);
   const bool quit = e.kind == K::disconnected && e.quit;
-  journal_->session(match_.tick, {e.player_id, e.name, endpoint.session_verifier(e.player_id), quit});
+  journal_->session(stepper_.match().tick, {e.player_id, e.name, endpoint.session_verifier(e.player_id), quit});
 }
 
 // Every 1000 ticks: a journal that dropped records or failed says so (once per change).

@@ -16,7 +16,8 @@
 #include "fts/protocol/server.hpp"
 #include "fts/sim/match.hpp"
 #include "host/journal.hpp"
-#include "host/record.hpp"
+#include "fts/room/record.hpp"
+#include "fts/room/stepper.hpp"
 
 namespace fts::server {
 
@@ -54,7 +55,7 @@ class Room {
   const std::string& code() const { return code_; }
   bool is_private() const { return private_; }
   std::uint64_t seed() const { return seed_; }
-  const sim::MatchState& match() const { return match_; }
+  const sim::MatchState& match() const { return stepper_.match(); }
   const std::string& record_path() const { return record_path_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
@@ -77,14 +78,12 @@ class Room {
   bool private_;
   std::uint64_t seed_;
   std::uint32_t input_expiry_ms_;
-  sim::MatchState match_;
+  room::RoomStepper stepper_;  // the match, its event numbering and recent window
   sim::TickInputs pending_;  // connection events and commands for the next step
   std::map<std::uint32_t, Held> held_;
-  std::deque<protocol::Event> recent_;
-  std::uint32_t event_seq_ = 0;  // seq of the newest event sent (PROTOCOL.md 8.4)
   std::ofstream record_file_;
   std::string record_path_;
-  std::unique_ptr<host::RecordWriter> recorder_;
+  std::unique_ptr<room::RecordWriter> recorder_;
   std::uint32_t ticks_per_snapshot_ = 5;
   RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
   std::unique_ptr<host::JournalWriter> journal_;

@@ -11,8 +11,8 @@
 
 #include "app/log.hpp"
 #include "app/room_codes.hpp"
-#include "host/match_config_json.hpp"
-#include "host/text.hpp"
+#include "fts/room/match_config_json.hpp"
+#include "fts/room/text.hpp"
 
 namespace fts::server {
 
@@ -84,7 +84,7 @@ std::optional<sim::MatchConfig> resumed_config(const std::vector<RoomJournalRead
 ResumeSummary resume_rooms(GameHost& host, const std::vector<RoomJournalRead>& reads, const sim::MatchConfig& config,
                            std::uint64_t now_ms) {
   ResumeSummary sum;
-  const std::string config_json = host::match_config_to_json(config).dump();
+  const std::string config_json = room::match_config_to_json(config).dump();
   for (const auto& read : reads) {
     ++sum.rooms;
     auto skip = [&](const std::string& why) {
@@ -104,7 +104,7 @@ ResumeSummary resume_rooms(GameHost& host, const std::vector<RoomJournalRead>& r
       skip("its journal names room " + room.room + ", not its directory's");
       continue;
     }
-    if (host::match_config_to_json(room.config).dump() != config_json) {
+    if (room::match_config_to_json(room.config).dump() != config_json) {
       skip("its match config differs from the other rooms' (one server runs one config)");
       continue;
     }
@@ -120,7 +120,7 @@ ResumeSummary resume_rooms(GameHost& host, const std::vector<RoomJournalRead>& r
                 {"segment", room.segment}, {"checkpoint_tick", room.checkpoint_tick},
                 {"ticks_replayed", room.ticks_replayed}, {"hashes_checked", room.hashes_checked},
                 {"sessions", room.sessions.size()}, {"event_seq", room.event_seq},
-                {"hash", host::hex16(sim::match_hash(room.state))}, {"ms", read.ms}});
+                {"hash", room::hex16(sim::match_hash(room.state))}, {"ms", read.ms}});
   }
   return sum;
 }

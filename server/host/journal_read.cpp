@@ -5,12 +5,15 @@
 #include <nlohmann/json.hpp>
 
 #include "host/journal.hpp"
-#include "host/json_fields.hpp"
-#include "host/match_config_json.hpp"
+#include "fts/room/json_fields.hpp"
+#include "fts/room/match_config_json.hpp"
 #include "host/match_state_json.hpp"
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 
 namespace fts::host {
+
+// The JSON helpers and text conversions of the record format live in fts_room.
+using namespace fts::room;
 namespace {
 
 using nlohmann::json;

@@ -2,9 +2,12 @@
 
 #include <cmath>
 
-#include "host/json_fields.hpp"
+#include "fts/room/json_fields.hpp"
 
 namespace fts::host {
+
+// The JSON helpers and text conversions of the record format live in fts_room.
+using namespace fts::room;
 namespace {
 
 template <class T, class Parse>

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 
 namespace fts::simtool {
 
@@ -81,7 +81,7 @@ std::string to_json(const SceneReport& r) {
   j["max_penetration"] = r.max_penetration;
   j["event_cap_hits"] = r.event_cap_hits;
   j["all_finite"] = r.finite;
-  j["state_hash"] = host::hex16(r.state_hash);
+  j["state_hash"] = room::hex16(r.state_hash);
   return j.dump();
 }
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/scene_json.hpp"
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 #include "host/scene_run.hpp"
 #include "sim/match_cli.hpp"
 
@@ -91,21 +91,21 @@ int run_scene_mode(const std::vector<std::string>& args) {
     scene.physics.broadphase = *b;
   }
   if (substeps) {
-    auto k = fts::host::to_integer(*substeps);
+    auto k = fts::room::to_integer(*substeps);
     if (!k || *k < 1 || *k > 1024) return usage_error("--substeps must be 1..1024, got " + *substeps);
     scene.physics.substeps = static_cast<int>(*k);
   }
   if (tick_rate) {
-    auto hz = fts::host::to_number(*tick_rate);
+    auto hz = fts::room::to_number(*tick_rate);
     if (!hz || !(*hz >= 1.0 && *hz <= 100000.0)) return usage_error("--tick-rate must be 1..100000, got " + *tick_rate);
     scene.tick_rate_hz = *hz;
   }
   if (steps) {
-    auto n = fts::host::to_integer(*steps);
+    auto n = fts::room::to_integer(*steps);
     if (!n || *n < 0) return usage_error("--steps must be >= 0, got " + *steps);
     scene.steps = *n;
   }
-  auto every = fts::host::to_integer(check_every);
+  auto every = fts::room::to_integer(check_every);
   if (!every || *every < 0) return usage_error("--check-every must be >= 0, got " + check_every);
 
   fts::sim::World world;

@@ -11,9 +11,9 @@
 
 #include "fts/sim/bot_player.hpp"
 #include "fts/sim/match.hpp"
-#include "host/match_config_json.hpp"
-#include "host/record.hpp"
-#include "host/text.hpp"
+#include "fts/room/match_config_json.hpp"
+#include "fts/room/record.hpp"
+#include "fts/room/text.hpp"
 
 namespace fts::simtool {
 namespace {
@@ -119,7 +119,7 @@ int run_match_cli(const std::vector<std::string>& args) {
   };
   for (const auto& f : int_flags) {
     if (const auto v = value(f.flag)) {
-      const auto n = host::to_integer(*v);
+      const auto n = room::to_integer(*v);
       if (!n || *n < f.lo || *n > f.hi) return usage(f.message);
       *f.out = *n;
     }
@@ -134,7 +134,7 @@ int run_match_cli(const std::vector<std::string>& args) {
     if (!in) return usage("cannot read " + *config_path);
     std::stringstream text;
     text << in.rdbuf();
-    auto parsed = host::parse_match_config(text.str());
+    auto parsed = room::parse_match_config(text.str());
     if (auto* err = std::get_if<std::string>(&parsed)) {
       std::cerr << "fts-sim: " << *config_path << ": " << *err << "\n";
       return 1;
@@ -147,7 +147,7 @@ int run_match_cli(const std::vector<std::string>& args) {
     cfg.model = *m;
   }
   if (tick_rate) {
-    auto hz = host::to_integer(*tick_rate);
+    auto hz = room::to_integer(*tick_rate);
     if (!hz || *hz < 1 || *hz > 10000) return usage("--tick-rate must be 1..10000 (integer Hz)");
     cfg.tick_rate_hz = static_cast<double>(*hz);
   }
@@ -162,7 +162,7 @@ int run_match_cli(const std::vector<std::string>& args) {
   sim::MatchState s = sim::make_match(cfg, static_cast<std::uint64_t>(seed));
   Tally tally;
   auto run_tick = [&](const sim::TickInputs& in) {
-    if (record) record << host::to_input_line(s.tick, in) << "\n";
+    if (record) record << room::to_input_line(s.tick, in) << "\n";
     const std::int64_t t = s.tick;
     auto events = sim::step(s, in).events;
     tally.add(s, events);
@@ -180,12 +180,12 @@ int run_match_cli(const std::vector<std::string>& args) {
       in.seekg(0);
       if (first.find("\"fts_record\"") != std::string::npos) {
         // A server recording: its own seed and config, every hash checked.
-        auto r = host::replay_record(in);
+        auto r = room::replay_record(in);
         if (auto* err = std::get_if<std::string>(&r)) {
           std::cerr << "fts-sim: replay of " << *inputs_path << " FAILED: " << *err << "\n";
           return 1;
         }
-        auto& rep = std::get<host::ReplayReport>(r);
+        auto& rep = std::get<room::ReplayReport>(r);
         hashes_checked = rep.hashes_checked;
         s = std::move(rep.state);
         cfg = s.cfg;
@@ -197,12 +197,12 @@ int run_match_cli(const std::vector<std::string>& args) {
     while (std::getline(in, line) && s.tick < max_ticks) {
       ++line_no;
       if (line.empty()) continue;
-      auto parsed = host::parse_input_line(line);
+      auto parsed = room::parse_input_line(line);
       if (auto* err = std::get_if<std::string>(&parsed)) {
         std::cerr << "fts-sim: " << *inputs_path << ":" << line_no << ": " << *err << "\n";
         return 1;
       }
-      const auto& il = std::get<host::InputLine>(parsed);
+      const auto& il = std::get<room::InputLine>(parsed);
       if (il.tick < s.tick) {
         std::cerr << "fts-sim: " << *inputs_path << ":" << line_no << ": tick " << il.tick
                   << " is before the match's tick " << s.tick << "\n";
@@ -257,7 +257,7 @@ int run_match_cli(const std::vector<std::string>& args) {
                    {"bank", p.eco.bank},
                    {"rockets", p.eco.rockets}});
   }
-  report["state_hash"] = host::hex16(sim::match_hash(s));
+  report["state_hash"] = room::hex16(sim::match_hash(s));
   std::cout << report.dump() << "\n";
   return 0;
 }

@@ -7,7 +7,7 @@
 
 #include "../match/match_test_util.hpp"
 #include "app/game_host.hpp"
-#include "app/snapshot_build.hpp"
+#include "fts/room/snapshot_build.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 #include "fts/sim/bot_player.hpp"
@@ -31,7 +31,7 @@ protocol::Message through_wire(const protocol::Message& m) {
 
 // The match's public state as a client reconstructs it from a full snapshot.
 protocol::Snapshot client_snapshot(const MatchState& s) {
-  const protocol::Snapshot sent = server::build_snapshot(make_view(s), {});
+  const protocol::Snapshot sent = room::build_snapshot(make_view(s), {});
   const auto msg = std::get<protocol::SnapshotMsg>(through_wire(protocol::make_snapshot_msg(sent, nullptr)));
   auto snap = protocol::apply_snapshot({msg}, nullptr);
   REQUIRE(snap.ok());

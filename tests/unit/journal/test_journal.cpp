@@ -13,7 +13,7 @@
 
 #include "host/journal.hpp"
 #include "host/match_state_json.hpp"
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 
 using namespace fts;
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
 // The match configuration file and the input log: strict parsing, errors naming the field.
 #include <catch2/catch.hpp>
 
-#include "host/match_config_json.hpp"
+#include "fts/room/match_config_json.hpp"
 
 using namespace fts::sim;
-using fts::host::parse_input_line;
-using fts::host::parse_match_config;
+using fts::room::parse_input_line;
+using fts::room::parse_match_config;
 
 namespace {
 
@@ -19,12 +19,12 @@ std::string error_of(const std::string& json) {
 
 TEST_CASE("Config: defaults are the rules' numbers and survive a JSON round trip") {
   const MatchConfig d;
-  const auto j = fts::host::match_config_to_json(d);
+  const auto j = fts::room::match_config_to_json(d);
   CHECK(j.at("price_life") == 500);
   CHECK(j.at("model") == "continuous");
   auto r = parse_match_config(j.dump());
   REQUIRE(std::holds_alternative<MatchConfig>(r));
-  CHECK(fts::host::match_config_to_json(std::get<MatchConfig>(r)) == j);
+  CHECK(fts::room::match_config_to_json(std::get<MatchConfig>(r)) == j);
 }
 
 TEST_CASE("Config: values are read and an unknown key or a bad value is named") {
@@ -55,13 +55,13 @@ TEST_CASE("Input log: one line per tick round-trips every input and command") {
   in.quit = {6};  // regression: quits were not recorded, so a replay diverged after one
   in.players.push_back({1, {1, -1, true}, {{CommandKind::buy, "mass"}, {CommandKind::ready, {}}}});
   in.players.push_back({2, {0, 1, false}, {{CommandKind::play_again, {}}}});
-  const std::string line = fts::host::to_input_line(42, in);
+  const std::string line = fts::room::to_input_line(42, in);
   CHECK(line.find('\n') == std::string::npos);
   auto r = parse_input_line(line);
-  REQUIRE(std::holds_alternative<fts::host::InputLine>(r));
-  const auto& got = std::get<fts::host::InputLine>(r);
+  REQUIRE(std::holds_alternative<fts::room::InputLine>(r));
+  const auto& got = std::get<fts::room::InputLine>(r);
   CHECK(got.tick == 42);
-  CHECK(fts::host::to_input_line(got.tick, got.inputs) == line);
+  CHECK(fts::room::to_input_line(got.tick, got.inputs) == line);
   REQUIRE(got.inputs.players.size() == 2);
   CHECK(got.inputs.players[0].input.move_y == -1);
   CHECK(got.inputs.players[0].commands[0].item == "mass");

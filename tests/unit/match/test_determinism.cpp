@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "fts/sim/bot_player.hpp"
-#include "host/match_config_json.hpp"
+#include "fts/room/match_config_json.hpp"
 #include "match_test_util.hpp"
 
 using namespace fts::sim;
@@ -24,7 +24,7 @@ Run bot_run(std::uint64_t seed, int players, int ticks, MatchConfig cfg = {}) {
     TickInputs in;
     if (t == 0) in = joins(players);
     for (const Player& p : s.players) in.players.push_back(bot_tick(s, p.id));
-    r.log.push_back(fts::host::to_input_line(s.tick, in));
+    r.log.push_back(fts::room::to_input_line(s.tick, in));
     step(s, in);
     r.hashes.push_back(match_hash(s));
   }
@@ -47,9 +47,9 @@ TEST_CASE("Determinism: a recorded input log replays bit-identically") {
     const Run rec = bot_run(11, 3, 2500, cfg);
     MatchState s = make_match(cfg, 11);
     for (std::size_t i = 0; i < rec.log.size(); ++i) {
-      auto parsed = fts::host::parse_input_line(rec.log[i]);
-      REQUIRE(std::holds_alternative<fts::host::InputLine>(parsed));
-      const auto& line = std::get<fts::host::InputLine>(parsed);
+      auto parsed = fts::room::parse_input_line(rec.log[i]);
+      REQUIRE(std::holds_alternative<fts::room::InputLine>(parsed));
+      const auto& line = std::get<fts::room::InputLine>(parsed);
       REQUIRE(line.tick == s.tick);
       step(s, line.inputs);
       INFO("model " << to_string(m) << ", tick " << i);

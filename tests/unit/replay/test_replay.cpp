@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "host/record.hpp"
+#include "fts/room/record.hpp"
 #include "replay/replay.hpp"
 
 using namespace fts;
@@ -17,7 +17,7 @@ namespace {
 std::stringstream record_of(int ticks, sim::MatchState& end) {
   std::stringstream out;
   const sim::MatchConfig cfg;
-  host::RecordWriter w(out, 11, cfg, "test");
+  room::RecordWriter w(out, 11, cfg, "test");
   auto s = sim::make_match(cfg, 11);
   for (int i = 0; i < ticks; ++i) {
     sim::TickInputs in;

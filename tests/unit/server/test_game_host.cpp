@@ -7,7 +7,7 @@
 #include "app/game_host.hpp"
 #include "../../support/host_rig.hpp"
 #include "fts/protocol/client.hpp"
-#include "host/record.hpp"
+#include "fts/room/record.hpp"
 
 using namespace fts;
 
@@ -91,23 +91,23 @@ TEST_CASE("Game host: the record of a session replays with every hash equal", "[
     if (i % 3 == 0) a.send_input({0, static_cast<std::int8_t>(i % 2 ? 1 : -1), 1, false}, rig.now);
     rig.tick();
   }
-  auto replay = host::replay_record(record);
-  REQUIRE(std::holds_alternative<host::ReplayReport>(replay));
-  const auto& rep = std::get<host::ReplayReport>(replay);
+  auto replay = room::replay_record(record);
+  REQUIRE(std::holds_alternative<room::ReplayReport>(replay));
+  const auto& rep = std::get<room::ReplayReport>(replay);
   CHECK(rep.hashes_checked == 4);
   CHECK(rep.final_hash == sim::match_hash(rig.host->match()));
 }
 
 TEST_CASE("Replay: a damaged record is refused with the line, not simulated for ever", "[server][replay]") {
   std::stringstream record;
-  host::RecordWriter w(record, 1, sim::MatchConfig{}, "test");
+  room::RecordWriter w(record, 1, sim::MatchConfig{}, "test");
   record << R"({"tick":1000000000000000,"hash":"0000000000000000"})" << "\n";
-  auto r = host::replay_record(record);
+  auto r = room::replay_record(record);
   REQUIRE(std::holds_alternative<std::string>(r));
   CHECK(std::get<std::string>(r).rfind("line 2: tick 1000000000000000 is too far ahead", 0) == 0);
   std::stringstream bad;
   bad << "not json\n";
-  CHECK(std::holds_alternative<std::string>(host::replay_record(bad)));
+  CHECK(std::holds_alternative<std::string>(room::replay_record(bad)));
 }
 
 TEST_CASE("Game host: a chat line is relayed to every player with its sender, cleaned and rate-limited",

@@ -3,7 +3,7 @@
 
 #include <sstream>
 
-#include "host/record.hpp"
+#include "fts/room/record.hpp"
 
 using namespace fts;
 
@@ -14,7 +14,7 @@ namespace {
 std::stringstream record_of(const std::vector<std::string>& names, int ticks) {
   std::stringstream out;
   const sim::MatchConfig cfg;
-  host::RecordWriter w(out, 3, cfg, "test");
+  room::RecordWriter w(out, 3, cfg, "test");
   auto s = sim::make_match(cfg, 3);
   for (int i = 0; i < ticks; ++i) {
     sim::TickInputs in;
@@ -40,17 +40,17 @@ TEST_CASE("Replay: a player named hash does not make the record unreplayable", "
   // the join line of a player named hash failed the replay at line 2.
   auto record = record_of({"hash", "tick", "ann"}, 250);
   REQUIRE(record.str().find(R"("name":"hash")") != std::string::npos);
-  auto r = host::replay_record(record);
-  REQUIRE(std::holds_alternative<host::ReplayReport>(r));
-  CHECK(std::get<host::ReplayReport>(r).hashes_checked == 2);
-  CHECK(std::get<host::ReplayReport>(r).ticks == 250);
+  auto r = room::replay_record(record);
+  REQUIRE(std::holds_alternative<room::ReplayReport>(r));
+  CHECK(std::get<room::ReplayReport>(r).hashes_checked == 2);
+  CHECK(std::get<room::ReplayReport>(r).ticks == 250);
 }
 
 TEST_CASE("Replay: each line is dispatched on its keys", "[server][replay]") {
   const std::string head = record_of({}, 0).str();
   auto error_of = [&](const std::string& line) {
     std::stringstream in(head + line + "\n");
-    auto r = host::replay_record(in);
+    auto r = room::replay_record(in);
     return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string("ok");
   };
   CHECK(error_of(R"({"tick":3,"joins":[{"player":1,"name":"hash"}]})") == "ok");

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "app/options.hpp"
-#include "host/match_config_json.hpp"
+#include "fts/room/match_config_json.hpp"
 
 namespace {
 
@@ -34,16 +34,16 @@ std::string readme_hosting_section() {
 
 TEST_CASE("Hosting: the example server config loads and equals the defaults", "[hosting]") {
   const std::string text = read_repo_file("docker/server-config.example.json");
-  auto parsed = fts::host::parse_match_config(text);
+  auto parsed = fts::room::parse_match_config(text);
   if (auto* err = std::get_if<std::string>(&parsed)) FAIL("example config rejected: " << *err);
   const auto& cfg = std::get<fts::sim::MatchConfig>(parsed);
-  const auto defaults_json = fts::host::match_config_to_json(fts::sim::MatchConfig{});
+  const auto defaults_json = fts::room::match_config_to_json(fts::sim::MatchConfig{});
 
   SECTION("it round-trips: parse -> JSON -> parse gives the same JSON") {
-    const auto once = fts::host::match_config_to_json(cfg);
-    auto again = fts::host::parse_match_config(once.dump());
+    const auto once = fts::room::match_config_to_json(cfg);
+    auto again = fts::room::parse_match_config(once.dump());
     REQUIRE(std::holds_alternative<fts::sim::MatchConfig>(again));
-    CHECK(fts::host::match_config_to_json(std::get<fts::sim::MatchConfig>(again)) == once);
+    CHECK(fts::room::match_config_to_json(std::get<fts::sim::MatchConfig>(again)) == once);
   }
   SECTION("every setting is present with its default (regenerate with docker/gen-server-config.py)") {
     const auto file_json = nlohmann::json::parse(text);
@@ -54,7 +54,7 @@ TEST_CASE("Hosting: the example server config loads and equals the defaults", "[
       REQUIRE(file_json.contains(key));
       CHECK(file_json.at(key) == value);
     }
-    CHECK(fts::host::match_config_to_json(cfg) == defaults_json);
+    CHECK(fts::room::match_config_to_json(cfg) == defaults_json);
   }
   SECTION("the table beside it documents every key") {
     const std::string table = read_repo_file("docker/server-config.md");
@@ -66,7 +66,7 @@ TEST_CASE("Hosting: the example server config loads and equals the defaults", "[
 }
 
 TEST_CASE("Hosting: a config with an unknown key is refused, naming the key", "[hosting]") {
-  auto parsed = fts::host::parse_match_config(R"({"tick_rate_hz": 100, "tick_rate": 50})");
+  auto parsed = fts::room::parse_match_config(R"({"tick_rate_hz": 100, "tick_rate": 50})");
   REQUIRE(std::holds_alternative<std::string>(parsed));
   CHECK_THAT(std::get<std::string>(parsed), Catch::Contains("tick_rate"));
   CHECK_THAT(std::get<std::string>(parsed), Catch::Contains("unknown key"));

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace fts::host {
+namespace fts::room {
 
 struct FieldError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -45,4 +45,4 @@ std::optional<nlohmann::json> parse_json(const std::string& text, std::string& w
 // Throws FieldError "<path>: must be > 0, got <v>" unless v > 0.
 void require_positive(const Fields& f, std::string_view key, double v);
 
-}  // namespace fts::host
+}  // namespace fts::room

@@ -10,7 +10,7 @@
 
 #include "fts/sim/match.hpp"
 
-namespace fts::host {
+namespace fts::room {
 
 // Keys are the MatchConfig field names ("tick_rate_hz", "price_life", ...; "model" is
 // "seed" | "discrete" | "continuous"); absent keys keep `base`'s values.
@@ -31,4 +31,4 @@ std::variant<InputLine, std::string> parse_input_line(const std::string& line);
 // The same from an already parsed line (a record reads each line once, then dispatches).
 std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& line);
 
-}  // namespace fts::host
+}  // namespace fts::room

@@ -1,10 +1,10 @@
-#include "host/text.hpp"
+#include "fts/room/text.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 
-namespace fts::host {
+namespace fts::room {
 
 std::optional<double> to_number(const std::string& s) {
   double v = 0;
@@ -28,4 +28,4 @@ std::string hex16(std::uint64_t v) {
   return buf;
 }
 
-}  // namespace fts::host
+}  // namespace fts::room

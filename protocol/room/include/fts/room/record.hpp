@@ -1,6 +1,7 @@
 // The match record: a header line, then the input of every non-empty tick and the state
 // hash every 100 ticks, one JSON object per line. A seed plus this log reproduces the
-// match bit for bit; replay_record re-runs it and checks every hash.
+// match bit for bit. One writer (the server's rooms, fts-sim) and one reader (the tape:
+// fts-server --replay checks it, fts-client --replay plays it).
 //
 //   {"fts_record":1,"version":"0.1.0","seed":7,"config":{...MatchConfig...}}
 //   {"tick":0,"joins":[{"player":1,"name":"ann"}]}
@@ -12,13 +13,20 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "fts/sim/match.hpp"
 
-namespace fts::host {
+namespace fts::room {
 
 constexpr std::int64_t kRecordHashEvery = 100;
+// The record format this build writes and reads ("fts_record" in the header).
+constexpr std::int64_t kRecordFormat = 1;
+
+// Nothing happens in the tick: no line is written for it.
+bool empty_inputs(const sim::TickInputs& in);
 
 class RecordWriter {
  public:
@@ -36,6 +44,28 @@ class RecordWriter {
   std::ostream& out_;
 };
 
+// A record read whole.
+struct TapeLine {
+  std::int64_t tick = 0;
+  sim::TickInputs inputs;
+};
+struct TapeHash {
+  std::int64_t tick = 0;
+  std::string hex;        // match_hash after `tick` ticks, as recorded
+  std::size_t line = 0;   // its line in the record (1-based), for the error
+};
+struct Tape {
+  std::uint64_t seed = 0;
+  sim::MatchConfig config;
+  std::vector<TapeLine> lines;  // in tick order
+  std::vector<TapeHash> hashes;  // to check, in tick order
+  std::int64_t last_tick = 0;   // the last tick the record names
+};
+
+// Reads a whole record; an error names the line (and a record of another format its
+// format). Bounded: at most max_lines lines.
+std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_lines = 5'000'000);
+
 struct ReplayReport {
   std::int64_t ticks = 0;
   std::int64_t hashes_checked = 0;
@@ -43,7 +73,8 @@ struct ReplayReport {
   sim::MatchState state;  // at the end
 };
 
-// Either the report (every hash equal) or a message naming the line and what differed.
+// Steps the record through the room stepper: either the report (every hash equal) or a
+// message naming the line and what differed.
 std::variant<ReplayReport, std::string> replay_record(std::istream& in);
 
-}  // namespace fts::host
+}  // namespace fts::room

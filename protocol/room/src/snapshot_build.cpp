@@ -1,8 +1,8 @@
-#include "app/snapshot_build.hpp"
+#include "fts/room/snapshot_build.hpp"
 
 #include <optional>
 
-namespace fts::server {
+namespace fts::room {
 namespace {
 
 protocol::Phase wire_phase(sim::Phase p) {
@@ -89,4 +89,4 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
   return s;
 }
 
-}  // namespace fts::server
+}  // namespace fts::room

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-namespace fts::host {
+namespace fts::room {
 
 // The whole string as a number, or nothing ("12x", "", "1e999" fail).
 std::optional<double> to_number(const std::string& s);
@@ -13,4 +13,4 @@ std::optional<std::int64_t> to_integer(const std::string& s);
 // A 64-bit hash as 16 lower-case hex digits.
 std::string hex16(std::uint64_t v);
 
-}  // namespace fts::host
+}  // namespace fts::room

@@ -1,11 +1,11 @@
-#include "host/match_config_json.hpp"
+#include "fts/room/match_config_json.hpp"
 
 #include <cmath>
 #include <variant>
 
-#include "host/json_fields.hpp"
+#include "fts/room/json_fields.hpp"
 
-namespace fts::host {
+namespace fts::room {
 namespace {
 
 using sim::MatchConfig;
@@ -224,4 +224,4 @@ std::variant<InputLine, std::string> input_line_from_json(const nlohmann::json& 
   }
 }
 
-}  // namespace fts::host
+}  // namespace fts::room

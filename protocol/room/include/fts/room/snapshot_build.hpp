@@ -7,7 +7,7 @@
 #include "fts/protocol/snapshot.hpp"
 #include "fts/sim/match_view.hpp"
 
-namespace fts::server {
+namespace fts::room {
 
 // Match events -> wire events (tick-stamped). Join refusals are not public.
 void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events,
@@ -16,4 +16,4 @@ void append_wire_events(std::int64_t tick, const std::vector<sim::Event>& events
 // The snapshot of `view` with the recent events (oldest first).
 protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<protocol::Event>& recent);
 
-}  // namespace fts::server
+}  // namespace fts::room

@@ -1,8 +1,8 @@
-#include "host/json_fields.hpp"
+#include "fts/room/json_fields.hpp"
 
 #include <cmath>
 
-namespace fts::host {
+namespace fts::room {
 
 Fields::Fields(const nlohmann::json& obj, std::string path) : obj_(obj), path_(std::move(path)) {
   if (!obj_.is_object()) throw FieldError(path_ + ": must be an object, got " + obj_.dump());
@@ -84,4 +84,4 @@ void require_positive(const Fields& f, std::string_view key, double v) {
   if (!(v > 0.0)) f.fail(key, "must be > 0, got " + nlohmann::json(v).dump());
 }
 
-}  // namespace fts::host
+}  // namespace fts::room
