@@ -102,8 +102,13 @@ std::string hud_fit(const Snapshot& s, const ViewState& view, int cols) {
     std::snprintf(buf, sizeof buf, "%.0f%%", view.loss_percent);
     small += std::string(" ") + buf;
   }
-  if (static_cast<int>(mid.size()) <= cols) return mid;
-  return small.substr(0, static_cast<std::size_t>(std::max(cols, 0)));
+  // The room code stays to the end (friends join by it): the other parts shorten first.
+  const std::string room = view.room.empty() ? "" : "  " + view.room;
+  if (static_cast<int>(mid.size() + room.size()) <= cols) return mid + room;
+  if (static_cast<int>(small.size() + room.size()) <= cols) return small + room;
+  const int left = std::max(cols - static_cast<int>(room.size()), 0);
+  if (left > 0) return small.substr(0, static_cast<std::size_t>(left)) + room;
+  return view.room.substr(0, static_cast<std::size_t>(std::max(cols, 0)));
 }
 
 std::vector<StyledLine> legend_lines(const Snapshot& s, const ViewState& view, int cols, bool one_per_row,

@@ -47,7 +47,8 @@ FrameLayout frame_layout(TerminalSize size, const ViewState& view, const protoco
 // "terminal too small: 50x15, need at least 60x20".
 std::string too_small_text(TerminalSize size);
 
-// The HUD for `cols` columns: the original's words, else abbreviated, else shorter still.
+// The HUD for `cols` columns: the original's words, else abbreviated, else shorter still;
+// the room code ("Room KXBQT") is the last part to go.
 std::string hud_fit(const protocol::Snapshot& s, const ViewState& view, int cols);
 
 // The legend as rows of at most `cols` characters: one player per row in the side panel

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "ui/field_cells.hpp"
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/palette.hpp"
@@ -56,56 +57,68 @@ void draw_frame(Screen& s, const Viewport& v) {
     for (int c = v.col0; c < right; ++c) s.set(c, r, kPlatformChar, kDimStyle);
 }
 
-// Cells a ball may cover: the platform and its frame, nothing of the text around it.
-bool drawable(const Screen& s, const Viewport& v, int col, int row) {
-  return s.inside(col, row) && col >= v.col0 - 1 && col <= v.col0 + v.cols && row >= v.row0 - 1 &&
-         row <= v.row0 + v.rows;
-}
-
-void draw_ball(Screen& s, const Viewport& v, const BallState& b, const BallLook& look) {
+// A ball covers the cells of the platform and its frame whose centres lie in its disc
+// (at least its centre cell) and records them in `cells` as ball `index`. Its mass is
+// written on its middle row when the digits fit on its own cells and leave at least one
+// fill cell showing: even a ball two cells wide keeps its '@'.
+void draw_ball(Screen& s, const Viewport& v, FieldCells& cells, int index, const BallState& b, const BallLook& look) {
   if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.radius)) return;
   const double r = std::clamp(b.radius, 0.0, 1e6);
   const int c0 = v.col_of(b.x - r), c1 = v.col_of(b.x + r);
   const int r0 = v.row_of(b.y + r), r1 = v.row_of(b.y - r);
   const int cc = v.col_of(b.x), rc = v.row_of(b.y);
-  for (int row = std::max(r0, 0); row <= std::min(r1, s.rows()); ++row) {
-    for (int col = std::max(c0, 0); col <= std::min(c1, s.cols()); ++col) {
+  const auto paint = [&](int col, int row) {
+    if (!cells.on_field(col, row) || !s.inside(col, row)) return;
+    s.set(col, row, look.fill, look.style);
+    cells.cover(col, row, index);
+  };
+  for (int row = std::max(r0, v.row0 - 1); row <= std::min(r1, v.row0 + v.rows); ++row) {
+    for (int col = std::max(c0, v.col0 - 1); col <= std::min(c1, v.col0 + v.cols); ++col) {
       const double dx = v.x_of(col) - b.x, dy = v.y_of(row) - b.y;
-      if (dx * dx + dy * dy <= r * r && drawable(s, v, col, row)) s.set(col, row, look.fill, look.style);
+      if (dx * dx + dy * dy <= r * r) paint(col, row);
     }
   }
-  if (drawable(s, v, cc, rc)) s.set(cc, rc, look.fill, look.style);  // even a tiny ball shows
+  paint(cc, rc);  // even a tiny ball shows
   if (b.kind == BallKind::rocket) return;
   // The mass, centred in the ball as in the seed's pictures.
   const std::string label =
       std::isfinite(b.mass) ? std::to_string(std::llround(std::clamp(b.mass, 0.0, 1e9))) : "?";
-  const int start = cc - (static_cast<int>(label.size()) - 1) / 2;
+  const int n = static_cast<int>(label.size());
+  const int start = cc - (n - 1) / 2;
+  if (cells.cells_of(index) <= n) return;
+  for (int i = 0; i < n; ++i)
+    if (cells.ball_at(start + i, rc) != index) return;
   Style label_style = look.style;
   label_style.fg = Color::white;
-  for (std::size_t i = 0; i < label.size(); ++i) {
-    const int col = start + static_cast<int>(i);
-    if (drawable(s, v, col, rc)) s.set(col, rc, label[i], label_style);
-  }
+  for (int i = 0; i < n; ++i) s.set(start + i, rc, label[static_cast<std::size_t>(i)], label_style);
 }
 
-// A player's name just above its ball (below when the ball is at the top edge), centred
-// and truncated; the player being watched gets brackets.
-void draw_name(Screen& s, const Viewport& v, const BallState& b, const Snapshot& snap, const ViewState& view) {
-  if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.radius)) return;
+// A player's name (cut, in brackets when watched) next to its ball: the first free spot
+// above, below, right or left of it; first one that touches no other ball, then any; a
+// name with no free spot is shortened (to 6, then 3 characters), else left out.
+void draw_name(Screen& s, FieldCells& cells, int index, const BallState& b, const Snapshot& snap,
+               const ViewState& view) {
   const PlayerState* p = find_player(snap, b.owner);
   if (p == nullptr) return;
-  std::string label = sanitize(p->name, kNameOnFieldChars);
-  if (b.owner == view.follow_id) label = "[" + label + "]";
-  const double r = std::clamp(b.radius, 0.0, 1e6);
-  const int cc = v.col_of(b.x);
-  int row = v.row_of(b.y + r) - 1;
-  if (row < v.row0 - 1) row = v.row_of(b.y - r) + 1;
-  int col = cc - static_cast<int>(label.size()) / 2;
-  col = std::clamp(col, v.col0 - 1, v.col0 + v.cols + 1 - static_cast<int>(label.size()));
+  const std::string name = sanitize(p->name, kNameOnFieldChars);
+  const bool watched = b.owner == view.follow_id;
   Style st = player_style(b.owner);
-  if (b.owner == view.follow_id) st.underline = true;
-  for (std::size_t i = 0; i < label.size(); ++i)
-    if (drawable(s, v, col + static_cast<int>(i), row)) s.set(col + static_cast<int>(i), row, label[i], st);
+  if (watched) st.underline = true;
+  std::vector<std::size_t> keeps{name.size()};
+  for (const std::size_t shorter : {std::size_t{6}, std::size_t{3}})
+    if (name.size() > shorter) keeps.push_back(shorter);
+  for (const std::size_t keep : keeps) {
+    const std::string cut = name.substr(0, keep);
+    const std::string label = watched ? "[" + cut + "]" : cut;
+    const int n = static_cast<int>(label.size());
+    for (const bool strict : {true, false}) {
+      if (const auto spot = cells.find_spot(index, n, strict)) {
+        s.put(spot->col, spot->row, label, st);
+        cells.take(*spot, n);
+        return;
+      }
+    }
+  }
 }
 
 void draw_arena(Screen& s, const Snapshot& snap, const Viewport& v, const ViewState& view) {
@@ -114,9 +127,22 @@ void draw_arena(Screen& s, const Snapshot& snap, const Viewport& v, const ViewSt
   for (const auto& b : snap.balls) order.emplace_back(look_of(b, view.my_player_id), &b);
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& x, const auto& y) { return x.first.layer < y.first.layer; });
-  for (const auto& [look, ball] : order) draw_ball(s, v, *ball, look);
-  for (const auto& [look, ball] : order)
-    if (ball->kind == BallKind::player) draw_name(s, v, *ball, snap, view);
+  FieldCells cells(v);
+  for (std::size_t i = 0; i < order.size(); ++i) draw_ball(s, v, cells, static_cast<int>(i), *order[i].second, order[i].first);
+  // Names after every ball, so that none is covered: yours first, then the watched
+  // player's, then the others by ball id.
+  std::vector<int> named;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (order[i].second->kind == BallKind::player) named.push_back(static_cast<int>(i));
+  const auto rank = [&](int i) {
+    const std::uint32_t owner = order[static_cast<std::size_t>(i)].second->owner;
+    return owner == view.my_player_id ? 0 : owner == view.follow_id ? 1 : 2;
+  };
+  std::stable_sort(named.begin(), named.end(), [&](int x, int y) {
+    if (rank(x) != rank(y)) return rank(x) < rank(y);
+    return order[static_cast<std::size_t>(x)].second->id < order[static_cast<std::size_t>(y)].second->id;
+  });
+  for (const int i : named) draw_name(s, cells, i, *order[static_cast<std::size_t>(i)].second, snap, view);
 }
 
 void put_line(Screen& s, int col, int row, const StyledLine& line, int max_cols) {
@@ -254,7 +280,9 @@ Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double a
     for (const auto& line : lines) put_centred(s, row++, line, kStatusStyle);
     return s;
   }
-  s.put(0, L.hud_row, hud_fit(snap, view, s.cols()), kHudStyle);
+  // A status ("connection lost, ...") takes the right end: the HUD shortens to leave it.
+  const int status_cols = view.status.empty() ? 0 : static_cast<int>(view.status.size()) + 2;
+  s.put(0, L.hud_row, hud_fit(snap, view, std::max(s.cols() - status_cols, 0)), kHudStyle);
   if (!view.status.empty()) {
     const int col = std::max(0, s.cols() - static_cast<int>(view.status.size()) - 1);
     s.put(col, L.hud_row, " " + view.status, kStatusStyle);

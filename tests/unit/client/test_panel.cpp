@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "field_geometry.hpp"
 #include "seed_situation.hpp"
 #include "fts/sim/shop_text.hpp"
 #include "ui/hud.hpp"
@@ -85,11 +86,12 @@ TEST_CASE("with 8 players nothing is cut at 80x24, 120x40 and 200x60", "[client]
       CHECK(text.find(p.name) != std::string::npos);
       CHECK(text.find(fts::sim::with_thousands(p.coins) + "c 3L") != std::string::npos);
     }
-    // Every name on the field, on the row above its ball (cut to kNameOnFieldChars).
+    // Every name on the field, on the row just above its ball's top cell (cut to
+    // kNameOnFieldChars).
     const Viewport& v = L.arena;
     for (const auto& b : snap.balls) {
       const std::string name = std::string(kNames[b.owner - 1]).substr(0, kNameOnFieldChars);
-      const int row = v.row_of(b.y + b.radius) - 1;
+      const int row = test::top_row(v, b) - 1;
       INFO(name << " at row " << row);
       CHECK(screen.line(row).find(name) != std::string::npos);
     }
