@@ -191,16 +191,48 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
     for (const auto& l : raw)
       for (auto& part : wrap(l, width)) lines.push_back(std::move(part));
     const int room = last - first + 1;
-    std::vector<std::string> spaced;
+    // The slide from the most spacious to the most compact: with blank lines between the
+    // groups; without them; without the Level/Coins/Lives lines the HUD repeats; without
+    // the items' explanations.
+    std::vector<std::vector<std::string>> variants(1);
     for (std::size_t i = 0; i < lines.size(); ++i) {
-      if (i > 0 && is_group_start(lines[i])) spaced.emplace_back();
-      spaced.push_back(lines[i]);
+      if (i > 0 && is_group_start(lines[i])) variants[0].emplace_back();
+      variants[0].push_back(lines[i]);
     }
-    // Too tall: drop the blank lines, then the Level/Coins/Lives lines the HUD repeats.
-    if (static_cast<int>(spaced.size()) > room) spaced = lines;
-    if (static_cast<int>(spaced.size()) > room) spaced.erase(spaced.begin(), spaced.begin() + 3);
-    if (static_cast<int>(spaced.size()) > room)
-      std::erase_if(spaced, [](const std::string& l) { return l.rfind("Increases", 0) == 0 || l.rfind("Earns", 0) == 0; });
+    variants.push_back(lines);
+    variants.push_back(lines);
+    variants.back().erase(variants.back().begin(), variants.back().begin() + std::min<std::ptrdiff_t>(3, std::ssize(lines)));
+    variants.push_back(variants.back());
+    std::erase_if(variants.back(),
+                  [](const std::string& l) { return l.rfind("Increases", 0) == 0 || l.rfind("Earns", 0) == 0; });
+    const int board_w = static_cast<int>(board[1].size());
+    const auto text_w = [](const std::vector<std::string>& v) {
+      std::size_t w = 0;
+      for (const auto& line : v) w = std::max(w, line.size());
+      return static_cast<int>(w);
+    };
+    const auto beside_col = [&](const std::vector<std::string>& v) { return L.area_col0 + 2 + text_w(v) + 4; };
+    const auto fits_beside = [&](const std::vector<std::string>& v) {
+      return beside_col(v) + board_w <= L.area_col0 + L.area_cols;
+    };
+    const auto fits_under = [&](const std::vector<std::string>& v) {
+      return std::ssize(v) + 1 + std::ssize(board) <= room;
+    };
+    // The most spacious slide that fits, and the standings beside or under it when some
+    // slide leaves room for them: under it at the cost of blank lines and repeated lines,
+    // never of the explanations.
+    std::size_t pick = variants.size() - 1;
+    for (std::size_t i = variants.size(); i-- > 0;)
+      if (std::ssize(variants[i]) <= room) pick = i;
+    bool with_board = false;
+    for (std::size_t i = 0; i < variants.size() && !with_board; ++i) {
+      const bool under = i + 1 < variants.size() && fits_under(variants[i]);
+      if (std::ssize(variants[i]) <= room && (fits_beside(variants[i]) || under)) {
+        pick = i;
+        with_board = true;
+      }
+    }
+    const std::vector<std::string>& spaced = variants[pick];
     int row = first;
     for (const auto& line : spaced) {
       if (row > last) break;
@@ -210,15 +242,12 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
       s.put(2, row++, line, style);
     }
     // The standings after the level: beside the offers when the terminal is wide enough,
-    // else under them when they fit.
-    std::size_t text_w = 0;
-    for (const auto& line : spaced) text_w = std::max(text_w, line.size());
-    const int beside = L.area_col0 + 2 + static_cast<int>(text_w) + 4;
-    const int board_w = static_cast<int>(board[1].size());
-    if (beside + board_w <= L.area_col0 + L.area_cols) {
+    // else under them.
+    if (with_board && fits_beside(spaced)) {
+      const int beside = beside_col(spaced);
       for (std::size_t i = 0; i < board.size() && first + static_cast<int>(i) <= last; ++i)
         s.put(beside, first + static_cast<int>(i), board[i], i == 0 ? kTitleStyle : Style{});
-    } else if (last - row >= static_cast<int>(board.size())) {
+    } else if (with_board) {
       for (std::size_t i = 0; i < board.size(); ++i)
         s.put(2, ++row, board[i].substr(0, static_cast<std::size_t>(width)), i == 0 ? kTitleStyle : Style{});
     }

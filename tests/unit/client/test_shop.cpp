@@ -74,3 +74,36 @@ TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[cl
     CHECK(std::none_of(lines.begin(), lines.end(), [](const std::string& l) { return l.find("press 'r'") != std::string::npos; }));
   }
 }
+
+// Issue 26 (8): at 80x40 the spaced slide filled the rows and the standings were left
+// out, although dropping its blank lines left room for them.
+TEST_CASE("the shop shows the standings whenever the slide can leave room for them", "[client][shop]") {
+  const char* const names[] = {"ann", "bob", "cleo", "dora", "eve", "fay", "gus", "hiro"};
+  const struct {
+    std::size_t players;
+    TerminalSize size;
+  } cases[] = {{2, {80, 30}}, {2, {80, 40}}, {8, {80, 45}}, {2, {100, 40}}, {8, {110, 45}}};
+  for (const auto& c : cases) {
+    INFO(c.players << " players at " << c.size.cols << "x" << c.size.rows);
+    auto snap = test::seed_snapshot(Phase::shop);
+    snap.players.clear();
+    for (std::size_t i = 0; i < c.players; ++i) {
+      auto p = test::seed_player();
+      p.id = static_cast<std::uint32_t>(i + 1);
+      p.name = names[i];
+      snap.players.push_back(p);
+    }
+    ViewState view;
+    view.my_player_id = 1;
+    const Screen s = render(snap, snap, 0, c.size, view);
+    CHECK(screen_has(s, "Standings after level 3"));
+    CHECK(screen_has(s, "  1 ann*"));
+    CHECK(screen_has(s, " " + std::to_string(c.players) + " " + names[c.players - 1]));
+    // Every offer and what it does stays on the slide.
+    for (const auto& line : shop_screen_lines(snap.players[0], 3)) {
+      if (line.rfind("Level:", 0) == 0 || line.rfind("Coins:", 0) == 0 || line.rfind("Lives:", 0) == 0) continue;
+      INFO(line);
+      CHECK(screen_has(s, line));
+    }
+  }
+}
