@@ -1,6 +1,8 @@
 #include "replay/replay.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <iterator>
 
 #include "fts/room/text.hpp"
 #include "ui/panel.hpp"
@@ -58,13 +60,48 @@ protocol::Snapshot Replay::snapshot() const { return room_.snapshot(); }
 
 std::vector<protocol::Event> Replay::take_events() { return std::exchange(fresh_, {}); }
 
+namespace {
+
+// The replay's keys, most needed first; each in words and in short.
+struct FooterKey {
+  const char* words;
+  const char* brief;
+};
+constexpr FooterKey kReplayKeys[] = {
+    {"q: quit", "q quit"},       {"Space: pause", "Spc pause"},
+    {"-/+: speed", "-/+ speed"}, {"n/p: next/previous level", "n/p level"},
+    {"1-9: level", "1-9 lvl"},   {"Tab: follow", "Tab follow"},
+    {"e: end", "e end"},
+};
+
+}  // namespace
+
 std::string replay_footer(const Replay& r, int cols) {
   char speed[16];
   std::snprintf(speed, sizeof speed, "x%g", r.speed());
-  std::string text = "Replay: tick " + std::to_string(r.state().tick) + "/" + std::to_string(r.tape().last_tick) + " " +
-                     speed + (r.at_end() ? " (end)" : r.paused() ? " (paused)" : "") +
-                     "   Space: pause   -/+: speed   n/p: next/previous level   1-9: level   Tab: follow   q: quit";
-  return fit_footer(std::move(text), cols);
+  const std::string where = std::to_string(r.state().tick) + "/" + std::to_string(r.tape().last_tick) + " " + speed +
+                            (r.at_end() ? " (end)" : r.paused() ? " (paused)" : "");
+  // Shortened until it fits: the keys' spacing, their words, the "Replay: tick" words,
+  // then the least needed keys (quit stays, "Replay" comes back); at last cut.
+  const auto compose = [&](const std::string& head, bool brief, const char* gap, std::size_t keys) {
+    std::string text = head + where;
+    std::size_t n = 0;
+    for (const FooterKey& k : kReplayKeys) {
+      if (n++ == keys) break;
+      text += gap;
+      text += brief ? k.brief : k.words;
+    }
+    return text;
+  };
+  const std::size_t all = std::size(kReplayKeys);
+  const std::string tries[] = {compose("Replay: tick ", false, "   ", all), compose("Replay: tick ", false, "  ", all),
+                               compose("Replay: tick ", true, "  ", all), compose("Replay ", true, "  ", all),
+                               compose("", true, "  ", all)};
+  for (const auto& text : tries)
+    if (std::ssize(text) <= cols) return text;
+  for (std::size_t keys = all; keys-- > 1;)
+    if (const std::string text = compose("Replay ", true, "  ", keys); std::ssize(text) <= cols) return text;
+  return compose("", true, " ", 1).substr(0, static_cast<std::size_t>(std::max(cols, 0)));
 }
 
 }  // namespace fts::client

@@ -121,3 +121,34 @@ TEST_CASE("a damaged record is refused with the line", "[client][replay]") {
   r.run_to(10);
   CHECK(r.mismatch().rfind("tick 10: recorded 0000000000000000, replayed ", 0) == 0);
 }
+
+// Issue 26 (8): the footer was 111-118 characters even with its spaces squeezed, so a
+// 100-column terminal cut it (and "q: quit" with it).
+TEST_CASE("the replay footer fits the terminal and keeps quit", "[client][replay]") {
+  sim::MatchState live;
+  auto rec = record_of(1200, live);
+  Tape tape = tape_of(rec);
+  tape.last_tick = 360'000;  // an hour's record: the longest position text
+  Replay r(std::move(tape));
+  r.run_to(1000);
+  r.toggle_pause();
+  r.slower();  // x0.5
+  CHECK(client::replay_footer(r, 200) ==
+        "Replay: tick 1000/360000 x0.5 (paused)   q: quit   Space: pause   -/+: speed   n/p: next/previous level"
+        "   1-9: level   Tab: follow   e: end");
+  for (const int cols : {60, 70, 80, 90, 100, 110, 120, 140}) {
+    INFO(cols);
+    const std::string footer = client::replay_footer(r, cols);
+    INFO(footer);
+    CHECK(static_cast<int>(footer.size()) <= cols);
+    CHECK(footer.find("1000/360000 x0.5 (paused)") != std::string::npos);
+    CHECK((footer.find("q: quit") != std::string::npos || footer.find("q quit") != std::string::npos));
+    CHECK((footer.find("Space") != std::string::npos || footer.find("Spc") != std::string::npos));
+  }
+  // At 100 columns every key is still there, in short.
+  const std::string at100 = client::replay_footer(r, 100);
+  for (const char* key : {"q quit", "Spc pause", "-/+ speed", "n/p level", "1-9 lvl", "Tab follow", "e end"}) {
+    INFO(key << " in " << at100);
+    CHECK(at100.find(key) != std::string::npos);
+  }
+}
