@@ -379,7 +379,7 @@ nlohmann::ordered_json GameHost::room_json(const Room& r) const {
 
 // One console request: {"cmd":"rooms"}, {"cmd":"players","room":"ABCDE"}, {"cmd":"kick",
 // "player":3,"reason":"..."}, {"cmd":"ban","address":"10.0.0.7","minutes":60},
-// {"cmd":"close","room":"ABCDE"}, {"cmd":"drain"}, {"cmd":"stats"}.
+// {"cmd":"announce","text":"..."}, {"cmd":"close","room":"ABCDE"}, {"cmd":"drain"}, {"cmd":"stats"}.
 nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_t now_ms) {
   auto reply = [&]() -> nlohmann::ordered_json {
     if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string())

@@ -86,7 +86,8 @@ void ConsoleServer::accept() {
 
 std::string console_request(const std::vector<std::string>& words, std::string& error) {
   if (words.empty()) {
-    error = "a command is needed: rooms, players [ROOM], kick PLAYER [REASON], ban ADDRESS [MINUTES], close ROOM, drain, stats";
+    error = "a command is needed: rooms, players [ROOM], kick PLAYER [REASON], ban ADDRESS [MINUTES], announce TEXT, "
+            "close ROOM, drain, stats";
     return "";
   }
   const std::string& cmd = words[0];
@@ -120,6 +121,12 @@ std::string console_request(const std::vector<std::string>& words, std::string& 
       if (!m) return "";
       j["minutes"] = *m;
     }
+  } else if (cmd == "announce") {
+    // The words after the command are the line, as `kick`'s reason: quoting is optional.
+    std::string text;
+    for (std::size_t i = 1; i < words.size(); ++i) text += (i > 1 ? " " : "") + words[i];
+    if (text.find_first_not_of(' ') == std::string::npos) return error = "announce TEXT: the line every player is shown", "";
+    j["text"] = text;
   } else if (cmd == "close") {
     if (words.size() < 2) return error = "close ROOM", "";
     j["room"] = words[1];
