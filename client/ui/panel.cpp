@@ -166,15 +166,29 @@ std::string age_text(std::uint64_t at_ms, std::uint64_t now_ms) {
 std::vector<StyledLine> log_lines(const ViewState& view, int cols, int rows) {
   std::vector<StyledLine> out;
   if (cols <= 4 || rows <= 0) return out;
+  // The newest kLogShown lines, except that a host announcement younger than
+  // kAnnouncePinnedMs keeps its place: at a level's end the level's own lines would push
+  // it out within a second. (Rejected: a HUD row of its own, which costs a row always.)
+  const auto pinned = [&](const LogLine& m) { return m.host && view.now_ms < m.at_ms + kAnnouncePinnedMs; };
   const std::size_t n = view.messages.size();
-  const std::size_t first = n > static_cast<std::size_t>(kLogShown) ? n - kLogShown : 0;
-  for (std::size_t i = first; i < n; ++i) {
+  std::vector<std::size_t> chosen;  // newest first
+  for (std::size_t i = n; i-- > 0 && chosen.size() < static_cast<std::size_t>(kLogShown);)
+    if (pinned(view.messages[i])) chosen.push_back(i);
+  const std::size_t pins = chosen.size();
+  for (std::size_t i = n, others = 0; i-- > 0 && others + pins < static_cast<std::size_t>(kLogShown);)
+    if (!pinned(view.messages[i])) chosen.push_back(i), ++others;
+  std::sort(chosen.begin(), chosen.end());
+  // Each chosen line as its wrapped rows, oldest first.
+  std::vector<std::vector<StyledLine>> groups;
+  std::size_t total = 0;
+  for (const std::size_t i : chosen) {
     const LogLine& m = view.messages[i];
     std::string age = age_text(m.at_ms, view.now_ms);
     age.insert(0, 3 - std::min<std::size_t>(age.size(), 3), ' ');
     const int indent = static_cast<int>(age.size()) + 1;
     const auto parts = wrap(m.text, cols - indent);
     std::size_t consumed = 0;
+    auto& group = groups.emplace_back();
     for (std::size_t k = 0; k < parts.size(); ++k) {
       StyledLine line;
       line.push_back({k == 0 ? age + " " : std::string(static_cast<std::size_t>(indent), ' '), kDim});
@@ -185,10 +199,20 @@ std::vector<StyledLine> log_lines(const ViewState& view, int cols, int rows) {
       if (coloured > 0) line.push_back({part.substr(0, coloured), player_style(m.from)});
       line.push_back({part.substr(coloured), body});
       consumed += part.size() + 1;
-      out.push_back(std::move(line));
+      group.push_back(std::move(line));
     }
+    total += group.size();
   }
-  if (static_cast<int>(out.size()) > rows) out.erase(out.begin(), out.end() - rows);
+  // Too many rows: the oldest rows go, those of unpinned lines first.
+  for (const bool drop_pinned : {false, true})
+    for (std::size_t g = 0; g < groups.size() && total > static_cast<std::size_t>(rows); ++g) {
+      if (pinned(view.messages[chosen[g]]) != drop_pinned) continue;
+      const std::size_t cut = std::min(groups[g].size(), total - static_cast<std::size_t>(rows));
+      groups[g].erase(groups[g].begin(), groups[g].begin() + static_cast<std::ptrdiff_t>(cut));
+      total -= cut;
+    }
+  for (auto& group : groups)
+    for (auto& line : group) out.push_back(std::move(line));
   return out;
 }
 

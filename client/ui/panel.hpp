@@ -22,6 +22,9 @@ inline constexpr int kMinRows = 20;
 // Log lines kept by the client and shown at most.
 inline constexpr std::size_t kLogKeep = 32;
 inline constexpr int kLogShown = 5;
+// A host announcement keeps its place among the shown lines this long, however many
+// lines come after it (a level's end brings a burst of them).
+inline constexpr std::uint64_t kAnnouncePinnedMs = 20'000;
 
 struct FrameLayout {
   bool too_small = false;

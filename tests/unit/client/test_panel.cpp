@@ -163,6 +163,40 @@ TEST_CASE("the message log keeps ages and wraps long lines", "[client][log]") {
   CHECK(wrap("abcdefghij", 4) == std::vector<std::string>{"abcd", "efgh", "ij"});
 }
 
+TEST_CASE("a host announcement stays in the log while the level's own lines pour in", "[client][hud][announce]") {
+  // Issue 26: announced at level end, it was pushed out of the 5 lines within a second.
+  ViewState v;
+  v.now_ms = 20'000;
+  v.messages.push_back(LogLine{"old line", 18'000});
+  v.messages.push_back(LogLine{"host: server restarts at noon", 19'000, 0, 5, true});
+  for (int i = 0; i < 8; ++i)
+    v.messages.push_back(LogLine{"event line " + std::to_string(i), 19'100 + 100 * static_cast<std::uint64_t>(i)});
+  const auto text_of = [](const StyledLine& l) {
+    std::string t;
+    for (const auto& span : l) t += span.text;
+    return t;
+  };
+  const auto shown = [&](int rows) {
+    std::vector<std::string> out;
+    for (const auto& l : log_lines(v, 60, rows)) out.push_back(text_of(l));
+    return out;
+  };
+  auto lines = shown(10);
+  REQUIRE(lines.size() == static_cast<std::size_t>(kLogShown));
+  CHECK(lines[0] == " 1s host: server restarts at noon");  // pinned, in its place in time
+  CHECK(lines[4].find("event line 7") != std::string::npos);  // the newest lines go on
+  CHECK(lines[1].find("event line 4") != std::string::npos);
+  lines = shown(2);  // fewer rows than lines: the announcement keeps one of them
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0].find("server restarts at noon") != std::string::npos);
+  CHECK(lines[1].find("event line 7") != std::string::npos);
+  // Once its time is up it is an old line like any other.
+  v.now_ms = 19'000 + kAnnouncePinnedMs + 1;
+  lines = shown(10);
+  REQUIRE(lines.size() == static_cast<std::size_t>(kLogShown));
+  for (const auto& l : lines) CHECK(l.find("server restarts") == std::string::npos);
+}
+
 TEST_CASE("refusals are said in words", "[client][hud]") {
   const auto me = test::seed_player();  // 286 coins; mass costs 35, rockets 1,000,000
   CHECK(refusal_text("coins", "", 'r', &me) == "not enough coins: rockets costs 1,000,000, you have 286");
