@@ -265,6 +265,8 @@ void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_m
   line.name = "player " + std::to_string(pc.player_id);
   for (const auto& s : endpoint_.sessions())
     if (s.player_id == pc.player_id) line.name = s.name;
+  // The name the legend shows: a second "ann" speaks as "ann-2".
+  if (const Room* r = room(pc.room)) line.name = r->shown_name(pc.player_id, line.name);
   line.text = v.text;
   // Only the sender's room hears it.
   for (const std::uint32_t to : endpoint_.connected_in_room(pc.room)) endpoint_.send_chat(to, line, now_ms);
@@ -410,8 +412,8 @@ nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_
         if (only && s.room != *only) continue;
         nlohmann::ordered_json p;
         p["player"] = s.player_id;
-        p["name"] = s.name;
         const Room* r = room(s.room);
+        p["name"] = r ? r->shown_name(s.player_id, s.name) : s.name;  // as the players' screens show it
         p["room"] = r ? r->code() : "";
         p["spectator"] = s.spectator;
         p["connected"] = s.connected;

@@ -59,6 +59,11 @@ void Room::record_to(std::ostream& out, const std::string& version) {
   recorder_ = std::make_unique<room::RecordWriter>(out, seed_, stepper_.match().cfg, version);
 }
 
+std::string Room::shown_name(std::uint32_t player_id, const std::string& fallback) const {
+  const sim::Player* p = sim::find_player(stepper_.match(), sim::PlayerId{player_id});
+  return p ? p->name : fallback;
+}
+
 void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint) {
   using K = protocol::ServerEvent::Kind;
   journal_session(e, endpoint);
@@ -77,12 +82,14 @@ void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoi
       held_.erase(e.player_id);  // a gone client stops pushing
       // A quit takes the ball off at once; a lost connection leaves it (for a resume).
       if (!e.spectator) (e.quit ? pending_.quit : pending_.away).push_back(e.player_id);
-      log_record(spdlog::level::info, "disconnect", {{who, e.player_id}, {"reason", e.reason}, {"room", id_}});
+      log_record(spdlog::level::info, "disconnect",
+                 {{who, e.player_id}, {"reason", e.reason}, {"room", id_}, {"name", shown_name(e.player_id, e.name)}});
       break;
     case K::released:
       held_.erase(e.player_id);
       if (!e.spectator) pending_.leaves.push_back(e.player_id);
-      log_record(spdlog::level::info, "leave", {{who, e.player_id}, {"reason", e.reason}, {"room", id_}});
+      log_record(spdlog::level::info, "leave",
+                 {{who, e.player_id}, {"reason", e.reason}, {"room", id_}, {"name", shown_name(e.player_id, e.name)}});
       break;
   }
 }

@@ -56,6 +56,10 @@ class Room {
   bool is_private() const { return private_; }
   std::uint64_t seed() const { return seed_; }
   const sim::MatchState& match() const { return stepper_.match(); }
+  // The name the match gave a player, the one every screen shows (a second "ann" is
+  // "ann-2"); `fallback` (the name it asked for) when it has no place in the match yet
+  // or is a spectator.
+  std::string shown_name(std::uint32_t player_id, const std::string& fallback) const;
   const std::string& record_path() const { return record_path_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
