@@ -17,8 +17,18 @@ void respond_seed(Ball& b1, Ball& b2) {
   const double v1yr = v1 * std::sin(th1 - phi);
   const double v2xr = v2 * std::cos(th2 - phi);
   const double v2yr = v2 * std::sin(th2 - phi);
-  const double v1xrf = (v1xr * (m1 - m2) + 2.0 * m2 * v2xr) / (m1 + m2);
-  const double v2xrf = (v2xr * (m2 - m1) + 2.0 * m1 * v1xr) / (m1 + m2);
+  double v1xrf = (v1xr * (m1 - m2) + 2.0 * m2 * v2xr) / (m1 + m2);
+  double v2xrf = (v2xr * (m2 - m1) + 2.0 * m1 * v1xr) / (m1 + m2);
+  if (std::isinf(m1) || std::isinf(m2)) {  // inf / inf above: the limits instead
+    if (std::isinf(m1) && std::isinf(m2)) return;
+    if (std::isinf(m1)) {
+      v1xrf = v1xr;
+      v2xrf = 2.0 * v1xr - v2xr;
+    } else {
+      v2xrf = v2xr;
+      v1xrf = 2.0 * v2xr - v1xr;
+    }
+  }
   const double half_pi = 1.57079632679489661923;
   b1.vel = {v1xrf * std::cos(phi) + v1yr * std::cos(phi + half_pi),
             v1xrf * std::sin(phi) + v1yr * std::sin(phi + half_pi)};
@@ -68,6 +78,7 @@ void separate(Ball& a, Ball& b, Vec2 n, double overlap) {
   if (!(overlap > 0.0)) return;
   const double wa = 1.0 / (1.0 + a.mass / b.mass);  // a's share: m_b / (m_a + m_b)
   const double wb = 1.0 / (1.0 + b.mass / a.mass);
+  if (std::isnan(wa)) return;  // inf / inf: both immovable
   a.pos -= n * (overlap * wa);
   b.pos += n * (overlap * wb);
 }

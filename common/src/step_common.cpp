@@ -156,7 +156,11 @@ void step_seed(World& world, const PhysicsSettings& s, double dt, StepReport& re
     Ball& b2 = balls[j];
     const double reach = b1.radius + b2.radius;
     if (length_sq(b2.pos - b1.pos) > reach * reach) continue;  // an earlier push moved them
-    push_apart_seed(b1, b2);
+    // The seed moves b1; an immovable b1 (mass +inf) stays and b2 moves instead.
+    const bool fixed1 = std::isinf(b1.mass), fixed2 = std::isinf(b2.mass);
+    if (fixed1 && fixed2) continue;
+    if (fixed1) push_apart_seed(b2, b1);
+    else push_apart_seed(b1, b2);
     respond_seed(b1, b2);
     ++report.collisions;
     report.contacts.push_back({b1.id, b2.id});

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "../../support/physics_fixtures.hpp"
 #include "fts/sim/collide.hpp"
@@ -160,4 +161,46 @@ TEST_CASE("Collisions: separation is weighted by inverse mass", "[collide]") {
   separate(a, b, contact_normal(a, b), 1.0);
   CHECK(a.pos.x == Approx(-0.25));
   CHECK(b.pos.x == Approx(1.75));
+}
+
+TEST_CASE("Collisions: a ball of infinite mass is immovable; two of them do not act on each other", "[collide]") {
+  const double inf = std::numeric_limits<double>::infinity();
+  SECTION("vector response: the other ball reflects, the post keeps its velocity") {
+    Ball post = ball(1, 0, 0, 0, 0, 1, inf), b = ball(2, 2, 0, -50, 7, 1, 40);
+    CHECK(respond_elastic(post, b, contact_direction(post, b)));
+    CHECK(post.vel == Vec2{});
+    CHECK(b.vel.x == 50.0);
+    CHECK(b.vel.y == 7.0);
+    Ball c = ball(3, 0, 0, 30, 0, 1, 40), post2 = ball(4, 2, 0, 0, 0, 1, inf);  // the post second
+    CHECK(respond_elastic(c, post2, contact_direction(c, post2)));
+    CHECK(c.vel.x == -30.0);
+    CHECK(post2.vel == Vec2{});
+  }
+  SECTION("seed response: the limit M1 >> M2") {
+    Ball post = ball(1, 0, 0, 0, 0, 1, inf), b = ball(2, 2, 0, -50, 0, 1, 40);
+    respond_seed(post, b);
+    CHECK(post.vel.x == 0.0);
+    CHECK(b.vel.x == Approx(50.0));
+    CHECK(std::isfinite(b.vel.y));
+    Ball c = ball(3, 0, 0, 30, 0, 1, 40), post2 = ball(4, 2, 0, 0, 0, 1, inf);
+    respond_seed(c, post2);
+    CHECK(c.vel.x == Approx(-30.0));
+    CHECK(post2.vel.x == 0.0);
+  }
+  SECTION("separation moves only the movable ball") {
+    Ball post = ball(1, 0, 0, 0, 0, 1, inf), b = ball(2, 1, 0, 0, 0, 1, 1);
+    separate(post, b, contact_normal(post, b), 1.0);
+    CHECK(post.pos == Vec2{});
+    CHECK(b.pos.x == 2.0);
+  }
+  SECTION("two posts: no impulse, no push, nothing becomes NaN") {
+    Ball a = ball(1, 0, 0, 10, 0, 1, inf), b = ball(2, 1.5, 0, -10, 0, 1, inf);
+    CHECK_FALSE(respond_elastic(a, b, contact_direction(a, b)));
+    separate(a, b, contact_normal(a, b), 0.5);
+    respond_seed(a, b);
+    CHECK(a.pos == Vec2{});
+    CHECK(b.pos.x == 1.5);
+    CHECK(a.vel.x == 10.0);
+    CHECK(b.vel.x == -10.0);
+  }
 }

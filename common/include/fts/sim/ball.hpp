@@ -13,7 +13,9 @@ struct Ball {
   Vec2 pos;        // u
   Vec2 vel;        // u/s
   double radius = 1.0;  // u
-  double mass = 1.0;    // arbitrary mass unit
+  // Arbitrary mass unit. +inf: immovable for the tick (the match's spawn protection,
+  // set only around a step): collisions never move it, others reflect off it.
+  double mass = 1.0;
   // Axes thrust this tick (kThrustX | kThrustY), set by the game before the step: the
   // friction cut-off spares them so a ball can start moving at any tick rate. Not state:
   // step() clears it, as Box2D clears a body's force after each step.

@@ -1,11 +1,14 @@
 // Pairwise collision response; shared by the models and tested against each other.
 #pragma once
 
+#include <cmath>
+
 #include "fts/sim/ball.hpp"
 
 namespace fts::sim {
 
-// The seed's rotated-axes formulas (atan2/cos/sin), applied unconditionally.
+// The seed's rotated-axes formulas (atan2/cos/sin), applied unconditionally; for an
+// immovable ball (mass +inf) their limit M1 >> M2 (two immovable balls: nothing).
 void respond_seed(Ball& b1, Ball& b2);
 // The seed's push-apart: b1 moves one unit per axis away from b2 until they no longer
 // overlap. A zero difference on an axis moves nothing on it; both zero moves b1 along +x.
@@ -33,6 +36,8 @@ inline Vec2 contact_direction(const Ball& a, const Ball& b) { return contact_dir
 // 50 000 per 10^4 ticks, linearly. With d in the numerator and its square in the
 // denominator the rounding errors have no preferred sign (BENCHMARKS.md, issue 18).
 // B is a Ball or the continuous model's working copy of one (anything with vel and mass).
+// A ball of mass +inf is immovable (see Ball::mass): its share comes out 0 and the
+// other's 2, a reflection off a fixed ball; two immovable balls do not act on each other.
 template <class B>
 bool respond_elastic(B& a, B& b, Vec2 d) {
   const double vd = dot(b.vel - a.vel, d);  // < 0: approaching
@@ -41,11 +46,13 @@ bool respond_elastic(B& a, B& b, Vec2 d) {
   // Each ball's share, written so that mass ratios of 1e9 stay finite and exact-ish.
   const double wa = 2.0 / (1.0 + a.mass / b.mass);  // = 2 m_b / (m_a + m_b)
   const double wb = 2.0 / (1.0 + b.mass / a.mass);  // = 2 m_a / (m_a + m_b)
+  if (std::isnan(wa)) return false;  // inf / inf: both immovable
   a.vel += d * (wa * f);
   b.vel -= d * (wb * f);
   return true;
 }
-// Removes the overlap along n, each ball moving in proportion to the other's mass.
+// Removes the overlap along n, each ball moving in proportion to the other's mass (an
+// immovable ball not at all; two immovable balls stay where they are).
 void separate(Ball& a, Ball& b, Vec2 n, double overlap);
 
 }  // namespace fts::sim
