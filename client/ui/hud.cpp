@@ -18,12 +18,19 @@ const PlayerState* find_player(const Snapshot& s, std::uint32_t id) {
   return nullptr;
 }
 
+int protection_s(const PlayerState& p, const Snapshot& s, double tick_rate_hz) {
+  if (p.protected_until_tick <= s.tick || tick_rate_hz <= 0) return -1;
+  return static_cast<int>(std::ceil((p.protected_until_tick - s.tick) / tick_rate_hz));
+}
+
 std::string hud_line(const Snapshot& s, const ViewState& view) {
   const PlayerState* me = find_player(s, view.my_player_id);
   std::string out = "Level: " + std::to_string(s.level);
   if (me != nullptr) {
     out += "   Coins: " + sim::with_thousands(me->coins);
     out += "   Lives: " + std::to_string(me->lives);
+    if (const int left = protection_s(*me, s, view.tick_rate_hz); left >= 0)
+      out += "   Protected: " + std::to_string(left) + "s";
   }
   char buf[64];
   if (view.ping_ms >= 0) {

@@ -19,7 +19,11 @@ using protocol::Snapshot;
 // The player with this id, or nullptr.
 const PlayerState* find_player(const Snapshot& s, std::uint32_t id);
 
-// "Level: 3   Coins: 286   Lives: 1   Ping: 23 ms   Loss: 0.0%".
+// Whole seconds of spawn protection the player's ball has left (rounded up), or -1 when
+// it is not protected.
+int protection_s(const PlayerState& p, const Snapshot& s, double tick_rate_hz);
+// "Level: 3   Coins: 286   Lives: 1   Protected: 3s   Ping: 23 ms   Loss: 0.0%" (the
+// protection only while the own ball has it).
 std::string hud_line(const Snapshot& s, const ViewState& view);
 // "Players: ann 286 coins 1 life | bob 12 coins 3 lives" (names sanitised).
 std::string players_line(const Snapshot& s, const ViewState& view);

@@ -89,6 +89,10 @@ std::string hud_fit(const Snapshot& s, const ViewState& view, int cols) {
   if (me != nullptr) {
     mid += "  Coins " + sim::with_thousands(me->coins) + "  Lives " + std::to_string(me->lives);
     small += " " + sim::with_thousands(me->coins) + "c " + std::to_string(me->lives) + "L";
+    if (const int left = protection_s(*me, s, view.tick_rate_hz); left >= 0) {
+      mid += "  Protected " + std::to_string(left) + "s";
+      small += " P" + std::to_string(left) + "s";
+    }
   }
   char buf[48];
   if (view.ping_ms >= 0) {

@@ -47,8 +47,10 @@ std::string validate(const MatchConfig& c) {
   if (c.player_lives < 1 || c.player_lives > c.lives_cap) return "player_lives must be in 1..lives_cap";
   if (c.player_coins < 0 || c.player_coins > c.coin_cap) return "player_coins must be in 0..coin_cap";
   if (!pos(c.player_multiplier) || c.player_multiplier > c.multiplier_cap) return "player_multiplier must be in (0, multiplier_cap]";
-  if (!nonneg(c.respawn_delay_s) || !nonneg(c.shop_timeout_s) || !nonneg(c.lobby_timeout_s) || !nonneg(c.credit_chain_s))
+  if (!nonneg(c.respawn_delay_s) || !nonneg(c.shop_timeout_s) || !nonneg(c.lobby_timeout_s) || !nonneg(c.credit_chain_s) ||
+      !nonneg(c.spawn_protection_s))
     return "durations must be >= 0";
+  if (!(c.late_join_share >= 0.0 && c.late_join_share <= 1.0)) return "late_join_share must be in 0..1";
   if (!(c.player_spawn_x_fraction > 0.0 && c.player_spawn_x_fraction < 1.0)) return "player_spawn_x_fraction must be in (0, 1)";
   if (c.enemies_max_normal < 1 || c.swarm_count < 1 || c.boss_count < 1 || c.boss_double_count < 1)
     return "enemy counts must be >= 1";

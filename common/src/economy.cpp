@@ -47,6 +47,26 @@ Economy start_economy(const MatchConfig& cfg) {
   return e;
 }
 
+Coins total_value(const Economy& e, const MatchConfig& cfg) { return sat_add(e.coins, e.spent, cfg.coin_cap); }
+
+Economy late_start_economy(std::int64_t levels_cleared, std::vector<Coins> values, const MatchConfig& cfg) {
+  Economy e = start_economy(cfg);
+  for (std::int64_t i = 0; i < levels_cleared; ++i) {
+    const double multiplier = e.multiplier, life = e.prices[Item::life];
+    complete_level(e, cfg);  // no bank: no interest, only the growth
+    if (e.multiplier == multiplier && e.prices[Item::life] == life) break;  // at the caps (or factors of 1)
+  }
+  if (!values.empty()) {
+    std::sort(values.begin(), values.end());
+    const std::size_t mid = values.size() / 2;
+    Coins median = values[mid];
+    if (values.size() % 2 == 0) median = values[mid - 1] + (values[mid] - values[mid - 1]) / 2;
+    e.coins = std::max(e.coins, floor_mul(median, cfg.late_join_share, cfg.coin_cap));
+    e.start_coins = e.coins;  // a grant, not earned: coins == start + earned - spent still
+  }
+  return e;
+}
+
 Coins price_of(const Economy& e, Item item) {
   const Coins big = 1'000'000'000'000'000'000;  // above any cap; clamped below
   return floor_clamp(e.prices[item], big);

@@ -128,8 +128,26 @@ void handle_presence(MatchState& s, const TickInputs& in) {
   }
 }
 
+// A join while a match runs (a new player: a reconnect with the session token comes back
+// as TickInputs::back and keeps its own economy).
+bool late_joiner(const MatchState& s) {
+  return s.cfg.late_join_share > 0.0 && (s.phase == Phase::playing || s.phase == Phase::shop);
+}
+
+// README, "Where the rules left room": the total values of the players still in the
+// match (away and parked ones too: their progress waits for them) set a newcomer's start.
+Economy late_join_economy(const MatchState& s) {
+  std::vector<Coins> values;
+  for (const Player& q : s.players)
+    if (q.in_match()) values.push_back(total_value(q.eco, s.cfg));
+  return late_start_economy(s.levels_cleared, std::move(values), s.cfg);
+}
+
 void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Event>& out) {
+  if (joins.empty()) return;
   std::stable_sort(joins.begin(), joins.end(), [](const auto& a, const auto& b) { return a.player < b.player; });
+  // Every newcomer of a tick gets the same start, from the players there before it.
+  const Economy start = late_joiner(s) ? late_join_economy(s) : start_economy(s.cfg);
   for (const JoinRequest& j : joins) {
     std::string refusal;
     if (j.player == 0) refusal = "bad_id";
@@ -143,7 +161,7 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
     Player p;
     p.id = j.player;
     p.name = unique_name(s, j.name);
-    p.eco = start_economy(s.cfg);
+    p.eco = start;
     if (s.phase == Phase::game_over) p.eco.lives = 0;  // watches until "play again"
     auto at = std::lower_bound(s.players.begin(), s.players.end(), p.id,
                                [](const Player& q, PlayerId v) { return q.id < v; });

@@ -40,6 +40,10 @@ std::uint64_t match_hash(const MatchState& s) {
     if (p.parked) h.add_u64(0x9a4ced);
     h.add_u64(p.ball.value);
     h.add_i64(p.respawn_tick);
+    if (p.protected_until_tick >= 0) {  // only when set (see above)
+      h.add_u64(0x5a1e1d);
+      h.add_i64(p.protected_until_tick);
+    }
     h.add_i64(p.next_fire_tick);
     h.add_double(p.aim.x);
     h.add_double(p.aim.y);

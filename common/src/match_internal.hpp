@@ -17,7 +17,7 @@ void remove_ball(MatchState& s, BallId id);
 void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Event>& out);
 // New match from level 1 for every present player (fresh economies).
 void start_new_match(MatchState& s, std::vector<Event>& out);
-// Puts the player's ball on a free spawn point.
+// Puts the player's ball on a free spawn point, under spawn protection.
 void respawn_player(MatchState& s, Player& p, std::vector<Event>& out);
 
 // One tick of the playing phase (inputs sorted by player id).

@@ -58,7 +58,10 @@ void remove_ball(MatchState& s, BallId id) {
   auto body = s.bodies.find(id);
   if (body == s.bodies.end()) return;
   if (body->second.kind == BodyKind::player) {
-    if (Player* p = find_player(s, body->second.owner); p && p->ball == id) p->ball = 0;
+    if (Player* p = find_player(s, body->second.owner); p && p->ball == id) {
+      p->ball = 0;
+      p->protected_until_tick = -1;  // the protection is the ball's
+    }
   }
   s.bodies.erase(body);
 }
@@ -73,6 +76,7 @@ void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Ev
     p.ready = false;
     p.ball = 0;
     p.respawn_tick = -1;
+    p.protected_until_tick = -1;  // a level starts with every enemy at rest: no protection
     p.next_fire_tick = s.tick;
     if (!p.in_match() || p.parked) continue;
     place_player(s, p, spawn_slot(s.cfg, slot++, k));
@@ -121,6 +125,7 @@ void respawn_player(MatchState& s, Player& p, std::vector<Event>& out) {
     pos = find_spawn(s.world.balls, r, left, s.rng, s.cfg);
   }
   place_player(s, p, *pos);
+  if (s.cfg.spawn_protection_s > 0.0) p.protected_until_tick = s.tick + ticks_for(s.cfg, s.cfg.spawn_protection_s);
   out.push_back(PlayerRespawned{p.id, p.ball});
 }
 

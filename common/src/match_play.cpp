@@ -2,6 +2,8 @@
 // credit for contacts, falls, and the level's end (complete, restart or game over).
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "match_internal.hpp"
 
@@ -36,6 +38,10 @@ void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, s
     Ball* b = find_ball(s.world, p->ball);
     if (!b) continue;
     const int dx = clamp_dir(t.input.move_x), dy = clamp_dir(t.input.move_y);
+    const bool fires = t.input.fire && p->eco.rockets && s.tick >= p->next_fire_tick;
+    // Spawn protection ends when the player acts: a protected ball never moves itself,
+    // so it cannot push anything (README, "Where the rules left room").
+    if (dx != 0 || dy != 0 || fires) p->protected_until_tick = -1;
     thrust_axis(b->vel.x, dx, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
     thrust_axis(b->vel.y, dy, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
     b->thrust_axes = static_cast<std::uint8_t>((dx != 0 ? kThrustX : 0) | (dy != 0 ? kThrustY : 0));
@@ -43,12 +49,17 @@ void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, s
       const double k = (dx != 0 && dy != 0) ? std::sqrt(0.5) : 1.0;
       p->aim = {dx * k, dy * k};
     }
-    if (t.input.fire && p->eco.rockets && s.tick >= p->next_fire_tick) fire_rocket(s, *p, out);
+    if (fires) fire_rocket(s, *p, out);
   }
 }
 
-PlayerId toucher(const Body& b) {
-  return (b.kind == BodyKind::player || b.kind == BodyKind::rocket) ? b.owner : 0;
+// The player a contact with this ball credits: its owner, except a ball under spawn
+// protection, which credits nobody (what an enemy reflects off a fixed ball is no hit).
+PlayerId toucher(const MatchState& s, const Body& b) {
+  if (b.kind == BodyKind::rocket) return b.owner;
+  if (b.kind != BodyKind::player) return 0;
+  const Player* p = find_player(s, b.owner);
+  return p && p->protected_at(s.tick) ? PlayerId{0} : b.owner;
 }
 
 // Last-touch credit: a player's (or its rocket's) hit marks the enemy; enemy-on-enemy
@@ -67,11 +78,11 @@ void credit_contacts(MatchState& s, const StepReport& report) {
       const std::int64_t ta = a.credit_tick, tb = b.credit_tick;
       if (cb && now - tb <= window && (!ca || tb > ta)) { a.credit = cb; a.credit_tick = tb; }
       if (ca && now - ta <= window && (!cb || ta > tb)) { b.credit = ca; b.credit_tick = ta; }
-    } else if (ea && toucher(b)) {
-      a.credit = toucher(b);
+    } else if (const PlayerId by = ea ? toucher(s, b) : PlayerId{0}; by) {
+      a.credit = by;
       a.credit_tick = now;
-    } else if (eb && toucher(a)) {
-      b.credit = toucher(a);
+    } else if (const PlayerId by_a = eb ? toucher(s, a) : PlayerId{0}; by_a) {
+      b.credit = by_a;
       b.credit_tick = now;
     }
   }
@@ -146,12 +157,26 @@ void check_level_end(MatchState& s, std::vector<Event>& out) {
 
 void play_tick(MatchState& s, const std::vector<PlayerTick>& inputs, std::vector<Event>& out) {
   for (Player& p : s.players) {
+    if (p.protected_until_tick >= 0 && !p.protected_at(s.tick)) p.protected_until_tick = -1;  // ran out
     if (p.in_match() && !p.ball && p.respawn_tick >= 0 && s.tick >= p.respawn_tick) respawn_player(s, p, out);
   }
   apply_player_inputs(s, inputs, out);
   steer_enemies(s);
   StepReport report;
+  // A protected ball is immovable for the step: infinite mass in the world (every model
+  // takes its limit), its own mass back afterwards, so that the state between ticks (the
+  // hash, checkpoints, snapshots) only ever holds finite masses.
+  std::vector<std::pair<BallId, double>> fixed;  // allocates only while someone is protected
+  for (const Player& p : s.players) {
+    if (!p.ball || !p.protected_at(s.tick)) continue;
+    if (Ball* b = find_ball(s.world, p.ball)) {
+      fixed.emplace_back(b->id, b->mass);
+      b->mass = std::numeric_limits<double>::infinity();
+    }
+  }
   fts::sim::step(s.world, s.physics, s.step_k, report);  // moves, collides, applies friction
+  for (const auto& [id, mass] : fixed)
+    if (Ball* b = find_ball(s.world, id)) b->mass = mass;
   credit_contacts(s, report);
   handle_falls(s, report, out);
   expire_rockets(s);

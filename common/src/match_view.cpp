@@ -31,6 +31,7 @@ MatchView make_view(const MatchState& s) {
     pv.alive = p.ball != 0;
     pv.out = !p.in_match();
     pv.ball = p.ball;
+    pv.protected_until_tick = p.protected_at(s.tick) ? p.protected_until_tick : -1;
     pv.purchases = e.purchases;
     pv.defeats = e.defeats;
     v.players.push_back(std::move(pv));

@@ -64,6 +64,7 @@ json match_state_to_json(const sim::MatchState& s) {
                        {"ready", p.ready},
                        {"ball", p.ball.value},
                        {"respawn_tick", p.respawn_tick},
+                       {"protected_until_tick", p.protected_until_tick},
                        {"next_fire_tick", p.next_fire_tick},
                        {"aim", {p.aim.x, p.aim.y}},
                        {"connected", p.connected},
@@ -112,6 +113,8 @@ std::variant<sim::MatchState, std::string> match_state_from_json(const json& j, 
       pl.ready = p.at("ready").get<bool>();
       pl.ball = p.at("ball").get<std::uint32_t>();
       pl.respawn_tick = p.at("respawn_tick").get<std::int64_t>();
+      // Absent in checkpoints written before spawn protection: not protected.
+      pl.protected_until_tick = p.value("protected_until_tick", std::int64_t{-1});
       pl.next_fire_tick = p.at("next_fire_tick").get<std::int64_t>();
       const auto aim = p.at("aim").get<std::array<double, 2>>();
       pl.aim = {aim[0], aim[1]};

@@ -23,6 +23,7 @@ const FieldDef kFields[] = {
     FTS_F(spawn_attempts), FTS_F(friction_per_frame), FTS_F(friction_cutoff_u_per_s), FTS_F(radius_base_u),
     FTS_F(radius_mass_divisor), FTS_F(player_mass), FTS_F(player_vmax_u_per_s), FTS_F(player_accel_u_per_s2),
     FTS_F(player_lives), FTS_F(player_coins), FTS_F(player_multiplier), FTS_F(respawn_delay_s),
+    FTS_F(spawn_protection_s), FTS_F(late_join_share),
     FTS_F(player_spawn_x_fraction), FTS_F(enemies_max_normal), FTS_F(enemies_min_late), FTS_F(boss_period),
     FTS_F(boss_count), FTS_F(boss_double_period), FTS_F(boss_double_count), FTS_F(swarm_phase),
     FTS_F(swarm_count), FTS_F(enemies_cap), FTS_F(chaser_index), FTS_F(level1_enemy_mass),

@@ -25,6 +25,18 @@ TEST_CASE("HUD line in the original's words", "[client][hud]") {
     view.my_player_id = 9;
     CHECK(hud_line(snap, view) == "Level: 3");
   }
+  SECTION("issue 26: spawn protection shows its seconds left, rounded up, while it lasts") {
+    view.tick_rate_hz = 100;
+    snap.tick = 1000;
+    snap.players[0].protected_until_tick = 1250;
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1   Protected: 3s");
+    snap.tick = 1249;
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1   Protected: 1s");
+    snap.tick = 1250;  // ended
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1");
+    snap.players[0].protected_until_tick = 0;  // none
+    CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1");
+  }
 }
 
 TEST_CASE("players line lists every player with coins and lives", "[client][hud]") {

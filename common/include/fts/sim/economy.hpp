@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "fts/sim/config.hpp"
 #include "fts/sim/items.hpp"
@@ -64,6 +65,15 @@ Coins floor_clamp(double x, Coins cap);
 double clamp_double(double v, double lo, double hi);
 
 Economy start_economy(const MatchConfig& cfg);
+// A player's total value: the coins it holds plus those it spent in the shop.
+Coins total_value(const Economy& e, const MatchConfig& cfg);
+// The start of a player who joins a running match after `levels_cleared` levels, beside
+// players still in the match whose total values are `values`: the start economy grown as
+// complete_level grows everyone's at each level's end (multiplier, life price), with
+// coins floor(cfg.late_join_share x the median of `values`) where that is more than the
+// start coins. The median of an even count is the lower middle value plus half the gap,
+// rounded down.
+Economy late_start_economy(std::int64_t levels_cleared, std::vector<Coins> values, const MatchConfig& cfg);
 // The price charged now for `item` (an integer number of coins).
 Coins price_of(const Economy& e, Item item);
 // Buys `item` after level `level` was completed; a refusal changes nothing.

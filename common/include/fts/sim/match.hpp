@@ -171,11 +171,14 @@ struct Player {
   bool ready = false;
   BallId ball = 0;                 // 0: not on the platform
   std::int64_t respawn_tick = -1;  // >= 0: put back on the platform at that tick
+  // >= 0: the ball is under spawn protection (immovable) while tick < this; -1: not.
+  std::int64_t protected_until_tick = -1;
   std::int64_t next_fire_tick = 0;
   Vec2 aim{1.0, 0.0};              // last thrust direction (rockets when standing still)
   bool connected = true;           // false while its client is away (see TickInputs::away)
   bool parked = false;             // quit: no ball, no seat, progress kept (TickInputs::quit)
   bool in_match() const { return eco.lives > 0; }
+  bool protected_at(std::int64_t tick) const { return tick < protected_until_tick; }
 };
 
 struct MatchState {

@@ -27,6 +27,8 @@ struct PlayerView {
   bool alive = false;    // a ball on the platform
   bool out = false;      // no lives left: watching
   BallId ball = 0;
+  // Spawn protection: the ball is immovable until this tick (-1: not protected).
+  std::int64_t protected_until_tick = -1;
   std::int64_t purchases = 0;
   std::int64_t defeats = 0;
 };

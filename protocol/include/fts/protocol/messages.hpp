@@ -164,6 +164,7 @@ struct PlayerEntry {
   std::optional<Weapon> weapon;
   std::optional<std::array<std::int64_t, sim::kItemCount>> prices;
   std::optional<bool> ready, alive;
+  std::optional<std::uint32_t> protected_until_tick;
   bool operator==(const PlayerEntry&) const = default;
 };
 

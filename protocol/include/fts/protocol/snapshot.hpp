@@ -45,6 +45,8 @@ struct PlayerState {
   std::array<std::int64_t, sim::kItemCount> prices{};  // current price per item, item table order
   bool ready = false;
   bool alive = false;  // has a ball on the platform
+  // Spawn protection: the ball cannot be pushed until this tick; 0: not protected.
+  std::uint32_t protected_until_tick = 0;
 
   bool operator==(const PlayerState&) const = default;
 };
