@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "../match/match_test_util.hpp"
-#include "app/snapshot_build.hpp"
+#include "fts/room/snapshot_build.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 #include "fts/sim/match_view.hpp"
@@ -38,7 +38,7 @@ TEST_CASE("Snapshot: a player entry carries spawn protection until its tick", "[
   REQUIRE(until > s.tick);
 
   for (const auto encoding : {protocol::Encoding::json, protocol::Encoding::msgpack}) {
-    const protocol::Snapshot full = server::build_snapshot(make_view(s), {});
+    const protocol::Snapshot full = room::build_snapshot(make_view(s), {});
     const protocol::Snapshot got = through_wire(full, nullptr, encoding);
     REQUIRE(got.players.size() == 2);
     CHECK(got.players[0].protected_until_tick == static_cast<std::uint32_t>(until));
@@ -48,7 +48,7 @@ TEST_CASE("Snapshot: a player entry carries spawn protection until its tick", "[
     TickInputs thrust;
     thrust.players.push_back({1, {1, 0, false}, {}});
     step(later, thrust);  // acting ends it
-    const protocol::Snapshot delta = through_wire(server::build_snapshot(make_view(later), {}), &got, encoding);
+    const protocol::Snapshot delta = through_wire(room::build_snapshot(make_view(later), {}), &got, encoding);
     CHECK(delta.players[0].protected_until_tick == 0);
   }
 }
