@@ -25,7 +25,10 @@ constexpr const char* kUsage =
     "  --connect HOST:PORT     the server (e.g. 127.0.0.1:7777)\n"
     "  --name NAME             your name: 1 to 16 printable ASCII characters\n"
     "  --encoding json|msgpack wire encoding (default msgpack)\n"
-    "  --interp-delay-ms N     draw this far behind the newest snapshot (default 100)\n"
+    "  --interp-delay-ms N     draw other balls this far behind the server, fixed (default:\n"
+    "                          adaptive, from the measured jitter and loss of snapshots)\n"
+    "  --no-predict            draw your own ball from snapshots too (no prediction)\n"
+    "  --stats-file PATH       at exit, write the link and prediction figures (JSON)\n"
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
     "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
@@ -66,7 +69,9 @@ int parse_options(int argc, char** argv, Options& o) {
   const CLI::Option* fresh = app.add_flag("--new");
   const CLI::Option* quick = app.add_flag("--quick");
   const CLI::Option* create = app.add_flag("--create");
-  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate"})
+  const CLI::Option* no_predict = app.add_flag("--no-predict");
+  for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate",
+                           "--stats-file"})
     app.add_option(flag);
   try {
     app.parse(argc, argv);
@@ -88,6 +93,11 @@ int parse_options(int argc, char** argv, Options& o) {
   o.kitty = no_kitty->count() == 0;
   o.mouse = no_mouse->count() == 0;
   o.fresh = fresh->count() > 0;
+  o.predict = no_predict->count() == 0;
+  if (const auto v = value("--stats-file")) {
+    if (v->empty()) return usage_error("--stats-file needs a path");
+    o.stats_file = *v;
+  }
   if (const auto v = value("--connect")) {
     const auto hp = fts::io::parse_host_port(*v);
     if (!hp) return usage_error("--connect wants HOST:PORT, got '" + *v + "'");
@@ -108,7 +118,8 @@ int parse_options(int argc, char** argv, Options& o) {
     const long n = std::strtol(v->c_str(), &end, 10);
     if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
       return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
-    (fps ? o.fps : o.interp_delay_ms) = static_cast<int>(n);
+    if (fps) o.fps = static_cast<int>(n);
+    else o.interp_delay_ms = static_cast<int>(n);
   }
   if (const auto v = value("--replay")) {
     if (v->empty()) return usage_error("--replay needs a record file");

@@ -12,7 +12,11 @@ namespace fts::client {
 struct Options {
   std::string host, port, name;
   protocol::Encoding encoding = protocol::Encoding::msgpack;
-  int interp_delay_ms = 100;
+  // Remote balls' delay behind the server clock: adaptive (a jitter buffer) unless this
+  // is set (--interp-delay-ms N: fixed).
+  std::optional<int> interp_delay_ms;
+  bool predict = true;     // --no-predict: the own ball is drawn from snapshots too
+  std::string stats_file;  // --stats-file PATH: the link and prediction figures at exit (JSON)
   int fps = 60;
   bool kitty = true;
   bool mouse = true;  // --no-mouse: no mouse reporting, keys only

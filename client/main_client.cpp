@@ -4,8 +4,10 @@
 // (through fts_net's socket).
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -22,8 +24,11 @@
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/link_meters.hpp"
+#include "ui/jitter_buffer.hpp"
+#include "ui/link_stats.hpp"
 #include "ui/panel.hpp"
 #include "ui/pointer_steer.hpp"
+#include "ui/prediction.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 #include "ui/session_store.hpp"
@@ -60,6 +65,13 @@ class Game {
   }
 
   int exit_code() const { return exit_code_; }
+  // The link and prediction figures of the session (--stats-file).
+  std::string stats_json(std::uint64_t now) const {
+    const auto& st = conn_.endpoint().stats();
+    return link_stats_json(LinkSummary{opts_.predict, predictor_.stats(), stalls_, now - started_ms_, st.rtt_ms,
+                                       loss_.percent(), jitter_.jitter_ms(), delay_ms_, st.bytes_sent,
+                                       st.bytes_received, frames_});
+  }
   const std::string& exit_message() const { return exit_message_; }
 
  private:
@@ -262,9 +274,18 @@ class Game {
     }
     view_.mouse_steering = steer_.active();
     f.fire = fire_;
+    // Predicting, a frame names the tick it acts at: the one the own ball is drawn at
+    // (PROTOCOL.md 4.5); never one before a frame already sent.
+    if (opts_.predict && clock_.valid()) {
+      stamp_tick_ = std::max(stamp_tick_, static_cast<std::int64_t>(std::floor(predicted_tick(now))));
+      f.tick = static_cast<std::uint32_t>(std::max<std::int64_t>(stamp_tick_, 1));
+    }
+    view_.thrust_x = f.move_x;
+    view_.thrust_y = f.move_y;
     // The lean uplink (PROTOCOL.md 4.5), as the bots: a frame on change (at most every
-    // 20 ms; a fire is kept until then) and a keep-alive every 50 ms.
-    conn_.endpoint().hold_input(f, now);
+    // 20 ms; a fire is kept until then) and a keep-alive every 50 ms. What the server will
+    // apply is what was sent: the prediction takes the frames that went out.
+    if (conn_.endpoint().hold_input(f, now) != 0 && f.tick != 0) predictor_.input(f.tick, f.move_x, f.move_y);
     fire_ = false;
   }
 
@@ -304,6 +325,14 @@ class Game {
       view_.shop_terms = w.shop;
       view_.tick_rate_hz = w.tick_rate_hz;
       clock_.set_tick_rate(w.tick_rate_hz);
+      {  // the prediction steps the match's physics on this platform at this tick rate
+        fts::sim::MatchConfig cfg;
+        cfg.arena_width_u = w.arena_width_u;
+        cfg.arena_height_u = w.arena_height_u;
+        if (w.tick_rate_hz > 0) cfg.tick_rate_hz = w.tick_rate_hz;
+        predictor_ = OwnBallPredictor(cfg);
+        jitter_.set_rates(w.tick_rate_hz, w.snapshot_rate_hz > 0 ? static_cast<double>(w.tick_rate_hz) / w.snapshot_rate_hz : 5);
+      }
       events_.start_at(w.server_tick);  // not what happened here before we came back
       view_.room = room_label(w.room, w.spectator);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
@@ -320,8 +349,10 @@ class Game {
       for (const auto& p : s.players)
         if (view_.names.size() < kMaxNames || view_.names.count(p.id) > 0) view_.names[p.id] = p.name;
       clock_.observe(s.tick, now);
+      jitter_.on_snapshot(s.tick, now);
       if (const auto& w = endpoint.welcome(); w && w->snapshot_rate_hz > 0)
         loss_.on_snapshot(s.tick, static_cast<double>(w->tick_rate_hz) / w->snapshot_rate_hz);
+      if (opts_.predict) predictor_.on_snapshot(s, view_.my_player_id, shown_tick_, now);
       read_events(s);
       buffer_.push(std::move(s));
     }
@@ -405,15 +436,50 @@ class Game {
     }
   }
 
+  // The tick the own ball is drawn at when predicting: the server clock's estimate plus
+  // the lead, about a round trip, so that an input sent now arrives before that tick
+  // (the lead moves toward its target by at most 10 % of the time passing).
+  double predicted_tick(std::uint64_t now) {
+    const double rate = clock_rate();
+    const double rtt = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms : 0.0;
+    const double target = (rtt + jitter_.jitter_ms() + kLeadMarginMs) * rate / 1000.0 + 1.0;
+    const double passed = lead_ms_ == 0 ? 0.0 : static_cast<double>(now - std::min(now, lead_ms_)) * rate / 1000.0;
+    lead_ms_ = now;
+    lead_ticks_ = lead_ticks_ == 0 ? target
+                  : lead_ticks_ < target ? std::min(target, lead_ticks_ + 0.1 * passed)
+                                         : std::max(target, lead_ticks_ - 0.1 * passed);
+    return clock_.tick_at(now) + lead_ticks_;
+  }
+
   void draw(std::uint64_t now) {
     const TerminalSize size = painter_.size();
     last_size_ = size;
     view_.now_ms = now;
+    ++frames_;
     Screen screen(size);
     if (const proto::Snapshot* newest = buffer_.newest()) {
       if (newest->phase == proto::Phase::play) {
-        const double render_tick = clock_.tick_at(now) - opts_.interp_delay_ms * clock_rate() / 1000.0;
+        // Remote balls: behind the server clock by the jitter buffer's delay.
+        delay_ms_ = opts_.interp_delay_ms ? *opts_.interp_delay_ms : jitter_.delay_ms(now);
+        view_.delay_ms = static_cast<int>(std::lround(delay_ms_));
+        const double render_tick = clock_.tick_at(now) - delay_ms_ * clock_rate() / 1000.0;
+        stalls_.frame(render_tick > static_cast<double>(newest->tick) + 1e-9, now);
         const Frame f = buffer_.sample(render_tick);
+        if (opts_.predict && clock_.valid()) {
+          // The own ball: predicted, at the tick its inputs act.
+          shown_tick_ = predicted_tick(now);
+          if (const auto own = predictor_.at(shown_tick_, now)) {
+            proto::Snapshot a = *f.a, b = *f.b;
+            for (auto* s : {&a, &b})
+              for (auto& ball : s->balls)
+                if (ball.kind == proto::BallKind::player && ball.owner == view_.my_player_id) {
+                  ball.x = own->x, ball.y = own->y, ball.vx = own->vx, ball.vy = own->vy;
+                }
+            screen = render(a, b, f.alpha, size, view_);
+            painter_.paint(screen, view_.color);
+            return;
+          }
+        }
         screen = render(*f.a, *f.b, f.alpha, size, view_);
       } else {
         screen = render(*newest, *newest, 0, size, view_);
@@ -456,6 +522,17 @@ class Game {
   std::map<std::uint32_t, char> pending_buys_;
   std::set<std::uint32_t> pending_chats_;  // rids of chat lines awaiting their result
   PointerSteering steer_;  // mouse steering: toward the pointer, arriving there
+  OwnBallPredictor predictor_;  // the own ball, ahead of the snapshots (issue 28)
+  JitterBuffer jitter_;         // the remote balls' delay, from the link
+  StallMeter stalls_;           // remote balls frozen for want of a newer snapshot
+  double delay_ms_ = 0;         // the remote balls' delay drawn with
+  double lead_ticks_ = 0;       // how far ahead of the server clock the own ball is drawn
+  std::uint64_t lead_ms_ = 0;
+  double shown_tick_ = 0;       // the tick the own ball was last drawn at
+  std::int64_t stamp_tick_ = 0;  // the tick the newest frame sent acts at
+  std::uint64_t frames_ = 0;
+  std::uint64_t started_ms_ = now_ms();
+  static constexpr double kLeadMarginMs = 10;
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120;
   static constexpr std::size_t kMaxNames = 256;
@@ -508,6 +585,11 @@ int main(int argc, char** argv) {
     Game game(io, opts, *server);
     io.run();
     code = game.exit_code();
+    if (!opts.stats_file.empty()) {
+      std::ofstream out(opts.stats_file);
+      out << game.stats_json(now_ms()) << "\n";
+      if (!out) message += (message.empty() ? "" : "; ") + std::string("cannot write ") + opts.stats_file;
+    }
     message = game.exit_message();
   } catch (const std::exception& e) {
     code = 1;

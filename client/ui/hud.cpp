@@ -41,6 +41,7 @@ std::string hud_line(const Snapshot& s, const ViewState& view) {
     std::snprintf(buf, sizeof buf, "   Loss: %.1f%%", view.loss_percent);
     out += buf;
   }
+  if (view.delay_ms >= 0) out += "   Delay: " + std::to_string(view.delay_ms) + " ms";  // the jitter buffer's
   if (!view.room.empty()) out += "   " + view.room;  // last: the fields before keep their place
   return out;
 }

@@ -106,6 +106,7 @@ std::string hud_fit(const Snapshot& s, const ViewState& view, int cols) {
     std::snprintf(buf, sizeof buf, "%.0f%%", view.loss_percent);
     small += std::string(" ") + buf;
   }
+  if (view.delay_ms >= 0) mid += "  delay " + std::to_string(view.delay_ms) + " ms";
   // The room code stays to the end (friends join by it): the other parts shorten first.
   const std::string room = view.room.empty() ? "" : "  " + view.room;
   if (static_cast<int>(mid.size() + room.size()) <= cols) return mid + room;

@@ -129,6 +129,23 @@ void draw_arena(Screen& s, const Snapshot& snap, const Viewport& v, const ViewSt
                    [](const auto& x, const auto& y) { return x.first.layer < y.first.layer; });
   FieldCells cells(v);
   for (std::size_t i = 0; i < order.size(); ++i) draw_ball(s, v, cells, static_cast<int>(i), *order[i].second, order[i].first);
+  // The own ball's exhaust: one cell behind it against its thrust, drawn the frame the key
+  // is pressed (the ball's first cell of motion takes the physics up to ~0.3 s from rest;
+  // the exhaust shows at once that it is thrusting).
+  if (view.thrust_x != 0 || view.thrust_y != 0) {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const BallState& b = *order[i].second;
+      if (b.kind != BallKind::player || b.owner != view.my_player_id) continue;
+      const double reach = b.radius + 0.5 * std::max(v.units_per_col(), v.units_per_row());
+      const double len = (view.thrust_x != 0 && view.thrust_y != 0) ? 0.7071 : 1.0;
+      const int col = v.col_of(b.x - view.thrust_x * reach * len), row = v.row_of(b.y - view.thrust_y * reach * len);
+      if (cells.on_platform(col, row) && cells.ball_at(col, row) < 0) {
+        const char ch = view.thrust_y == 0 ? kExhaustSide : view.thrust_x == 0 ? kExhaustUpDown : kExhaustDiagonal;
+        s.set(col, row, ch, player_style(b.owner));
+        cells.cover(col, row, static_cast<int>(i));
+      }
+    }
+  }
   // Names after every ball, so that none is covered: yours first, then the watched
   // player's, then the others by ball id.
   std::vector<int> named;

@@ -16,6 +16,10 @@ inline constexpr char kPlayerBallChar = 'O';
 inline constexpr char kEnemyBallChar = '#';
 inline constexpr char kRocketChar = '*';
 inline constexpr char kPlatformChar = '.';
+// The own ball's exhaust (behind it while it thrusts): sideways, up or down, diagonal.
+inline constexpr char kExhaustSide = '=';
+inline constexpr char kExhaustUpDown = '"';
+inline constexpr char kExhaustDiagonal = '%';
 
 // A name written on the field is cut to this many characters.
 inline constexpr int kNameOnFieldChars = 10;

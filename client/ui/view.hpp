@@ -38,6 +38,8 @@ struct ViewState {
   double arena_width_u = 500, arena_height_u = 300;
   double ping_ms = -1;       // < 0: unknown
   double loss_percent = -1;  // snapshots lost, < 0: unknown
+  int delay_ms = -1;         // other balls drawn this far behind the server (< 0: not shown)
+  int thrust_x = 0, thrust_y = 0;  // the own ball's thrust this frame (drawn as its exhaust)
   std::string status;        // e.g. "connection lost, reconnecting..." (shown in red)
   std::vector<LogLine> messages;  // the message log, newest last (bounded by the client)
   std::uint64_t now_ms = 0;       // for the ages of the log lines

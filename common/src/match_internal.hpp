@@ -1,6 +1,8 @@
 // Pieces of the match step shared between its source files (not a public API).
 #pragma once
 
+#include "fts/sim/thrust.hpp"
+
 #include <cmath>
 
 #include <vector>
@@ -28,8 +30,6 @@ void steer_enemies(MatchState& s);
 // Thrust on one axis: dir in {-1, 0, +1}; applied only while the component's magnitude
 // is below vmax, as the original did (GAME_RULES.md "Balls"). So a ball knocked faster
 // than vmax cannot brake until friction brings it back under vmax.
-inline void thrust_axis(double& v, int dir, double accel, double vmax, double dt) {
-  if (dir != 0 && std::fabs(v) < vmax) v += dir * accel * dt;
-}
+using sim::thrust_axis;  // fts/sim/thrust.hpp: one rule for the match and the prediction
 
 }  // namespace fts::sim::detail

@@ -42,9 +42,7 @@ void apply_player_inputs(MatchState& s, const std::vector<PlayerTick>& inputs, s
     // Spawn protection ends when the player acts: a protected ball never moves itself,
     // so it cannot push anything (README, "Where the rules left room").
     if (dx != 0 || dy != 0 || fires) p->protected_until_tick = -1;
-    thrust_axis(b->vel.x, dx, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
-    thrust_axis(b->vel.y, dy, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
-    b->thrust_axes = static_cast<std::uint8_t>((dx != 0 ? kThrustX : 0) | (dy != 0 ? kThrustY : 0));
+    apply_thrust(*b, dx, dy, p->eco.accel_u_per_s2, p->eco.vmax_u_per_s, dt);
     if (dx != 0 || dy != 0) {
       const double k = (dx != 0 && dy != 0) ? std::sqrt(0.5) : 1.0;
       p->aim = {dx * k, dy * k};

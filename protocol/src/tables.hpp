@@ -218,12 +218,23 @@ inline constexpr auto kEventRow = std::make_tuple(
 template <class M, class Table>
 struct RowOf {
   const Table* table;
+  // The last `optional_tail` fields may be left off: written only when one of them is not
+  // its default, read when the row has them (an input frame's tick, PROTOCOL.md 4.5).
+  std::size_t optional_tail = 0;
   template <class W>
-  void put(W& w, const M& m) const { write_row(w, m, *table); }
+  void put(W& w, const M& m) const {
+    constexpr std::size_t n = std::tuple_size_v<Table>;
+    std::size_t arity = n, index = 0, last_set = 0;
+    std::apply([&](const auto&... f) { ((++index, last_set = f.of(m) == std::decay_t<decltype(f.of(m))>{} ? last_set : index), ...); },
+               *table);
+    if (optional_tail > 0) arity = std::max(n - optional_tail, last_set);
+    write_row(w, m, *table, arity);
+  }
   void get(MsgpackReader& r, M& m) const {
     constexpr std::size_t n = std::tuple_size_v<Table>;
-    if (r.array(kMaxPayloadValues) != n && !r.failed()) return r.fail(Reject::garbage);
-    read_row(r, m, *table, n);
+    const std::size_t got = r.array(kMaxPayloadValues);
+    if ((got > n || got + optional_tail < n) && !r.failed()) return r.fail(Reject::garbage);
+    read_row(r, m, *table, got);
   }
 };
 
@@ -259,11 +270,12 @@ inline constexpr auto kInputFrameRow = std::make_tuple(
     Field<InputFrame, std::uint32_t, Int<std::uint32_t>>{"seq", &InputFrame::seq, kU32<std::uint32_t>},
     Field<InputFrame, std::int8_t, Int<std::int8_t>>{"move_x", &InputFrame::move_x, {-1, 1}},
     Field<InputFrame, std::int8_t, Int<std::int8_t>>{"move_y", &InputFrame::move_y, {-1, 1}},
-    Field<InputFrame, bool, Bit>{"fire", &InputFrame::fire, {}});
+    Field<InputFrame, bool, Bit>{"fire", &InputFrame::fire, {}},
+    Field<InputFrame, std::uint32_t, Int<std::uint32_t>>{"tick", &InputFrame::tick, kU32<std::uint32_t>});
 
 inline const auto kInputFields = std::make_tuple(
     Field<Input, std::uint32_t, Int<std::uint32_t>>{"ack", &Input::snapshot_ack, kU32<std::uint32_t>},
-    Field<Input, std::vector<InputFrame>, List<InputFrame, RowOf<InputFrame, decltype(kInputFrameRow)>>>{"f", &Input::frames, {kMaxInputFrames, {&kInputFrameRow}}});
+    Field<Input, std::vector<InputFrame>, List<InputFrame, RowOf<InputFrame, decltype(kInputFrameRow)>>>{"f", &Input::frames, {kMaxInputFrames, {&kInputFrameRow, 1}}});
 
 // Checks across fields, after a table read.
 inline void check(MsgpackReader& r, const SnapshotMsg& m) {

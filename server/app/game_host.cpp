@@ -496,4 +496,17 @@ nlohmann::ordered_json GameHost::command(const nlohmann::json& req, std::uint64_
   return reply;
 }
 
+InputTiming GameHost::input_timing() const {
+  InputTiming sum;
+  for (const auto& [id, r] : rooms_) {
+    const InputTiming& t = r->input_timing();
+    sum.on_time += t.on_time;
+    sum.late += t.late;
+    sum.untimed += t.untimed;
+    sum.too_early += t.too_early;
+    sum.overflow += t.overflow;
+  }
+  return sum;
+}
+
 }  // namespace fts::server

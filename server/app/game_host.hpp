@@ -74,6 +74,8 @@ class GameHost {
 
   // The first room's match (an empty lobby when there is no room): single-room tests.
   const sim::MatchState& match() const;
+  // The input frames' timing summed over the open rooms (PROTOCOL.md 4.5).
+  InputTiming input_timing() const;
   const Room* room(std::uint32_t id) const;
   const Room* room_by_code(const std::string& code) const;
   std::vector<std::uint32_t> room_ids() const;

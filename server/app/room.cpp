@@ -98,10 +98,35 @@ void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoi
 // until input_expiry_ms pass without one: a crashed client's held key goes neutral
 // (PROTOCOL.md 4.5). The recording holds what the match was given, so a replay repeats
 // the expiry exactly.
+//
+// A frame that names a later tick (a predicting client, PROTOCOL.md 4.5) waits for it in a
+// bounded per-player buffer, so that the server applies it at the tick the client's
+// prediction did; a frame for a tick already stepped is applied at once (late).
 void Room::on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms) {
   Held& h = held_[pi.player_id];
-  if (pi.frame.seq >= h.frame.seq) h.frame = pi.frame;
-  h.fire = h.fire || pi.frame.fire;
+  const protocol::InputFrame& f = pi.frame;
+  const std::int64_t now_tick = stepper_.match().tick;
+  if (f.tick == 0) {
+    ++timing_.untimed;
+  } else if (static_cast<std::int64_t>(f.tick) <= now_tick) {
+    ++timing_.late;
+  } else if (static_cast<std::int64_t>(f.tick) - now_tick > kMaxLeadTicks) {
+    ++timing_.too_early;
+  } else {
+    if (h.early.size() >= kMaxEarlyFrames) {
+      ++timing_.overflow;
+      hold(h, h.early.front(), now_ms);
+      h.early.pop_front();
+    }
+    h.early.push_back(f);
+    return;
+  }
+  hold(h, f, now_ms);
+}
+
+void Room::hold(Held& h, const protocol::InputFrame& f, std::uint64_t now_ms) {
+  if (f.seq >= h.frame.seq) h.frame = f;
+  h.fire = h.fire || f.fire;
   h.received_ms = now_ms;
 }
 
@@ -138,6 +163,12 @@ sim::TickInputs Room::gather(std::uint64_t now_ms) {
   for (auto& t : in.players) ticks[t.player.value] = std::move(t);
   in.players.clear();
   for (auto& [id, h] : held_) {
+    // Early frames whose tick has come are in force from this tick on.
+    while (!h.early.empty() && static_cast<std::int64_t>(h.early.front().tick) <= stepper_.match().tick) {
+      ++timing_.on_time;
+      hold(h, h.early.front(), now_ms);
+      h.early.pop_front();
+    }
     sim::PlayerTick& t = ticks[id];
     t.player = id;
     const bool expired = now_ms - h.received_ms > input_expiry_ms_;

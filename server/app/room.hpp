@@ -21,6 +21,21 @@
 
 namespace fts::server {
 
+// A frame may name a tick at most this far ahead of the room's (1 s at 100 Hz; beyond it
+// is no honest client's lead: applied at once), and a player's early frames wait in a
+// buffer of at most this many.
+inline constexpr std::int64_t kMaxLeadTicks = 100;
+inline constexpr std::size_t kMaxEarlyFrames = 32;
+
+// Input frames by when they arrived against the tick they were meant for.
+struct InputTiming {
+  std::uint64_t on_time = 0;  // arrived early and applied at their tick
+  std::uint64_t late = 0;     // arrived after their tick: applied at once
+  std::uint64_t untimed = 0;  // no tick (0): applied at once
+  std::uint64_t too_early = 0;  // meant for more than kMaxLeadTicks ahead: applied at once
+  std::uint64_t overflow = 0;   // the early buffer was full: its oldest applied at once
+};
+
 class Room {
  public:
   Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
@@ -61,6 +76,8 @@ class Room {
   // or is a spectator.
   std::string shown_name(std::uint32_t player_id, const std::string& fallback) const;
   const std::string& record_path() const { return record_path_; }
+  // How the intended ticks of input frames met the room's clock (PROTOCOL.md 4.5).
+  const InputTiming& input_timing() const { return timing_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
 
@@ -68,8 +85,12 @@ class Room {
   struct Held {
     protocol::InputFrame frame;  // latest frame by seq
     bool fire = false;           // any fire since the last tick
-    std::uint64_t received_ms = 0;  // when the latest frame arrived
+    std::uint64_t received_ms = 0;  // when the latest frame arrived (or came due)
+    // Frames meant for a later tick (PROTOCOL.md 4.5), in arrival (= seq) order; at most
+    // kMaxEarlyFrames: over it the oldest is applied at once.
+    std::deque<protocol::InputFrame> early;
   };
+  void hold(Held& h, const protocol::InputFrame& f, std::uint64_t now_ms);
   sim::TickInputs gather(std::uint64_t now_ms);
   void answer(const std::vector<sim::CommandResult>& results, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
   void log_events(const std::vector<sim::Event>& events, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
@@ -85,6 +106,7 @@ class Room {
   room::RoomStepper stepper_;  // the match, its event numbering and recent window
   sim::TickInputs pending_;  // connection events and commands for the next step
   std::map<std::uint32_t, Held> held_;
+  InputTiming timing_;
   std::ofstream record_file_;
   std::string record_path_;
   std::unique_ptr<room::RecordWriter> recorder_;

@@ -75,9 +75,11 @@ wait_for ann 10 '@+[0-9]+'
 read -r row col <<<"$(ball_at)"
 [[ -n "$row" ]] || fail "ann's ball is not on the screen"
 echo "level 1: ann's ball at row $row, column $col"
-# Mouse: the pointer 30 columns to the left of the ball, on its row (SGR any-motion
-# report, 1-based); the ball must move left.
-target=$((col > 31 ? col - 30 : 2))
+# Mouse: the pointer 30 columns to the left of the ball (or near the platform's left
+# edge), on its row (SGR any-motion report, 1-based); the ball must move left.
+# (On the platform: a pointer off it ends mouse steering, issue 26.)
+left=$(pane ann | awk -v r="$row" 'NR == r { print index($0, "|"); exit }')
+target=$((col - 30 > left + 1 ? col - 30 : left + 2))
 deadline=$((SECONDS + 10))
 moved=0
 while ((SECONDS < deadline)); do

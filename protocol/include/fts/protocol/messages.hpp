@@ -78,6 +78,9 @@ struct InputFrame {
   std::int8_t move_x = 0;  // -1 left, 0, +1 right
   std::int8_t move_y = 0;  // -1 down, 0, +1 up
   bool fire = false;
+  // The server tick this frame is meant for (PROTOCOL.md 4.5): a predicting client says
+  // at which tick its ball started doing what it shows; 0: at once, when it arrives.
+  std::uint32_t tick = 0;
   bool operator==(const InputFrame&) const = default;
 };
 

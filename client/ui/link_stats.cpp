@@ -1,0 +1,61 @@
+#include "ui/link_stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace fts::client {
+
+void StallMeter::frame(bool stalled, std::uint64_t now_ms) {
+  if (stalled && !in_) {
+    in_ = true;
+    frames_ = 0;
+    since_ms_ = now_ms;
+  }
+  if (stalled) ++frames_;
+  if (!stalled && in_) {
+    in_ = false;
+    const std::uint64_t ms = now_ms - since_ms_;
+    stalled_ms_ += ms;
+    if (frames_ >= 2) ++stalls_;
+    if (ms > 100) ++over_100ms_;
+    longest_ms_ = std::max(longest_ms_, ms);
+  }
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  // Nearest rank: the smallest value with at least p % of the values at or below it.
+  const double rank = std::ceil(std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(v.size()));
+  const auto i = static_cast<std::size_t>(std::max(rank, 1.0)) - 1;
+  return v[std::min(i, v.size() - 1)];
+}
+
+std::string link_stats_json(const LinkSummary& s) {
+  const double minutes = std::max(1e-9, static_cast<double>(s.duration_ms) / 60000.0);
+  const auto& p = s.prediction;
+  char buf[1024];
+  std::snprintf(buf, sizeof buf,
+                "{\"predict\":%s,\"duration_s\":%.1f,\"frames\":%llu,\"rtt_ms\":%.1f,\"loss_percent\":%.2f,"
+                "\"jitter_ms\":%.1f,\"delay_ms\":%.1f,\"corrections\":%llu,\"snaps\":%llu,\"contact_corrections\":%llu,"
+                "\"corrections_per_min\":%.2f,\"correction_p50_radii\":%.4f,\"correction_p99_radii\":%.4f,"
+                "\"free_correction_p50_radii\":%.4f,\"free_correction_p99_radii\":%.4f,\"stalls\":%llu,"
+                "\"stalls_per_min\":%.2f,\"stalls_over_100ms\":%llu,\"longest_stall_ms\":%llu,\"bytes_sent\":%llu,"
+                "\"bytes_received\":%llu,\"up_bytes_per_s\":%.0f,\"down_bytes_per_s\":%.0f}",
+                s.predict ? "true" : "false", static_cast<double>(s.duration_ms) / 1000.0,
+                static_cast<unsigned long long>(s.frames), s.rtt_ms, s.loss_percent, s.jitter_ms, s.delay_ms,
+                static_cast<unsigned long long>(p.corrections), static_cast<unsigned long long>(p.snaps),
+                static_cast<unsigned long long>(p.contact_corrections),
+                static_cast<double>(p.corrections + p.snaps) / minutes, percentile(p.all_sizes_radii, 50),
+                percentile(p.all_sizes_radii, 99), percentile(p.free_sizes_radii, 50), percentile(p.free_sizes_radii, 99),
+                static_cast<unsigned long long>(s.stalls.stalls()), static_cast<double>(s.stalls.stalls()) / minutes,
+                static_cast<unsigned long long>(s.stalls.over_100ms()),
+                static_cast<unsigned long long>(s.stalls.longest_ms()), static_cast<unsigned long long>(s.bytes_sent),
+                static_cast<unsigned long long>(s.bytes_received),
+                static_cast<double>(s.bytes_sent) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0),
+                static_cast<double>(s.bytes_received) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0));
+  return buf;
+}
+
+}  // namespace fts::client

@@ -1,0 +1,45 @@
+// What the link and the prediction did in a session, for `fts-client --stats-file` and
+// the impairment matrix (BENCHMARKS.md, issue 28): remote-ball stalls (frames drawn with no
+// snapshot newer than the drawn time: the other balls freeze, then jump when one comes),
+// the prediction's corrections, and the link's figures. Pure.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ui/prediction.hpp"
+
+namespace fts::client {
+
+class StallMeter {
+ public:
+  // One drawn frame at now_ms: stalled or not.
+  void frame(bool stalled, std::uint64_t now_ms);
+  std::uint64_t stalls() const { return stalls_; }            // episodes of 2 frames or more
+  std::uint64_t over_100ms() const { return over_100ms_; }
+  std::uint64_t longest_ms() const { return longest_ms_; }
+  std::uint64_t stalled_ms() const { return stalled_ms_; }
+
+ private:
+  bool in_ = false;
+  int frames_ = 0;
+  std::uint64_t since_ms_ = 0, stalls_ = 0, over_100ms_ = 0, longest_ms_ = 0, stalled_ms_ = 0;
+};
+
+// The p-th percentile (0..100) of `v` (0 when empty).
+double percentile(std::vector<double> v, double p);
+
+struct LinkSummary {
+  bool predict = true;
+  PredictionStats prediction;
+  StallMeter stalls;
+  std::uint64_t duration_ms = 0;
+  double rtt_ms = 0, loss_percent = 0, jitter_ms = 0, delay_ms = 0;
+  std::uint64_t bytes_sent = 0, bytes_received = 0, frames = 0;
+};
+
+// One JSON object (the keys are the matrix's columns).
+std::string link_stats_json(const LinkSummary& s);
+
+}  // namespace fts::client

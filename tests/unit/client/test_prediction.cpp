@@ -1,0 +1,177 @@
+// Prediction of the own ball and reconciliation (issue 28), time passed in by hand: the
+// prediction steps common/'s physics exactly as the match does, so from a snapshot and
+// the inputs the server applies at their ticks it lands where the server's ball is; a
+// snapshot that disagrees is a correction, blended out or snapped, and counted.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "fts/protocol/snapshot_delta.hpp"
+#include "fts/room/snapshot_build.hpp"
+#include "fts/sim/match.hpp"
+#include "fts/sim/match_view.hpp"
+#include "ui/jitter_buffer.hpp"
+#include "ui/link_stats.hpp"
+#include "ui/prediction.hpp"
+
+using namespace fts;
+using namespace fts::client;
+
+namespace {
+
+// One player in level 1, playing (the level's one enemy still at the centre).
+sim::MatchState playing_alone() {
+  sim::MatchConfig cfg;
+  cfg.spawn_protection_s = 0;
+  auto s = sim::make_match(cfg, 3);
+  sim::TickInputs join;
+  join.joins.push_back({1, "ann"});
+  sim::step(s, join);
+  sim::TickInputs ready;
+  sim::PlayerTick t;
+  t.player = 1;
+  t.commands.push_back({sim::CommandKind::ready, {}});
+  ready.players.push_back(t);
+  sim::step(s, ready);
+  for (int i = 0; i < 400 && !(s.phase == sim::Phase::playing && s.players[0].ball); ++i) sim::step(s, {});
+  REQUIRE(s.phase == sim::Phase::playing);
+  REQUIRE(s.players[0].ball);
+  return s;
+}
+
+protocol::Snapshot snapshot_of(const sim::MatchState& s) {
+  return protocol::quantize(room::build_snapshot(sim::make_view(s), {}));
+}
+
+sim::TickInputs move(int dx, int dy) {
+  sim::TickInputs in;
+  sim::PlayerTick t;
+  t.player = 1;
+  t.input.move_x = static_cast<std::int8_t>(dx);
+  t.input.move_y = static_cast<std::int8_t>(dy);
+  in.players.push_back(t);
+  return in;
+}
+
+const sim::Ball& own(const sim::MatchState& s) { return *sim::find_ball(s.world, s.players[0].ball); }
+
+}  // namespace
+
+TEST_CASE("Prediction: from a snapshot and the inputs at their ticks, the own ball lands on the server's",
+          "[client][predict]") {
+  auto s = playing_alone();
+  OwnBallPredictor p;
+  const auto base = snapshot_of(s);
+  p.on_snapshot(base, 1, base.tick, 1000);
+  // The player's inputs, each in force from its tick: up-right, then down, then none.
+  const std::int64_t t0 = s.tick;
+  const auto input_for = [&](std::int64_t t) {
+    return t < t0 + 20 ? std::pair{1, 1} : t < t0 + 45 ? std::pair{0, -1} : std::pair{0, 0};
+  };
+  for (std::int64_t t : {t0, t0 + 20, t0 + 45}) p.input(t, input_for(t).first, input_for(t).second);
+  for (int i = 0; i < 60; ++i) {
+    const auto [dx, dy] = input_for(s.tick);
+    sim::step(s, move(dx, dy));
+    const auto at = p.at(static_cast<double>(s.tick), 1000);
+    REQUIRE(at.has_value());
+    INFO("tick " << s.tick);
+    // The base is quantized (1/16 u, 1/16 u/s): the rest is the same arithmetic.
+    CHECK(std::fabs(at->x - own(s).pos.x) < 0.1);
+    CHECK(std::fabs(at->y - own(s).pos.y) < 0.1);
+  }
+  CHECK(std::fabs(own(s).vel.x) > 1);  // it did move
+  CHECK(p.stats().corrections + p.stats().snaps == 0);
+}
+
+TEST_CASE("Reconciliation: a snapshot that disagrees is a correction, blended out; a large one snaps",
+          "[client][predict]") {
+  auto s = playing_alone();
+  OwnBallPredictor p;
+  auto snap = snapshot_of(s);
+  p.on_snapshot(snap, 1, snap.tick, 0);
+  const std::int64_t t0 = s.tick;
+  p.input(t0, 1, 0);  // the client thought it pushed right from t0...
+  for (int i = 0; i < 10; ++i) sim::step(s, move(0, 0));  // ...the server applied nothing
+  const double shown = static_cast<double>(s.tick);
+  const auto before = p.at(shown, 100);
+  REQUIRE(before.has_value());
+  p.input(t0, 0, 0);  // what the server did, now known (the frame arrived late)
+  snap = snapshot_of(s);
+  p.on_snapshot(snap, 1, shown, 100);
+  REQUIRE(p.stats().corrections == 1);
+  const double size_u = p.stats().all_sizes_radii.back() * snap.balls[0].radius;
+  CHECK(size_u > 0.05);
+  // At once the ball is drawn where it was (no jump)...
+  const auto now = p.at(shown, 100);
+  CHECK(std::fabs(now->x - before->x) < 1e-9);
+  // ...and the difference decays: after 5 time constants it is under 1 %.
+  const auto later = p.at(shown, 600);
+  CHECK(std::fabs(later->x - own(s).pos.x) < 0.01 * size_u + 0.07);
+  // A jump of many radii (a collision it did not know) is snapped, not blended.
+  auto far = snap;
+  for (auto& b : far.balls)
+    if (b.owner == 1) b.x += 5 * b.radius;
+  far.tick += 1;
+  p.on_snapshot(far, 1, shown, 700);
+  CHECK(p.stats().snaps == 1);
+  const auto snapped = p.at(static_cast<double>(far.tick), 700);
+  CHECK(std::fabs(snapped->x - (own(s).pos.x + 5 * own(s).radius)) < 0.2);
+  // Another ball (a respawn) is no correction.
+  auto respawned = far;
+  for (auto& b : respawned.balls)
+    if (b.owner == 1) b.id += 100, b.x = 50;
+  respawned.tick += 1;
+  p.on_snapshot(respawned, 1, shown, 800);
+  CHECK(p.stats().corrections + p.stats().snaps == 2);
+}
+
+TEST_CASE("Jitter buffer: the delay follows the link's jitter and losses, slowly, and a fixed one stays",
+          "[client][jitter]") {
+  JitterBuffer j;
+  j.set_rates(100, 5);  // 20 snapshots a second: 50 ms apart
+  std::uint64_t now = 10000;
+  std::uint32_t tick = 1000;
+  double last = j.delay_ms(now);
+  const auto run = [&](int snapshots, auto lateness_ms, int lose_every) {
+    for (int i = 0; i < snapshots; ++i) {
+      tick += 5;
+      for (int f = 0; f < 3; ++f) {  // three drawn frames per snapshot
+        const int passed = 50 / 3 + (f == 0 ? 50 % 3 : 0);
+        now += static_cast<std::uint64_t>(passed);
+        const double d = j.delay_ms(now);
+        CHECK(d - last <= 0.25 * passed + 1e-9);  // never grows faster than 25 % of the time
+        CHECK(last - d <= 0.05 * passed + 1e-9);  // never shrinks faster than 5 %
+        last = d;
+      }
+      if (lose_every > 0 && i % lose_every == 0) continue;
+      j.on_snapshot(tick, now + static_cast<std::uint64_t>(lateness_ms(i)));
+    }
+  };
+  run(200, [](int) { return 0; }, 0);
+  CHECK(j.target_ms() == Approx(55).margin(1));  // one interval and the margin
+  CHECK(last == Approx(55).margin(1));
+  run(200, [](int i) { return (i * 7919) % 21; }, 0);  // 0..20 ms late
+  CHECK(j.jitter_ms() == Approx(19).margin(2));
+  CHECK(last == Approx(74).margin(3));
+  run(100, [](int) { return 0; }, 10);  // one lost in ten
+  CHECK(j.burst() == 1);
+  CHECK(j.target_ms() >= 104);
+  JitterBuffer fixed;
+  fixed.set_fixed(100);
+  fixed.on_snapshot(5, 100);
+  CHECK(fixed.delay_ms(5000) == 100);
+}
+
+TEST_CASE("Stall meter: frames drawn past the newest snapshot are stalls; long ones counted", "[client][jitter]") {
+  StallMeter m;
+  std::uint64_t now = 0;
+  for (int i = 0; i < 10; ++i) m.frame(false, now += 16);
+  for (int i = 0; i < 8; ++i) m.frame(true, now += 16);  // 128 ms frozen
+  m.frame(false, now += 16);
+  m.frame(true, now += 16);  // one frame: not a stall
+  m.frame(false, now += 16);
+  CHECK(m.stalls() == 1);
+  CHECK(m.over_100ms() == 1);
+  CHECK(m.longest_ms() == 128);
+  CHECK(percentile({3, 1, 2, 10}, 50) == 2);
+}
