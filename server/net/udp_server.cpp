@@ -216,6 +216,7 @@ class Loop {
                                                          {"forged", info.sealed_drops.forged},
                                                          {"replayed", info.sealed_drops.replayed}};
       }
+      const InputTiming timing = host_.input_timing();
       log_record(spdlog::level::info, "stats",
                  {{"players", host_.endpoint().connected_players().size()},
                   {"tick", host_.match().tick}, {"rooms", host_.room_ids().size()},
@@ -223,7 +224,10 @@ class Loop {
                   {"ticks_skipped_total", clock_.skipped()},
                   {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
                   {"bytes_in", s.bytes_in}, {"bytes_out", s.bytes_out},
-                  {"send_errors", socket_.send_errors()}, {"drops", drops}, {"session_drops", session_drops}});
+                  {"send_errors", socket_.send_errors()}, {"drops", drops}, {"session_drops", session_drops},
+                  // Input frames against the tick they named (PROTOCOL.md 4.5), in the open rooms.
+                  {"inputs", {{"on_time", timing.on_time}, {"late", timing.late}, {"untimed", timing.untimed},
+                              {"too_early", timing.too_early}, {"overflow", timing.overflow}}}});
       s.reset_interval();
       schedule_stats();
     });
