@@ -25,6 +25,8 @@ constexpr const char* kUsage =
     "--room: quick (default) plays in the fullest open public room or a new one; create makes a private\n"
     "room for all K bots (the first creates it, the others join its code); CODE joins that room.\n"
     "--spectate CODE: watch that room (no ball, no seat).\n"
+    "--predict: predict the own ball as fts-client does and stamp frames with their tick (PROTOCOL.md\n"
+    "4.5.1); the report then has the corrections (load tests cover the client's CPU).\n"
     "--token-file F: read the session token from F if it exists, and write it there once welcomed\n"
     "(so a killed bot started again takes its player back within the reconnect window).\n"
     "       fts-bot --probe HOST:PORT      connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s\n"
@@ -45,6 +47,7 @@ struct Args {
   fts::protocol::Encoding encoding = fts::protocol::Encoding::msgpack;
   std::uint64_t seed = 1;
   bool probe = false;
+  bool predict = false;
   std::string join, room;  // Hello::join and Hello::room
 };
 
@@ -65,6 +68,7 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
   app.allow_extras();
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   const CLI::Option* help = app.add_flag("-h,--help");
+  const CLI::Option* predict = app.add_flag("--predict");
   for (const auto& f : flags) app.add_option(f.first);
   try {
     app.parse(argc, argv);
@@ -78,6 +82,7 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
     return std::string(e.what());
   }
   if (help->count() > 0) return std::string("help");
+  a.predict = predict->count() > 0;
   if (!app.remaining().empty()) return "unknown flag " + app.remaining().front();
   auto value = [&](const std::string& flag) -> std::optional<std::string> {
     const CLI::Option* o = app.get_option(flag);
@@ -204,6 +209,7 @@ int main(int argc, char** argv) {
     o.seed = a.seed + static_cast<std::uint64_t>(i);
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
+    o.predict = a.predict;
     o.protocol_version = a.protocol_version;
     o.join = join;
     o.room = room;

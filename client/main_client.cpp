@@ -68,7 +68,7 @@ class Game {
   // The link and prediction figures of the session (--stats-file).
   std::string stats_json(std::uint64_t now) const {
     const auto& st = conn_.endpoint().stats();
-    return link_stats_json(LinkSummary{opts_.predict, predictor_.stats(), stalls_, now - started_ms_, st.rtt_ms,
+    return link_stats_json(LinkSummary{opts_.predict, predictor_.stats(), stalls_, response_, now - started_ms_, st.rtt_ms,
                                        loss_.percent(), jitter_.jitter_ms(), delay_ms_, st.bytes_sent,
                                        st.bytes_received, frames_});
   }
@@ -276,12 +276,10 @@ class Game {
     f.fire = fire_;
     // Predicting, a frame names the tick it acts at: the one the own ball is drawn at
     // (PROTOCOL.md 4.5); never one before a frame already sent.
-    if (opts_.predict && clock_.valid()) {
-      stamp_tick_ = std::max(stamp_tick_, static_cast<std::int64_t>(std::floor(predicted_tick(now))));
-      f.tick = static_cast<std::uint32_t>(std::max<std::int64_t>(stamp_tick_, 1));
-    }
+    if (opts_.predict && clock_.valid()) f.tick = lead_.stamp(predicted_tick(now));
     view_.thrust_x = f.move_x;
     view_.thrust_y = f.move_y;
+    response_.thrust(f.move_x, f.move_y, drawn_vx_, drawn_vy_, now);
     // The lean uplink (PROTOCOL.md 4.5), as the bots: a frame on change (at most every
     // 20 ms; a fire is kept until then) and a keep-alive every 50 ms. What the server will
     // apply is what was sent: the prediction takes the frames that went out.
@@ -436,19 +434,16 @@ class Game {
     }
   }
 
-  // The tick the own ball is drawn at when predicting: the server clock's estimate plus
-  // the lead, about a round trip, so that an input sent now arrives before that tick
-  // (the lead moves toward its target by at most 10 % of the time passing).
+  // The tick the own ball is drawn at when predicting (ui/prediction.hpp's LeadClock).
   double predicted_tick(std::uint64_t now) {
-    const double rate = clock_rate();
     const double rtt = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms : 0.0;
-    const double target = (rtt + jitter_.jitter_ms() + kLeadMarginMs) * rate / 1000.0 + 1.0;
-    const double passed = lead_ms_ == 0 ? 0.0 : static_cast<double>(now - std::min(now, lead_ms_)) * rate / 1000.0;
-    lead_ms_ = now;
-    lead_ticks_ = lead_ticks_ == 0 ? target
-                  : lead_ticks_ < target ? std::min(target, lead_ticks_ + 0.1 * passed)
-                                         : std::max(target, lead_ticks_ - 0.1 * passed);
-    return clock_.tick_at(now) + lead_ticks_;
+    return lead_.predicted(clock_.tick_at(now), rtt, jitter_.jitter_ms(), clock_rate(), now);
+  }
+
+  void note_drawn(double vx, double vy, std::uint64_t now) {
+    drawn_vx_ = vx;
+    drawn_vy_ = vy;
+    response_.drawn(vx, vy, now);
   }
 
   void draw(std::uint64_t now) {
@@ -469,6 +464,7 @@ class Game {
           // The own ball: predicted, at the tick its inputs act.
           shown_tick_ = predicted_tick(now);
           if (const auto own = predictor_.at(shown_tick_, now)) {
+            note_drawn(own->vx, own->vy, now);
             proto::Snapshot a = *f.a, b = *f.b;
             for (auto* s : {&a, &b})
               for (auto& ball : s->balls)
@@ -480,6 +476,8 @@ class Game {
             return;
           }
         }
+        for (const auto& ball : f.b->balls)  // what the screen shows of our ball's motion
+          if (ball.kind == proto::BallKind::player && ball.owner == view_.my_player_id) note_drawn(ball.vx, ball.vy, now);
         screen = render(*f.a, *f.b, f.alpha, size, view_);
       } else {
         screen = render(*newest, *newest, 0, size, view_);
@@ -525,14 +523,13 @@ class Game {
   OwnBallPredictor predictor_;  // the own ball, ahead of the snapshots (issue 28)
   JitterBuffer jitter_;         // the remote balls' delay, from the link
   StallMeter stalls_;           // remote balls frozen for want of a newer snapshot
+  ResponseMeter response_;      // thrust to the first drawn frame that shows it
+  double drawn_vx_ = 0, drawn_vy_ = 0;
   double delay_ms_ = 0;         // the remote balls' delay drawn with
-  double lead_ticks_ = 0;       // how far ahead of the server clock the own ball is drawn
-  std::uint64_t lead_ms_ = 0;
+  LeadClock lead_;              // how far ahead of the server clock the own ball is drawn
   double shown_tick_ = 0;       // the tick the own ball was last drawn at
-  std::int64_t stamp_tick_ = 0;  // the tick the newest frame sent acts at
   std::uint64_t frames_ = 0;
   std::uint64_t started_ms_ = now_ms();
-  static constexpr double kLeadMarginMs = 10;
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120;
   static constexpr std::size_t kMaxNames = 256;

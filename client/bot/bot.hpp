@@ -16,6 +16,10 @@
 #include "bot/tally.hpp"
 #include "fts/protocol/connection.hpp"
 #include "fts/sim/rng.hpp"
+#include "ui/interpolate.hpp"
+#include "ui/jitter_buffer.hpp"
+#include "ui/link_stats.hpp"
+#include "ui/prediction.hpp"
 
 namespace fts::bot {
 
@@ -32,6 +36,7 @@ struct BotOptions {
   std::uint16_t protocol_version = 0;  // 0: ours; other values test the server's refusal
   std::string join;  // Hello::join: "" (quick), "quick", "create", "join", "spectate"
   std::string room;  // the room code for join and spectate
+  bool predict = false;  // predict the own ball and stamp frames with their tick (issue 28)
 };
 
 // Where a bot is in its script, and what the script holds it to.
@@ -95,6 +100,7 @@ class Bot {
   BotOptions options_;
   protocol::ClientConnection conn_;
   std::uint64_t seen_attempt_ = 0;  // the connection attempt whose commands we wait for
+  std::uint64_t seen_welcome_ = 0;  // --predict: the attempt whose welcome set the prediction up
   sim::Rng rng_;
   std::optional<protocol::Snapshot> latest_;
   Tally tally_;  // the report's figures
@@ -120,6 +126,13 @@ class Bot {
   // (tick, digest of the snapshot's balls and players) of the latest snapshots: a
   // spectator and a player of one room report the same digests for the same ticks.
   std::deque<std::pair<std::uint32_t, std::string>> digests_;
+  // --predict: what fts-client runs for its own ball (ui/prediction.hpp).
+  client::ServerClock clock_;
+  client::JitterBuffer jitter_;
+  client::LeadClock lead_;
+  client::OwnBallPredictor predictor_;
+  double shown_tick_ = 0;
+  std::uint64_t now_ms_ = 0;
 };
 
 std::optional<Behavior> parse_behavior(const std::string& s);

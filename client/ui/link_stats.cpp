@@ -23,6 +23,32 @@ void StallMeter::frame(bool stalled, std::uint64_t now_ms) {
   }
 }
 
+void ResponseMeter::thrust(int dx, int dy, double vx, double vy, std::uint64_t now_ms) {
+  if (dx == dx_ && dy == dy_) return;
+  dx_ = dx;
+  dy_ = dy;
+  if (dx == 0 && dy == 0) return;  // letting go: friction, no response to time
+  pending_ = true;
+  vx_ = vx;
+  vy_ = vy;
+  since_ms_ = now_ms;
+}
+
+void ResponseMeter::drawn(double vx, double vy, std::uint64_t now_ms) {
+  if (!pending_) return;
+  if (now_ms - since_ms_ > 2000) {  // never shown (a wall of vmax, a fall): no sample
+    pending_ = false;
+    return;
+  }
+  // Friction alone since the key: v0 * 0.991^(ms / 10) (a measurement, not the match).
+  const double coast = std::pow(0.991, static_cast<double>(now_ms - since_ms_) / 10.0);
+  if ((vx - vx_ * coast) * dx_ > 0.5 || (vy - vy_ * coast) * dy_ > 0.5) {
+    pending_ = false;
+    samples_.push_back(static_cast<double>(now_ms - since_ms_));
+    if (samples_.size() > 100000) samples_.erase(samples_.begin(), samples_.begin() + 50000);
+  }
+}
+
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -42,7 +68,8 @@ std::string link_stats_json(const LinkSummary& s) {
                 "\"corrections_per_min\":%.2f,\"correction_p50_radii\":%.4f,\"correction_p99_radii\":%.4f,"
                 "\"free_correction_p50_radii\":%.4f,\"free_correction_p99_radii\":%.4f,\"stalls\":%llu,"
                 "\"stalls_per_min\":%.2f,\"stalls_over_100ms\":%llu,\"longest_stall_ms\":%llu,\"bytes_sent\":%llu,"
-                "\"bytes_received\":%llu,\"up_bytes_per_s\":%.0f,\"down_bytes_per_s\":%.0f}",
+                "\"bytes_received\":%llu,\"up_bytes_per_s\":%.0f,\"down_bytes_per_s\":%.0f,\"responses\":%zu,"
+                "\"response_p50_ms\":%.1f,\"response_p99_ms\":%.1f}",
                 s.predict ? "true" : "false", static_cast<double>(s.duration_ms) / 1000.0,
                 static_cast<unsigned long long>(s.frames), s.rtt_ms, s.loss_percent, s.jitter_ms, s.delay_ms,
                 static_cast<unsigned long long>(p.corrections), static_cast<unsigned long long>(p.snaps),
@@ -54,7 +81,9 @@ std::string link_stats_json(const LinkSummary& s) {
                 static_cast<unsigned long long>(s.stalls.longest_ms()), static_cast<unsigned long long>(s.bytes_sent),
                 static_cast<unsigned long long>(s.bytes_received),
                 static_cast<double>(s.bytes_sent) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0),
-                static_cast<double>(s.bytes_received) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0));
+                static_cast<double>(s.bytes_received) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0),
+                s.response.samples_ms().size(), percentile(s.response.samples_ms(), 50),
+                percentile(s.response.samples_ms(), 99));
   return buf;
 }
 

@@ -27,6 +27,27 @@ class StallMeter {
   std::uint64_t since_ms_ = 0, stalls_ = 0, over_100ms_ = 0, longest_ms_ = 0, stalled_ms_ = 0;
 };
 
+// The program's own view of its input latency: from a frame whose thrust changed to the
+// first drawn frame where the own ball's velocity shows it (predicting: the next frame or
+// so; from snapshots: a round trip and the interpolation delay later). The outside view,
+// a key to the first moved cell on screen, is tests/bench/input_latency.py's.
+// A velocity "shows the thrust" when it has moved toward the thrust by more than 0.5 u/s
+// beyond what the game's friction alone (0.991 per 10 ms) would have made of it.
+class ResponseMeter {
+ public:
+  // The thrust decided this frame; `drawn_v`: the own ball's drawn velocity (u/s).
+  void thrust(int dx, int dy, double vx, double vy, std::uint64_t now_ms);
+  void drawn(double vx, double vy, std::uint64_t now_ms);
+  const std::vector<double>& samples_ms() const { return samples_; }
+
+ private:
+  int dx_ = 0, dy_ = 0;
+  bool pending_ = false;
+  double vx_ = 0, vy_ = 0;
+  std::uint64_t since_ms_ = 0;
+  std::vector<double> samples_;
+};
+
 // The p-th percentile (0..100) of `v` (0 when empty).
 double percentile(std::vector<double> v, double p);
 
@@ -34,6 +55,7 @@ struct LinkSummary {
   bool predict = true;
   PredictionStats prediction;
   StallMeter stalls;
+  ResponseMeter response;
   std::uint64_t duration_ms = 0;
   double rtt_ms = 0, loss_percent = 0, jitter_ms = 0, delay_ms = 0;
   std::uint64_t bytes_sent = 0, bytes_received = 0, frames = 0;

@@ -11,6 +11,22 @@ namespace {
 constexpr std::int64_t kMaxAheadTicks = 200;  // never predict more than 2 s past the base
 }  // namespace
 
+double LeadClock::predicted(double server_tick, double rtt_ms, double jitter_ms, double tick_rate_hz,
+                            std::uint64_t now_ms) {
+  const double target = (std::max(rtt_ms, 0.0) + std::max(jitter_ms, 0.0) + kMarginMs) * tick_rate_hz / 1000.0 + 1.0;
+  const double passed = last_ms_ == 0 ? 0.0 : static_cast<double>(now_ms - std::min(now_ms, last_ms_)) * tick_rate_hz / 1000.0;
+  last_ms_ = now_ms;
+  if (lead_ticks_ == 0) lead_ticks_ = target;
+  else if (lead_ticks_ < target) lead_ticks_ = std::min(target, lead_ticks_ + 0.1 * passed);
+  else lead_ticks_ = std::max(target, lead_ticks_ - 0.1 * passed);
+  return server_tick + lead_ticks_;
+}
+
+std::uint32_t LeadClock::stamp(double predicted_tick) {
+  if (std::isfinite(predicted_tick)) stamp_ = std::max(stamp_, static_cast<std::int64_t>(std::floor(predicted_tick)));
+  return static_cast<std::uint32_t>(std::clamp<std::int64_t>(stamp_, 1, 0xffffffffll));
+}
+
 OwnBallPredictor::OwnBallPredictor(const sim::MatchConfig& cfg, PredictionTuning tuning)
     : k_(tuning),
       physics_(sim::physics_settings(cfg)),

@@ -42,6 +42,26 @@ struct PredictionStats {
   std::vector<double> all_sizes_radii;    // every correction's size (ball radii)
 };
 
+// How far ahead of the server clock a predicting client draws its own ball and stamps
+// its frames (PROTOCOL.md 4.5.1): about a round trip, so that a frame sent now arrives
+// before its tick. The lead moves toward its target by at most 10 % of the ticks that
+// pass; the frames' ticks never go back.
+class LeadClock {
+ public:
+  // The tick to draw the own ball at, from the server clock's estimate now.
+  double predicted(double server_tick, double rtt_ms, double jitter_ms, double tick_rate_hz, std::uint64_t now_ms);
+  // The tick for a frame sent now (>= 1, never before the last one).
+  std::uint32_t stamp(double predicted_tick);
+  double lead_ticks() const { return lead_ticks_; }
+
+  static constexpr double kMarginMs = 10;
+
+ private:
+  double lead_ticks_ = 0;
+  std::uint64_t last_ms_ = 0;
+  std::int64_t stamp_ = 0;
+};
+
 class OwnBallPredictor {
  public:
   explicit OwnBallPredictor(const sim::MatchConfig& cfg = {}, PredictionTuning tuning = {});
