@@ -11,7 +11,7 @@ usage: FTS_BIN_DIR=build python3 tests/bench/net_matrix.py [--out bench-out/net-
            [--burst-len 3] [--full] [--bots 0] [-- more input_latency.py flags]
 The default is 2 cells (RTT 0 and 150 ms, no jitter, no loss) with one variant, the
 client as it is: a few minutes. --full is RTT 0/50/150/300 x jitter 0/20 x loss 0/2/10 %,
-24 cells; at the default 8 trials about 45 s per cell and variant. The comparison for
+24 cells; at the default 8 trials about 40 s per cell and variant. The comparison for
 client-side prediction:
 
   FTS_BIN_DIR=build python3 tests/bench/net_matrix.py --full --trials 20 \\
