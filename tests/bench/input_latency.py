@@ -66,6 +66,10 @@ class Tmux:
 
     def kill(self):
         self.run("kill-server", check=False)
+        try:  # the server leaves its socket file behind
+            os.unlink(os.path.join(os.environ.get("TMUX_TMPDIR", "/tmp"), f"tmux-{os.getuid()}", self.sock))
+        except OSError:
+            pass
 
 
 def platform(lines):
