@@ -23,6 +23,12 @@ void StallMeter::frame(bool stalled, std::uint64_t now_ms) {
   }
 }
 
+namespace {
+// Over the friction's cut-off (a component under 1 u/s stops) and under one tick of
+// thrust (200 u/s^2 for 10 ms: 2 u/s).
+constexpr double kShown = 1.5;
+}  // namespace
+
 void ResponseMeter::thrust(int dx, int dy, double vx, double vy, std::uint64_t now_ms) {
   if (dx == dx_ && dy == dy_) return;
   dx_ = dx;
@@ -42,7 +48,7 @@ void ResponseMeter::drawn(double vx, double vy, std::uint64_t now_ms) {
   }
   // Friction alone since the key: v0 * 0.991^(ms / 10) (a measurement, not the match).
   const double coast = std::pow(0.991, static_cast<double>(now_ms - since_ms_) / 10.0);
-  if ((vx - vx_ * coast) * dx_ > 0.5 || (vy - vy_ * coast) * dy_ > 0.5) {
+  if ((vx - vx_ * coast) * dx_ > kShown || (vy - vy_ * coast) * dy_ > kShown) {
     pending_ = false;
     samples_.push_back(static_cast<double>(now_ms - since_ms_));
     if (samples_.size() > 100000) samples_.erase(samples_.begin(), samples_.begin() + 50000);
@@ -84,7 +90,12 @@ std::string link_stats_json(const LinkSummary& s) {
                 static_cast<double>(s.bytes_received) / std::max(1e-9, static_cast<double>(s.duration_ms) / 1000.0),
                 s.response.samples_ms().size(), percentile(s.response.samples_ms(), 50),
                 percentile(s.response.samples_ms(), 99));
-  return buf;
+  std::string out(buf);
+  out.pop_back();  // the samples themselves, for a reader who wants the distribution
+  out += ",\"response_samples_ms\":[";
+  const auto& r = s.response.samples_ms();
+  for (std::size_t i = 0; i < r.size() && i < 200; ++i) out += (i ? "," : "") + std::to_string(static_cast<long long>(r[i]));
+  return out + "]}";
 }
 
 }  // namespace fts::client

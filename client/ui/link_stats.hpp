@@ -31,7 +31,7 @@ class StallMeter {
 // first drawn frame where the own ball's velocity shows it (predicting: the next frame or
 // so; from snapshots: a round trip and the interpolation delay later). The outside view,
 // a key to the first moved cell on screen, is tests/bench/input_latency.py's.
-// A velocity "shows the thrust" when it has moved toward the thrust by more than 0.5 u/s
+// A velocity "shows the thrust" when it has moved toward the thrust by more than 1.5 u/s
 // beyond what the game's friction alone (0.991 per 10 ms) would have made of it.
 class ResponseMeter {
  public:

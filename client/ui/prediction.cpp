@@ -95,6 +95,7 @@ void OwnBallPredictor::on_snapshot(const protocol::Snapshot& s, std::uint32_t me
   std::optional<protocol::BallState> drawn;
   const bool same_ball = base_ && base_->id.value == own->id;
   if (same_ball) drawn = at(shown_tick, now_ms);
+  const std::int64_t previous_tick = base_tick_;
   sim::Ball b;
   b.id = own->id;
   b.pos = {own->x, own->y};
@@ -122,10 +123,14 @@ void OwnBallPredictor::on_snapshot(const protocol::Snapshot& s, std::uint32_t me
   const double size_u = std::sqrt(ex * ex + ey * ey);
   if (size_u < k_.tiny_u) return;
   const double radii = size_u / std::max(own->radius, 1e-6);
+  // Touched since the last snapshot: another ball is within the distance both could have
+  // covered since then (a contact between snapshots leaves them apart again by now).
+  const double since_s = static_cast<double>(s.tick - std::min<std::int64_t>(s.tick, previous_tick)) / tick_rate_hz_;
   bool touching = false;
   for (const auto& o : s.balls) {
     if (o.id == own->id) continue;
-    const double dx = o.x - own->x, dy = o.y - own->y, reach = o.radius + own->radius + 2.0;
+    const double speeds = std::hypot(o.vx, o.vy) + std::hypot(own->vx, own->vy);
+    const double dx = o.x - own->x, dy = o.y - own->y, reach = o.radius + own->radius + 4.0 + speeds * since_s;
     touching = touching || dx * dx + dy * dy <= reach * reach;
   }
   stats_.all_sizes_radii.push_back(radii);

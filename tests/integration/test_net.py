@@ -48,7 +48,7 @@ def test_bot_150ms():
         relay = Relay(srv.port)
         try:
             bot = start_bots("--connect", relay.address, "--name", "pred", "--behavior", "hunter", "--predict",
-                             "--duration", "40")
+                             "--duration", "20")
             wait_for(lambda: '"level_complete"' in srv.text(), 60, "the predicting bot to clear level 1")
             rc, report, err = finish_bots(bot, 90)
         finally:
