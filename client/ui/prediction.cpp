@@ -17,7 +17,7 @@ double LeadClock::predicted(double server_tick, double rtt_ms, double jitter_ms,
   const double passed = last_ms_ == 0 ? 0.0 : static_cast<double>(now_ms - std::min(now_ms, last_ms_)) * tick_rate_hz / 1000.0;
   last_ms_ = now_ms;
   if (lead_ticks_ == 0) lead_ticks_ = target;
-  else if (lead_ticks_ < target) lead_ticks_ = std::min(target, lead_ticks_ + 0.1 * passed);
+  else if (lead_ticks_ < target) lead_ticks_ = std::min(target, lead_ticks_ + 0.5 * passed);
   else lead_ticks_ = std::max(target, lead_ticks_ - 0.1 * passed);
   return server_tick + lead_ticks_;
 }

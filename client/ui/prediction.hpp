@@ -44,8 +44,9 @@ struct PredictionStats {
 
 // How far ahead of the server clock a predicting client draws its own ball and stamps
 // its frames (PROTOCOL.md 4.5.1): about a round trip, so that a frame sent now arrives
-// before its tick. The lead moves toward its target by at most 10 % of the ticks that
-// pass; the frames' ticks never go back.
+// before its tick. The lead grows toward its target by at most half the ticks that pass
+// (frames late while it is short cost corrections) and shrinks by at most 10 % of them
+// (the own ball's time slows by 10 %, unseen); the frames' ticks never go back.
 class LeadClock {
  public:
   // The tick to draw the own ball at, from the server clock's estimate now.

@@ -11,7 +11,7 @@ client_150ms: the real fts-client in tmux through the relay, steered with arrow 
               two frames, corrections stay small and no remote-ball stall lasts over 100 ms;
               with --no-predict (the same link) the answer waits for the server.
 Every wait polls with a deadline."""
-import json, os, shutil, subprocess, sys, tempfile, time
+import json, os, shutil, signal, subprocess, sys, tempfile, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import BIN, Failure, Server, check, finish_bots, main, start_bots, wait_for  # noqa: E402
@@ -48,9 +48,10 @@ def test_bot_150ms():
         relay = Relay(srv.port)
         try:
             bot = start_bots("--connect", relay.address, "--name", "pred", "--behavior", "hunter", "--predict",
-                             "--duration", "20")
+                             "--duration", "60")
             wait_for(lambda: '"level_complete"' in srv.text(), 60, "the predicting bot to clear level 1")
-            rc, report, err = finish_bots(bot, 90)
+            bot[0].send_signal(signal.SIGINT)  # done: a clean stop writes the report
+            rc, report, err = finish_bots(bot, 30)
         finally:
             relay.close()
         check(rc == 0 and report and report[0]["ok"], f"the bot failed: rc {rc} {report} {err}")
@@ -84,7 +85,7 @@ def client_run(relay, work, name, extra):
         tmux(sock, "send-keys", "-t", name, "Enter")
         wait_for(lambda: pane().startswith("Level: 1 ") and "@" in pane(), 30, f"{name}'s level 1")
         # Taps and holds: each arrow key a new thrust the client answers.
-        for key in ["Right", "Up", "Left", "Down"] * 3:
+        for key in ["Right", "Up", "Left", "Down"] * 2:
             for _ in range(3):
                 tmux(sock, "send-keys", "-t", name, key)
                 time.sleep(0.08)
@@ -115,7 +116,7 @@ def test_client_150ms():
     print(f"predicting: {new}")
     print(f"--no-predict: {old}")
     check(new["predict"] and not old["predict"], "the runs did not predict as asked")
-    check(new["responses"] >= 5 and old["responses"] >= 5, f"too few key responses: {new['responses']}, {old['responses']}")
+    check(new["responses"] >= 4 and old["responses"] >= 4, f"too few key responses: {new['responses']}, {old['responses']}")
     check(new["response_p50_ms"] <= 2 * 1000 / 60 + 5,
           f"predicting, the own ball answered a key in {new['response_p50_ms']} ms (p50), not within two frames")
     # From snapshots the answer needs at least the 75 ms way up and a snapshot back.
