@@ -5,17 +5,7 @@
 
 namespace fts::sim {
 
-std::string_view to_string(Refusal r) {
-  switch (r) {
-    case Refusal::none: return "";
-    case Refusal::not_enough_coins: return "not_enough_coins";
-    case Refusal::already_owned: return "already_owned";
-    case Refusal::wrong_phase: return "wrong_phase";
-    case Refusal::unknown_item: return "unknown_item";
-    case Refusal::no_player: return "no_player";
-  }
-  return "?";
-}
+std::string_view to_string(Refusal r) { return refusal_info(r).name; }
 
 Coins sat_add(Coins a, Coins b, Coins cap) {
   a = std::clamp<Coins>(a, 0, cap);

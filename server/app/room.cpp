@@ -8,33 +8,20 @@
 namespace fts::server {
 namespace {
 
-// The sentence of a command's result.
+// The sentence of a command's result: the refusal table's, with the item named where
+// there is one (an unknown item has no name of its own: r.item is only a default then).
 std::string result_message(const sim::CommandResult& r) {
-  if (r.kind != sim::CommandKind::buy) {
-    if (r.ok()) return "done";
-    return r.code == sim::Refusal::no_player ? "not in the match" : "not now (wrong phase)";
-  }
-  if (r.code == sim::Refusal::no_player) return "not in the match";
-  // An unknown item has no name of its own (r.item is only a default then).
-  if (r.code == sim::Refusal::unknown_item) return "no such item; the shop sells m s a r l x b";
+  const std::string sentence(sim::refusal_info(r.code).sentence);
+  if (r.kind != sim::CommandKind::buy || r.code == sim::Refusal::no_player || r.code == sim::Refusal::unknown_item)
+    return sentence;
   const std::string item(sim::to_string(r.item));
   if (r.ok()) return item + " bought for " + std::to_string(r.price) + " coins, " + std::to_string(r.coins_after) + " left";
-  return item + " not bought: " + std::string(sim::to_string(r.code));
+  return item + " not bought: " + sentence;
 }
 
 }  // namespace
 
-std::string refusal_code(sim::Refusal r) {
-  switch (r) {
-    case sim::Refusal::none: return "ok";
-    case sim::Refusal::not_enough_coins: return "coins";
-    case sim::Refusal::already_owned: return "owned";
-    case sim::Refusal::wrong_phase: return "phase";
-    case sim::Refusal::unknown_item: return "item";
-    case sim::Refusal::no_player: return "dead";
-  }
-  return "error";
-}
+std::string refusal_code(sim::Refusal r) { return std::string(sim::refusal_info(r).code); }
 
 Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
            const sim::MatchConfig& config)
