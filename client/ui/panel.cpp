@@ -33,6 +33,7 @@ char marker_of(const PlayerState& p, const ViewState& view) {
 }
 
 std::string flag_of(const PlayerState& p, Phase phase) {
+  if (p.away) return " away";  // its client is gone for now: not playing, whatever its ball does
   if (p.lives <= 0 && !p.alive) return " out";
   if ((phase == Phase::shop || phase == Phase::lobby) && p.ready) return " rdy";
   return "";
@@ -46,6 +47,7 @@ std::string stats_of(const PlayerState& p, Phase phase) {
 Style line_style(const PlayerState& p, const ViewState& view) {
   Style st = player_style(p.id, p.id == view.my_player_id);
   if (p.id == view.follow_id) st.underline = true;
+  if (p.away) st.dim = true;
   return st;
 }
 

@@ -30,6 +30,7 @@ MatchView make_view(const MatchState& s) {
     pv.ready = p.ready;
     pv.alive = p.ball != 0;
     pv.out = !p.in_match();
+    pv.away = !p.connected || p.parked;
     pv.ball = p.ball;
     pv.protected_until_tick = p.protected_at(s.tick) ? p.protected_until_tick : -1;
     pv.purchases = e.purchases;

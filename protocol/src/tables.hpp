@@ -29,7 +29,8 @@ inline constexpr auto kPlayerSynced = std::make_tuple(
            Fixed<std::int64_t, sim::kItemCount, Int<std::int64_t>>>{"p", &PlayerEntry::prices, &PlayerState::prices, {kCoins}},
     Synced<PlayerState, PlayerEntry, bool, Bool>{"r", &PlayerEntry::ready, &PlayerState::ready, {}},
     Synced<PlayerState, PlayerEntry, bool, Bool>{"al", &PlayerEntry::alive, &PlayerState::alive, {}},
-    Synced<PlayerState, PlayerEntry, std::uint32_t, Int<std::uint32_t>>{"sp", &PlayerEntry::protected_until_tick, &PlayerState::protected_until_tick, kU32<std::uint32_t>});
+    Synced<PlayerState, PlayerEntry, std::uint32_t, Int<std::uint32_t>>{"sp", &PlayerEntry::protected_until_tick, &PlayerState::protected_until_tick, kU32<std::uint32_t>},
+    Synced<PlayerState, PlayerEntry, bool, Bool>{"aw", &PlayerEntry::away, &PlayerState::away, {}});
 
 inline const auto kPlayerFields = std::tuple_cat(
     std::make_tuple(Field<PlayerEntry, std::uint32_t, Int<std::uint32_t>>{"i", &PlayerEntry::id, kU32<std::uint32_t>}),

@@ -84,6 +84,7 @@ protocol::Snapshot build_snapshot(const sim::MatchView& view, const std::deque<p
     w.ready = p.ready;
     w.alive = p.alive;
     w.protected_until_tick = p.protected_until_tick > 0 ? u32(p.protected_until_tick) : 0;
+    w.away = p.away;
     s.players.push_back(std::move(w));
   }
   s.events.assign(recent.begin(), recent.end());

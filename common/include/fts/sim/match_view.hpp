@@ -26,6 +26,7 @@ struct PlayerView {
   bool ready = false;
   bool alive = false;    // a ball on the platform
   bool out = false;      // no lives left: watching
+  bool away = false;     // its client is gone (lost or quit) and may come back
   BallId ball = 0;
   // Spawn protection: the ball is immovable until this tick (-1: not protected).
   std::int64_t protected_until_tick = -1;

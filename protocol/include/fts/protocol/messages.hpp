@@ -168,6 +168,7 @@ struct PlayerEntry {
   std::optional<std::array<std::int64_t, sim::kItemCount>> prices;
   std::optional<bool> ready, alive;
   std::optional<std::uint32_t> protected_until_tick;
+  std::optional<bool> away;
   bool operator==(const PlayerEntry&) const = default;
 };
 

@@ -47,6 +47,7 @@ struct PlayerState {
   bool alive = false;  // has a ball on the platform
   // Spawn protection: the ball cannot be pushed until this tick; 0: not protected.
   std::uint32_t protected_until_tick = 0;
+  bool away = false;  // its client is gone for now (lost or quit); it may come back
 
   bool operator==(const PlayerState&) const = default;
 };
