@@ -58,6 +58,18 @@ int usage_error(const std::string& msg) {
 
 }  // namespace
 
+protocol::ClientConfig connection_config(const Options& o, std::optional<std::string> saved_token) {
+  protocol::ClientConfig cfg;
+  cfg.name = o.name;
+  cfg.encoding = o.encoding;
+  if (o.room) {
+    cfg.join = o.room->join;
+    cfg.room = o.room->room;
+  }
+  if (saved_token) cfg.token = std::move(*saved_token);
+  return cfg;
+}
+
 int parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"", "fts-client"};
   app.set_help_flag();

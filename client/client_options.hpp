@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "fts/protocol/client.hpp"
 #include "fts/protocol/constants.hpp"
 #include "ui/start_screen.hpp"
 
@@ -24,6 +25,10 @@ struct Options {
   std::string replay;  // --replay FILE: play a record back, no server
   std::optional<RoomChoice> room;  // none: the start screen asks
 };
+
+// The connection the options ask for: name, encoding, room choice, and `saved_token`
+// (this server's last session, from the session store) to take our player back.
+protocol::ClientConfig connection_config(const Options& o, std::optional<std::string> saved_token);
 
 // Parses argv into o. Returns -1 to go on, else the exit code (0 after --help, 2 after
 // a bad option, with the reason on stderr).

@@ -76,7 +76,7 @@ protocol::ClientConfig connection_config(const BotOptions& o) {
 // A bot (not a probe) resumes a lost connection with its token, like the client does.
 Bot::Bot(BotOptions options)
     : options_(std::move(options)), conn_(connection_config(options_), /*resume_when_lost=*/!options_.probe),
-      rng_(options_.seed) {}
+      rng_(options_.seed), net_(options_.predict) {}
 
 void Bot::start(std::uint64_t now_ms) { conn_.connect(now_ms); }
 
@@ -140,11 +140,7 @@ std::string Bot::room() const {
 
 void Bot::on_snapshot(const protocol::Snapshot& s) {
   tally_.on_snapshot(s);
-  if (options_.predict) {
-    clock_.observe(s.tick, now_ms_);
-    jitter_.on_snapshot(s.tick, now_ms_);
-    predictor_.on_snapshot(s, player_id_, shown_tick_, now_ms_);
-  }
+  if (options_.predict) net_.on_snapshot(s, player_id_, now_ms_);
   digests_.emplace_back(s.tick, snapshot_digest(s));
   while (digests_.size() > 200) digests_.pop_front();
   // Each event once, by its seq (snapshots repeat them; PROTOCOL.md 8.4).
@@ -242,13 +238,7 @@ void Bot::update(std::uint64_t now_ms) {
     ticks_per_snapshot_ = std::max<std::uint32_t>(1, w->tick_rate_hz / std::max<std::uint32_t>(1, w->snapshot_rate_hz));
     if (options_.predict && seen_welcome_ != conn_.attempt()) {
       seen_welcome_ = conn_.attempt();
-      sim::MatchConfig cfg;
-      cfg.arena_width_u = w->arena_width_u;
-      cfg.arena_height_u = w->arena_height_u;
-      if (w->tick_rate_hz > 0) cfg.tick_rate_hz = w->tick_rate_hz;
-      clock_.set_tick_rate(cfg.tick_rate_hz);
-      jitter_.set_rates(cfg.tick_rate_hz, ticks_per_snapshot_);
-      predictor_ = client::OwnBallPredictor(cfg);
+      net_.on_welcome(*w);
     }
   }
   for (auto& r : conn_.endpoint().take_results()) {
@@ -305,16 +295,11 @@ void Bot::update(std::uint64_t now_ms) {
       f.fire = true;
       script_.fire_once = false;
     }
-    if (options_.predict && clock_.valid()) {
-      // As fts-client: the frame names the tick it acts at, the prediction takes it.
-      const double rate = conn_.endpoint().welcome()->tick_rate_hz;
-      shown_tick_ = lead_.predicted(clock_.tick_at(now_ms), conn_.endpoint().stats().rtt_ms, jitter_.jitter_ms(), rate, now_ms);
-      f.tick = lead_.stamp(shown_tick_);
-      if (conn_.endpoint().hold_input(f, now_ms) != 0) predictor_.input(f.tick, f.move_x, f.move_y);
-      (void)predictor_.at(shown_tick_, now_ms);  // what the client would draw: its CPU is counted
-    } else {
-      conn_.endpoint().hold_input(f, now_ms);  // sent on change, with a keep-alive (lean uplink)
-    }
+    // --predict, as fts-client: the frame names the tick it acts at, the prediction takes
+    // what went out, and the ball is predicted as the client would draw it (its CPU counts).
+    if (net_.predicting()) f.tick = net_.stamp(net_.own_tick(now_ms, conn_.endpoint().stats().rtt_ms));
+    if (conn_.endpoint().hold_input(f, now_ms) != 0) net_.sent(f);  // on change, with a keep-alive (lean uplink)
+    if (net_.predicting()) (void)net_.own_ball(now_ms);
   }
 }
 
@@ -461,12 +446,12 @@ nlohmann::ordered_json Bot::report() const {
   r["snapshot_digests"] = nlohmann::ordered_json::object();
   for (const auto& [tick, digest] : digests_) r["snapshot_digests"][std::to_string(tick)] = digest;
   if (options_.predict) {
-    const auto& p = predictor_.stats();
+    const auto& p = net_.prediction();
     r["prediction"] = {{"corrections", p.corrections}, {"snaps", p.snaps}, {"contact_corrections", p.contact_corrections},
                        {"correction_p50_radii", client::percentile(p.all_sizes_radii, 50)},
                        {"correction_p99_radii", client::percentile(p.all_sizes_radii, 99)},
                        {"free_correction_p99_radii", client::percentile(p.free_sizes_radii, 99)},
-                       {"lead_ticks", lead_.lead_ticks()}, {"jitter_ms", jitter_.jitter_ms()}};
+                       {"lead_ticks", net_.lead_ticks()}, {"jitter_ms", net_.jitter_ms()}};
   }
   r["errors"] = errors_;
   r["ok"] = failure_.empty();

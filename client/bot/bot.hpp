@@ -16,10 +16,8 @@
 #include "bot/tally.hpp"
 #include "fts/protocol/connection.hpp"
 #include "fts/sim/rng.hpp"
-#include "ui/interpolate.hpp"
-#include "ui/jitter_buffer.hpp"
 #include "ui/link_stats.hpp"
-#include "ui/prediction.hpp"
+#include "ui/net_timing.hpp"
 
 namespace fts::bot {
 
@@ -127,11 +125,7 @@ class Bot {
   // spectator and a player of one room report the same digests for the same ticks.
   std::deque<std::pair<std::uint32_t, std::string>> digests_;
   // --predict: what fts-client runs for its own ball (ui/prediction.hpp).
-  client::ServerClock clock_;
-  client::JitterBuffer jitter_;
-  client::LeadClock lead_;
-  client::OwnBallPredictor predictor_;
-  double shown_tick_ = 0;
+  client::NetTiming net_;
   std::uint64_t now_ms_ = 0;
 };
 

@@ -59,7 +59,7 @@ int run_replay(const std::string& path, bool kitty, std::string& message) {
     const std::uint64_t now = now_ms();
     bool quit = false;
     for (const KeyEvent& e : keys.read(now)) {
-      if (e.action == KeyAction::release || e.key == Key::mouse) continue;
+      if (e.action == KeyAction::release || is_report(e)) continue;
       const char c = e.key == Key::character ? e.text : 0;
       if (e.key == Key::ctrl_c || c == 'q' || c == 'Q') quit = true;
       else if (e.key == Key::space) replay.toggle_pause();

@@ -204,6 +204,8 @@ std::vector<KeyEvent> KeyDecoder::flush() {
   return out;
 }
 
+bool is_report(const KeyEvent& e) { return e.key == Key::mouse || e.key == Key::focus_in || e.key == Key::focus_out; }
+
 std::optional<Direction> direction_of(const KeyEvent& e) {
   switch (e.key) {
     case Key::up: return Direction::up;

@@ -21,6 +21,9 @@ enum class Key : std::uint8_t {
   none, up, down, left, right, space, enter, escape, ctrl_c, character, tab, backspace, mouse, focus_in, focus_out
 };
 enum class KeyAction : std::uint8_t { press, repeat, release };
+struct KeyEvent;
+// A report of the pointer or of the window's focus, not a key a person pressed.
+bool is_report(const KeyEvent& e);
 
 struct KeyEvent {
   Key key = Key::none;

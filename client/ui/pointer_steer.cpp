@@ -5,6 +5,17 @@
 
 namespace fts::client {
 
+std::optional<SteerBall> steer_ball(const protocol::Snapshot& s, std::uint32_t me) {
+  const protocol::PlayerState* player = nullptr;
+  for (const auto& p : s.players)
+    if (p.id == me) player = &p;
+  if (player == nullptr) return std::nullopt;
+  for (const auto& b : s.balls)
+    if (b.kind == protocol::BallKind::player && b.owner == me)
+      return SteerBall{b.id, b.x, b.y, b.vx, b.vy, b.radius, player->accel_u_per_s2, player->vmax_u_per_s};
+  return std::nullopt;
+}
+
 void PointerSteering::aim(double x_u, double y_u, bool on_platform) {
   if (!on_platform || !std::isfinite(x_u) || !std::isfinite(y_u)) {
     if (active_) why_ = "left the platform";

@@ -14,7 +14,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
+#include "fts/protocol/snapshot.hpp"
 #include "term/keys.hpp"
 
 namespace fts::client {
@@ -24,6 +26,9 @@ struct SteerBall {
   double x = 0, y = 0, vx = 0, vy = 0, radius = 16;  // u, u/s
   double accel = 200, vmax = 170;                    // the player's a (u/s^2) and vmax (u/s)
 };
+
+// Our ball and our player's a and vmax in a snapshot (nothing: no ball on the platform).
+std::optional<SteerBall> steer_ball(const protocol::Snapshot& s, std::uint32_t me);
 
 struct SteerTuning {
   double edge_margin_u = 8;     // the aim stays this far inside the platform beyond the radius

@@ -34,6 +34,10 @@ struct InputTiming {
   std::uint64_t untimed = 0;  // no tick (0): applied at once
   std::uint64_t too_early = 0;  // meant for more than kMaxLeadTicks ahead: applied at once
   std::uint64_t overflow = 0;   // the early buffer was full: its oldest applied at once
+  InputTiming& operator+=(const InputTiming& o) {
+    on_time += o.on_time, late += o.late, untimed += o.untimed, too_early += o.too_early, overflow += o.overflow;
+    return *this;
+  }
 };
 
 class Room {

@@ -106,12 +106,7 @@ echo "the small pane showed the warning"
 live=$(pane ann | head -n 1 | sed -nE 's/^Level: ([0-9]+)   Coins: ([0-9,]+) .*/\1 \2/p' | tr -d ,)
 [[ -n "$live" ]] || fail "no HUD on ann's screen"
 read -r live_level live_coins <<<"$live"
-for name in ann bob; do
-  tm send-keys -t "$name" q
-  wait_for "$name" 5 'Quit\?'
-  tm send-keys -t "$name" y
-  wait_for "$name" 5 '^CLIENT_EXIT=0'
-done
+for name in ann bob; do quit_client "$name"; done
 kill -TERM "$SERVER_PID"
 wait "$SERVER_PID" 2>/dev/null || true
 SERVER_PID=""

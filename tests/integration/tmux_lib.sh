@@ -5,6 +5,8 @@
 #   PANES=(a b)                                panes printed when a check fails
 #   pane PANE / wait_for PANE SECONDS REGEX    read a pane / poll it against a deadline
 #   start_server SERVER ARGS...                SERVER_PID and PORT (the port it logged)
+#   quit_client PANE                           q, y: the client exits 0
+#   idle_comes_back PANE SECONDS               the idle kick keeps the client; a key is back
 # A failed check calls fail, which prints the panes and the server log's tail and exits 1.
 
 tmux_setup() {
@@ -65,4 +67,23 @@ start_server() {
   done
   [[ -n "$PORT" ]] || fail "the server did not log its port"
   echo "server on port $PORT"
+}
+
+# quit_client PANE: q asks, y quits, and the client exits with status 0.
+quit_client() {
+  tm send-keys -t "$1" q
+  wait_for "$1" 5 'Quit\?'
+  tm send-keys -t "$1" y
+  wait_for "$1" 5 '^CLIENT_EXIT=0'
+}
+
+# idle_comes_back PANE SECONDS: within SECONDS the server drops the idle player (its log
+# says reason=idle) and the client stays, offering to play again; a key takes the player
+# back (issue 26: the idle kick used to end the client).
+idle_comes_back() {
+  wait_for "$1" "$2" 'press a key to play again'
+  pane "$1" | grep -q '^CLIENT_EXIT=' && fail "the client exited on the idle kick"
+  grep -q 'reason=idle' "$WORK/server.log" || fail "the server did not log the idle drop"
+  tm send-keys -t "$1" Enter
+  wait_for "$1" 10 'Reconnected: welcome back'
 }

@@ -1,0 +1,59 @@
+#include "ui/net_timing.hpp"
+
+namespace fts::client {
+
+void NetTiming::on_welcome(const protocol::Welcome& w) {
+  tick_rate_hz_ = w.tick_rate_hz > 0 ? w.tick_rate_hz : 100;
+  clock_.set_tick_rate(tick_rate_hz_);
+  jitter_.set_rates(tick_rate_hz_, w.snapshot_rate_hz > 0 ? tick_rate_hz_ / w.snapshot_rate_hz : 5);
+  // The prediction steps the match's physics on this platform at this tick rate.
+  sim::MatchConfig cfg;
+  cfg.arena_width_u = w.arena_width_u;
+  cfg.arena_height_u = w.arena_height_u;
+  cfg.tick_rate_hz = tick_rate_hz_;
+  predictor_ = OwnBallPredictor(cfg);
+}
+
+void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms) {
+  clock_.observe(s.tick, now_ms);
+  jitter_.on_snapshot(s.tick, now_ms);
+  if (predict_) predictor_.on_snapshot(s, me, shown_tick_, now_ms);
+}
+
+double NetTiming::own_tick(std::uint64_t now_ms, double rtt_ms) {
+  shown_tick_ = lead_.predicted(clock_.tick_at(now_ms), rtt_ms, jitter_.jitter_ms(), tick_rate_hz_, now_ms);
+  return shown_tick_;
+}
+
+void NetTiming::sent(const protocol::InputFrame& f) {
+  if (f.tick != 0) predictor_.input(f.tick, f.move_x, f.move_y);
+}
+
+double NetTiming::remote_tick(std::uint64_t now_ms, std::optional<int> fixed_ms) {
+  delay_ms_ = fixed_ms ? *fixed_ms : jitter_.delay_ms(now_ms);
+  return clock_.tick_at(now_ms) - delay_ms_ * tick_rate_hz_ / 1000.0;
+}
+
+void NetTiming::frame_drawn(bool stalled, std::uint64_t now_ms) {
+  ++frames_;
+  stalls_.frame(stalled, now_ms);
+}
+
+void NetTiming::drawn(double vx, double vy, std::uint64_t now_ms) {
+  drawn_vx_ = vx;
+  drawn_vy_ = vy;
+  response_.drawn(vx, vy, now_ms);
+}
+
+std::string NetTiming::stats_json(std::uint64_t duration_ms, double rtt_ms, double loss_percent,
+                                  std::uint64_t bytes_sent, std::uint64_t bytes_received) const {
+  return link_stats_json(LinkSummary{predict_, predictor_.stats(), stalls_, response_, duration_ms, rtt_ms, loss_percent,
+                                     jitter_.jitter_ms(), delay_ms_, bytes_sent, bytes_received, frames_});
+}
+
+void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own) {
+  for (auto& b : s.balls)
+    if (b.kind == protocol::BallKind::player && b.owner == me) b.x = own.x, b.y = own.y, b.vx = own.vx, b.vy = own.vy;
+}
+
+}  // namespace fts::client

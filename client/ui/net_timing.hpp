@@ -1,0 +1,82 @@
+// What a client keeps beside its snapshots to play over a real network (issue 28,
+// PROTOCOL.md 4.5.1): the server clock, the jitter buffer (the remote balls' delay), the
+// lead and the own-ball predictor, and the meters of what they did (--stats-file).
+// fts-client draws with it; fts-bot --predict runs the same, so load tests pay the
+// client's CPU. Pure: times are passed in.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "fts/protocol/messages.hpp"
+#include "fts/protocol/snapshot.hpp"
+#include "ui/interpolate.hpp"
+#include "ui/jitter_buffer.hpp"
+#include "ui/link_stats.hpp"
+#include "ui/prediction.hpp"
+
+namespace fts::client {
+
+class NetTiming {
+ public:
+  // `predict`: run the own-ball prediction (fts-client --no-predict, fts-bot without
+  // --predict: only the clock and the delay).
+  explicit NetTiming(bool predict = true) : predict_(predict) {}
+
+  // The welcome's rates and platform: the clock's rate, the snapshot interval, the
+  // prediction's world.
+  void on_welcome(const protocol::Welcome& w);
+  // A complete snapshot arrived; `me`: our player id.
+  void on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms);
+
+  bool predicting() const { return predict_ && clock_.valid(); }
+  double tick_rate_hz() const { return tick_rate_hz_; }
+  // The server's tick as seen now (0 before the first snapshot).
+  double server_tick(std::uint64_t now_ms) const { return clock_.tick_at(now_ms); }
+  // Predicting: the tick the own ball is drawn at now (remembered for the next snapshot's
+  // correction), and the tick a frame sent now names.
+  double own_tick(std::uint64_t now_ms, double rtt_ms);
+  double shown_tick() const { return shown_tick_; }
+  std::uint32_t stamp(double own_tick) { return lead_.stamp(own_tick); }
+  // A frame that went out (what the server will apply from its tick).
+  void sent(const protocol::InputFrame& f);
+  // The own ball at the tick own_tick() gave last, or nothing (no base, fallen).
+  std::optional<protocol::BallState> own_ball(std::uint64_t now_ms) { return predictor_.at(shown_tick_, now_ms); }
+  // The remote balls' delay now (`fixed`: --interp-delay-ms), and the tick they are drawn at.
+  double remote_tick(std::uint64_t now_ms, std::optional<int> fixed_ms);
+  double remote_delay_ms() const { return delay_ms_; }
+
+  // Meters: a frame drawn (stalled: nothing newer than the remote tick), the thrust
+  // decided this frame, the own ball's drawn velocity.
+  void frame_drawn(bool stalled, std::uint64_t now_ms);
+  void thrust(int dx, int dy, std::uint64_t now_ms) { response_.thrust(dx, dy, drawn_vx_, drawn_vy_, now_ms); }
+  void drawn(double vx, double vy, std::uint64_t now_ms);
+
+  const PredictionStats& prediction() const { return predictor_.stats(); }
+  double lead_ticks() const { return lead_.lead_ticks(); }
+  double jitter_ms() const { return jitter_.jitter_ms(); }
+  // The session's figures as one JSON object (--stats-file).
+  std::string stats_json(std::uint64_t duration_ms, double rtt_ms, double loss_percent, std::uint64_t bytes_sent,
+                         std::uint64_t bytes_received) const;
+
+ private:
+  bool predict_;
+  double tick_rate_hz_ = 100;
+  ServerClock clock_;
+  JitterBuffer jitter_;
+  LeadClock lead_;
+  OwnBallPredictor predictor_;
+  double shown_tick_ = 0;
+  double delay_ms_ = 0;
+  StallMeter stalls_;
+  ResponseMeter response_;
+  double drawn_vx_ = 0, drawn_vy_ = 0;
+  std::uint64_t frames_ = 0;
+};
+
+// `s` with our ball (owner `me`) moved to `own` (the prediction drawn in place of the
+// snapshot's).
+void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own);
+
+}  // namespace fts::client
