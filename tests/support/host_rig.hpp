@@ -53,6 +53,16 @@ struct HostRig {
     deliver();
     now += 10;
   }
+  // Ticks until every client is connected (at most `ticks`); whether they all are.
+  bool connect_all(int ticks = 50) {
+    const auto all = [&] {
+      for (const auto& c : clients)
+        if (c->state() != protocol::ClientState::connected) return false;
+      return true;
+    };
+    for (int i = 0; i < ticks && !all(); ++i) tick();
+    return all();
+  }
 };
 
 }  // namespace fts::test

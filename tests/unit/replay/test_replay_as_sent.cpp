@@ -32,9 +32,7 @@ TEST_CASE("Replay: every snapshot a client was sent is the one the replay builds
   rig.host->record_to(record, "test");
   auto& a = rig.add("ann");
   auto& b = rig.add("bob");
-  for (int i = 0; i < 50 && (a.state() != protocol::ClientState::connected || b.state() != protocol::ClientState::connected); ++i)
-    rig.tick();
-  REQUIRE(a.state() == protocol::ClientState::connected);
+  REQUIRE(rig.connect_all());
   a.send_command(protocol::CommandOp::ready, 0, rig.now);
   b.send_command(protocol::CommandOp::ready, 0, rig.now);
   std::vector<protocol::Snapshot> received;

@@ -28,8 +28,7 @@ TEST_CASE("Input ticks: a frame for a later tick is applied at that tick, not wh
   rig.config.spawn_protection_s = 0;
   rig.start();
   auto& a = rig.add("ann");
-  for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
-  REQUIRE(a.state() == protocol::ClientState::connected);
+  REQUIRE(rig.connect_all());
   a.send_command(protocol::CommandOp::ready, 0, rig.now);
   for (int i = 0; i < 400 && !(rig.host->match().phase == sim::Phase::playing && ann_ball(rig)); ++i) rig.tick();
   REQUIRE(ann_ball(rig) != nullptr);
@@ -85,7 +84,7 @@ TEST_CASE("Input ticks: a record made with predicting clients' frames replays bi
   std::stringstream record;
   rig.host->record_to(record, "test");
   auto& a = rig.add("ann");
-  for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
+  REQUIRE(rig.connect_all());
   a.send_command(protocol::CommandOp::ready, 0, rig.now);
   for (int i = 0; i < 600; ++i) {
     if (i % 9 == 0) {  // frames for a few ticks ahead, some late, as a predicting client's
