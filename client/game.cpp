@@ -298,6 +298,7 @@ class Game {
       events_.start_at(w.server_tick);  // not what happened here before we came back
       view_.room = room_label(w.room, w.spectator);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
+      back_until_ms_ = w.reconnected ? now + 3000 : 0;  // and in the HUD, where no event scrolls it away
       if (!w.room.empty()) {
         note(std::string(w.spectator ? "Watching room " : "Room ") + sanitize(w.room, 8) +
              (w.spectator ? "." : ": friends join with --join " + sanitize(w.room, 8)));
@@ -374,7 +375,9 @@ class Game {
     const bool silent = now - last_rx_ms_ > 2000;
     // Not welcomed yet on this connection (a saved token being tried): connecting, not lost.
     if (noted_attempt_ == 0 && st != S::connected) view_.status = connecting;
-    else view_.status = (silent || st != S::connected) ? "connection lost, reconnecting..." : "";
+    else view_.status = (silent || st != S::connected) ? "connection lost, reconnecting..."
+                        : now < back_until_ms_                 ? "Reconnected: welcome back"
+                                                               : "";
     view_.ping_ms = endpoint.stats().rtt_ms > 0 ? endpoint.stats().rtt_ms : -1;
     view_.loss_percent = loss_.percent();
   }
@@ -463,16 +466,14 @@ class Game {
   NetTiming net_;  // server clock, remote delay, own-ball prediction and their meters (issue 28)
   std::uint64_t started_ms_ = now_ms();
   TerminalSize last_size_{80, 24};
-  static constexpr std::size_t kChatMaxChars = 120;
-  static constexpr std::size_t kMaxNames = 256;
+  static constexpr std::size_t kChatMaxChars = 120, kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
-  std::uint64_t last_rx_ms_ = 0;
+  std::uint64_t last_rx_ms_ = 0, back_until_ms_ = 0;  // back_until_ms_: "welcome back" shown until
   std::uint64_t connect_ms_ = 0;  // when the current connection attempt began
   bool idle_ = false;             // kicked as idle: waiting for a key to come back
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
-  bool fire_ = false;
-  bool done_ = false;
+  bool fire_ = false, done_ = false;
   int exit_code_ = 0;
   std::string exit_message_;
 };
