@@ -187,9 +187,12 @@ def main():
     seq = 0
     t0 = time.monotonic()  # the down window counts from here (just before "ready")
 
+    sending = [None]  # the direction of a datagram taken off the queue and not yet sent
+
     def write_stats(final):
+        # A signal can land between the queue's pop and the send: that one is pending too.
         for d in DIRECTIONS:
-            links[d].c["pending"] = sum(1 for q in queue if q[2] == d)
+            links[d].c["pending"] = sum(1 for q in queue if q[2] == d) + (sending[0] == d)
         line = json.dumps({"final": final, "seed": a.seed, "elapsed_s": round(time.monotonic() - t0, 3),
                            **{d: links[d].c for d in DIRECTIONS}})
         if a.stats:
@@ -244,6 +247,7 @@ def main():
                     arrive("down", owner[s], front, data, owner[s], now)
             now = time.monotonic()
             while queue and queue[0][0] <= now:
+                sending[0] = queue[0][2]
                 _, _, direction, flow, index, sock, data, dest = heapq.heappop(queue)
                 link = links[direction]
                 if index < link.sent_max.get(flow, -1):
@@ -255,6 +259,7 @@ def main():
                     link.c["bytes_out"] += len(data)
                 except OSError:
                     pass
+                sending[0] = None
     except Stop:
         pass
     write_stats(True)
