@@ -14,27 +14,25 @@ void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   out_.push_back({to, std::move(bytes)});
 }
 
-Outgoing& ServerEndpoint::next_outgoing(const Address& to) {
-  if (spare_.empty()) {
-    out_.emplace_back();
+void ServerEndpoint::seal_into(Session& s, const Header& h, const std::vector<std::uint8_t>& payload,
+                               std::vector<Outgoing>& out, std::vector<Outgoing>& spare) {
+  if (spare.empty()) {
+    out.emplace_back();
   } else {
-    out_.push_back(std::move(spare_.back()));
-    spare_.pop_back();
+    out.push_back(std::move(spare.back()));
+    spare.pop_back();
   }
-  Outgoing& o = out_.back();
-  o.to.assign(to);  // within the capacity a sent datagram's address left
+  Outgoing& o = out.back();
+  o.to.assign(s.address);  // within the capacity a sent datagram's address left
   o.bytes.clear();
-  return o;
+  s.seal.seal(h, payload, o.bytes);
+  if (o.bytes.size() > kMaxDatagramBytes) {  // never sent; the limits make it unreachable
+    spare.push_back(std::move(o));
+    out.pop_back();
+  }
 }
 
-void ServerEndpoint::emit_sealed(Session& s, const Header& h) {
-  Outgoing& o = next_outgoing(s.address);
-  s.seal.seal(h, payload_, o.bytes);
-  if (o.bytes.size() > kMaxDatagramBytes) {  // never sent; the limits make it unreachable
-    spare_.push_back(std::move(o));
-    out_.pop_back();
-  }
-}
+void ServerEndpoint::emit_sealed(Session& s, const Header& h) { seal_into(s, h, payload_, out_, spare_); }
 
 Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) {
   Header h;
@@ -83,17 +81,27 @@ void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
 
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
+  Session* s = screen(from, bytes, now_ms);
+  if (s) handle_opened(*s, open_sealed(s->seal, bytes, config_.version, plain_), now_ms);
+}
+
+ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<const std::uint8_t> bytes,
+                                                std::uint64_t now_ms) {
   observe_time(now_ms);
   // Cheapest checks first: the sender's rate, the header, the session, the replay window
   // and the tag (PROTOCOL.md 5.7), then the session's rate; the payload is parsed only
   // for a datagram that passed them all, and nothing of the session changes before the
   // tag verified.
+  auto drop = [&](Reject r) -> Session* {
+    rejects_.add(r);
+    return nullptr;
+  };
   AddressState* host = address_state(host_of(from), now_ms);
-  if (host && !host->datagrams.take(now_ms)) return rejects_.add(Reject::rate_limited);
+  if (host && !host->datagrams.take(now_ms)) return drop(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
-  if (!header) return rejects_.add(header.error());
+  if (!header) return drop(header.error());
   // Handshake datagrams cost a keyed hash and a reply: 10 a second per host (ioquake3).
-  if (header->session == 0 && host && !host->hellos.take(now_ms)) return rejects_.add(Reject::rate_limited);
+  if (header->session == 0 && host && !host->hellos.take(now_ms)) return drop(Reject::rate_limited);
   if (header->version != config_.version) {
     rejects_.add(Reject::bad_version);
     if (bytes.size() >= kMinHelloBytes) {
@@ -105,21 +113,15 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
       auto reply = encode_version_refusal(h, Error{"version", text});
       if (reply.size() <= bytes.size()) emit(from, std::move(reply));
     }
-    return;
+    return nullptr;
   }
   if (header->session != 0) {
     auto sid = by_session_id_.find(header->session);
-    if (sid == by_session_id_.end()) return rejects_.add(Reject::unknown_session);
+    if (sid == by_session_id_.end()) return drop(Reject::unknown_session);
     Session& s = sessions_.at(sid->second);
-    if (s.address != from) return rejects_.add(Reject::address_mismatch);
-    if (!s.connected) return rejects_.add(Reject::unknown_session);
-    auto d = open_sealed(s.seal, bytes, config_.version, plain_);
-    if (!d) return rejects_.add(d.error());
-    if (!s.datagrams.take(now_ms)) {
-      ++s.rate_limited;
-      return rejects_.add(Reject::rate_limited);
-    }
-    return handle_session(s, *d, now_ms);
+    if (s.address != from) return drop(Reject::address_mismatch);
+    if (!s.connected) return drop(Reject::unknown_session);
+    return &s;
   }
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
@@ -131,12 +133,74 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
                                "); see PROTOCOL.md section 4.1";
       reply_unconnected(from, header->encoding, 0, Error{"bad_hello", text}, bytes.size());
     }
-    return;
+    return nullptr;
   }
-  if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0]))
-    return rejects_.add(Reject::unexpected);
-  if (bytes.size() < kMinHelloBytes) return rejects_.add(Reject::unpadded_hello);
+  if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0])) return drop(Reject::unexpected);
+  if (bytes.size() < kMinHelloBytes) return drop(Reject::unpadded_hello);
   handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
+  return nullptr;
+}
+
+void ServerEndpoint::handle_opened(Session& s, const Decoded<Datagram>& d, std::uint64_t now_ms) {
+  if (!d) return rejects_.add(d.error());
+  if (!s.datagrams.take(now_ms)) {
+    ++s.rate_limited;
+    return rejects_.add(Reject::rate_limited);
+  }
+  handle_session(s, *d, now_ms);
+}
+
+ServerEndpoint::Session* ServerEndpoint::live_session(std::uint32_t player_id, std::uint32_t session_id) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end() || it->second.session_id != session_id || !it->second.connected) return nullptr;
+  return &it->second;
+}
+
+void ServerEndpoint::receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
+  Session* s = screen(from, bytes, now_ms);
+  if (!s) return;
+  if (inbox_used_ >= kMaxInbox) return rejects_.add(Reject::rate_limited);
+  if (inbox_used_ == inbox_.size()) inbox_.emplace_back();
+  Queued& q = inbox_[inbox_used_];
+  q.player_id = s->player_id;
+  q.session_id = s->session_id;
+  q.now_ms = now_ms;
+  q.bytes.assign(bytes.begin(), bytes.end());
+  q.opened.reset();
+  auto [g, fresh] = inbox_group_of_.try_emplace(s->player_id, inbox_groups_used_);
+  if (fresh) {
+    if (inbox_groups_used_ == inbox_groups_.size()) inbox_groups_.emplace_back();
+    inbox_groups_[inbox_groups_used_++].clear();
+  }
+  inbox_groups_[g->second].push_back(inbox_used_++);
+}
+
+void ServerEndpoint::open_inbox(std::size_t i) {
+  thread_local std::vector<std::uint8_t> plain;  // each thread's scratch
+  for (const std::size_t at : inbox_groups_[i]) {
+    Queued& q = inbox_[at];
+    // Only the session's own seal changes: another session's open may run beside this one.
+    auto it = sessions_.find(q.player_id);
+    if (it == sessions_.end() || it->second.session_id != q.session_id) continue;  // gone: applied as such
+    q.opened.emplace(open_sealed(it->second.seal, q.bytes, config_.version, plain));
+  }
+}
+
+void ServerEndpoint::apply_inbox() {
+  for (std::size_t at = 0; at < inbox_used_; ++at) {
+    Queued& q = inbox_[at];
+    // An earlier datagram may have ended the session (bye, overflow) or a hello replaced it.
+    Session* s = live_session(q.player_id, q.session_id);
+    if (!s || !q.opened) {
+      rejects_.add(Reject::unknown_session);
+      continue;
+    }
+    handle_opened(*s, *q.opened, q.now_ms);
+    q.opened.reset();
+  }
+  inbox_used_ = 0;
+  inbox_groups_used_ = 0;
+  inbox_group_of_.clear();
 }
 
 // A spectator holds no seat (PROTOCOL.md 5.6): it counts against its own cap per host.
@@ -258,6 +322,18 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snap
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
+  SendLane lane;
+  std::swap(lane.out, out_);
+  std::swap(lane.spare, spare_);
+  std::swap(lane.payload, payload_);
+  send_snapshot(player_id, quantized, now_ms, lane);
+  std::swap(lane.out, out_);
+  std::swap(lane.spare, spare_);
+  std::swap(lane.payload, payload_);
+}
+
+void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms,
+                                   SendLane& lane) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return;
   Session& s = it->second;
@@ -266,9 +342,20 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
   for (const SnapshotMsg& part : s.snapshots.encode(quantized, s.encoding)) {
     const Header h = session_header(s, now_ms);
     s.last_send_ms = now_ms;
-    payload_.clear();
-    append_snapshot_payload(s.encoding, part, payload_);
-    emit_sealed(s, h);
+    lane.payload.clear();
+    append_snapshot_payload(s.encoding, part, lane.payload);
+    seal_into(s, h, lane.payload, lane.out, lane.spare);
+  }
+}
+
+void ServerEndpoint::adopt(SendLane& lane) {
+  for (Outgoing& o : lane.out) out_.push_back(std::move(o));
+  const std::size_t used = lane.out.size();
+  lane.out.clear();
+  // The lane gets back as many sent buffers as it used, when the endpoint has them.
+  while (lane.spare.size() < used && !spare_.empty()) {
+    lane.spare.push_back(std::move(spare_.back()));
+    spare_.pop_back();
   }
 }
 

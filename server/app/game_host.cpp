@@ -68,7 +68,8 @@ GameHost::GameHost(const Options& options, const sim::MatchConfig& config, const
         return c;
       }()),
       codes_(fold_key(key)),
-      no_match_(sim::make_match(config, options.seed)) {}
+      no_match_(sim::make_match(config, options.seed)),
+      pool_(options.threads) {}
 
 void GameHost::record_to(std::ostream& out, const std::string& version) {
   first_record_ = &out;
@@ -202,7 +203,7 @@ void GameHost::receive(const std::string& from, std::span<const std::uint8_t> by
       return;
     }
   }
-  endpoint_.receive(from, bytes, now_ms);
+  endpoint_.receive_later(from, bytes, now_ms);  // opened at the tick, on the pool
 }
 
 std::vector<protocol::Outgoing> GameHost::take_datagrams() {
@@ -315,9 +316,19 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   // Nobody idles while the players of their room cannot act: lobby, shop, game over.
   for (const auto& [id, r] : rooms_) endpoint_.set_idle_paused(id, r->match().phase != sim::Phase::playing);
+  // The datagrams received since the last tick: opened on the pool, applied in order.
+  pool_.run(endpoint_.inbox_sessions(), [&](std::size_t i) { endpoint_.open_inbox(i); });
+  endpoint_.apply_inbox();
   endpoint_.update(now_ms);
   dispatch(now_ms);
-  for (auto& [id, r] : rooms_) r->tick(endpoint_, now_ms);
+  // The rooms on the pool (the phases: game_host.hpp).
+  order_.clear();
+  for (auto& [id, r] : rooms_) order_.push_back(r.get());
+  pool_.run(order_.size(), [&](std::size_t i) { order_[i]->step(now_ms); });
+  for (Room* r : order_) r->publish(endpoint_, now_ms);
+  if (lanes_.size() < order_.size()) lanes_.resize(order_.size());
+  pool_.run(order_.size(), [&](std::size_t i) { order_[i]->send_snapshots(endpoint_, now_ms, lanes_[i]); });
+  for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
 
   // A room nobody is connected to for room_idle_ms is closed; while draining, at once (the
   // drain ends when the last room does).

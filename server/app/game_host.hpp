@@ -1,7 +1,24 @@
 // The server without its socket, process part: the one endpoint of the port (sessions,
 // limits, rate caps are process-wide), the room table and its lifecycle, the host's
-// console commands. Each room (app/room.hpp) is a match of its own; all rooms are stepped
-// by the one tick in room-id order. Driven by the time passed in, so tests step it by hand.
+// console commands. Each room (app/room.hpp) is a match of its own; the tick steps the
+// rooms on --threads threads (issue 29) and does everything else on the caller's thread,
+// in room-id order. Driven by the time passed in, so tests step it by hand.
+//
+// What the threads share, and how: the endpoint (sessions, queues, limits), the room
+// table, codes, chat and the console are touched only by the caller's thread, except in
+// the parallel phases of a tick, which change one session's or one room's state per job
+// while the caller's thread waits and nothing adds or removes a session:
+//   0. receive() makes the cheap checks at once and queues a session's datagram;
+//   1. parallel, one job per session: its queued datagrams opened (replay window, tag,
+//      payload); then, serial, applied in arrival order, endpoint timers, connection
+//      events, inputs and commands handed to their rooms;
+//   2. parallel, one job per room: Room::step (the match, its record and journal queue);
+//   3. serial, room order: results answered, events logged, the room's tick published;
+//   4. parallel, one job per room: Room::send_snapshots seals the room's snapshots into
+//      its own lane (its own sessions only);
+//   5. serial: the lanes queued in room order.
+// The pool's join is the only synchronisation on the tick path (no lock per room or per
+// datagram), and everything leaves in the same order for any thread count.
 #pragma once
 
 #include <map>
@@ -20,6 +37,7 @@
 #include "app/room.hpp"
 #include "app/room_codes.hpp"
 #include "app/stats.hpp"
+#include "app/worker_pool.hpp"
 #include "fts/protocol/server.hpp"
 #include "fts/sim/match.hpp"
 
@@ -81,6 +99,7 @@ class GameHost {
   std::vector<std::uint32_t> room_ids() const;
   std::uint64_t rooms_made() const { return rooms_made_; }
   const protocol::ServerEndpoint& endpoint() const { return endpoint_; }
+  const WorkerPool& workers() const { return pool_; }
   Stats& stats() { return stats_; }
 
  private:
@@ -126,6 +145,9 @@ class GameHost {
   std::uint64_t stalled_logged_ms_ = 0;
   sim::MatchState no_match_;
   Stats stats_;
+  WorkerPool pool_;
+  std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
+  std::vector<protocol::SendLane> lanes_;   // one per position in order_
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,

@@ -46,6 +46,7 @@ struct Options {
   std::uint32_t drain_grace_ms = 25000;
   std::string metrics_address;  // "ADDR:PORT"
   std::uint32_t max_rooms = 64;         // rooms at once; each a match of max_players
+  std::uint32_t threads = 0;            // threads stepping the rooms (0: every usable core)
   std::uint32_t room_idle_ms = 60000;   // a room without a connected client this long is closed
   std::uint32_t max_spectators = 8;     // spectators per room (0: none)
   std::string record_dir;   // "" : no per-room records; else DIR/room-<id>.jsonl per room

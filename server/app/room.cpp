@@ -220,29 +220,36 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
 }
 
 void Room::tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  step(now_ms);
+  publish(endpoint, now_ms);
+  protocol::SendLane lane;
+  send_snapshots(endpoint, now_ms, lane);
+  endpoint.adopt(lane);
+}
+
+void Room::step(std::uint64_t now_ms) {
   const sim::TickInputs in = gather(now_ms);
   if (recorder_) recorder_->inputs(stepper_.match().tick, in);
   if (journal_) journal_->inputs(stepper_.match().tick, in);
-  const sim::TickOutput stepped = stepper_.step(in);
+  stepped_ = stepper_.step(in);
   if (recorder_) recorder_->stepped(stepper_.match());
-  answer(stepped.results, endpoint, now_ms);
-  log_events(stepped.events, endpoint, now_ms);
-  if (journal_) {
-    journal_->stepped(stepper_.match(), stepper_.event_seq());
-    if (stepper_.match().tick % 1000 == 0) watch_journal();
-  }
-
-  endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
-  if (stepper_.match().tick % ticks_per_snapshot_ == 0) send_snapshots(endpoint, now_ms);
+  if (journal_) journal_->stepped(stepper_.match(), stepper_.event_seq());
 }
 
-void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
+  answer(stepped_.results, endpoint, now_ms);
+  log_events(stepped_.events, endpoint, now_ms);
+  if (journal_ && stepper_.match().tick % 1000 == 0) watch_journal();
+  endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
+}
+
+void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms, protocol::SendLane& lane) {
+  if (stepper_.match().tick % ticks_per_snapshot_ != 0) return;
   const auto members = endpoint.connected_in_room(id_);
   if (members.empty()) return;
   // Quantized once per tick; each client gets only its delta against that.
-  const auto snap = std::make_shared<const protocol::Snapshot>(
-      protocol::quantize(stepper_.snapshot()));
-  for (auto id : members) endpoint.send_snapshot(id, snap, now_ms);
+  const auto snap = std::make_shared<const protocol::Snapshot>(protocol::quantize(stepper_.snapshot()));
+  for (auto id : members) endpoint.send_snapshot(id, snap, now_ms, lane);
 }
 
 void Room::seal() {

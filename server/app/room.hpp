@@ -53,8 +53,18 @@ class Room {
   void on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
   void on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms);
   void on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  // One tick: step the match with what was gathered, answer commands, send snapshots.
+  // One tick: step the match with what was gathered, answer commands, send snapshots;
+  // the three parts below in order, on the caller's thread.
   void tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  // The tick in three parts, for stepping rooms on several threads (issue 29): step()
+  // touches only this room (its match, record and journal queue) and may run on any
+  // thread while other rooms step; publish() answers the step's commands, logs its
+  // events and tells the endpoint the tick, on the thread that owns the endpoint, in
+  // room order; send_snapshots() seals this room's snapshots into `lane` (it changes
+  // only this room's sessions) and may run beside other rooms' again.
+  void step(std::uint64_t now_ms);
+  void publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
+  void send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms, protocol::SendLane& lane);
   void flush();
   // Ends the record with the hash of the state now (the room closes).
   void seal();
@@ -98,7 +108,6 @@ class Room {
   sim::TickInputs gather(std::uint64_t now_ms);
   void answer(const std::vector<sim::CommandResult>& results, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
   void log_events(const std::vector<sim::Event>& events, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  void send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
   void journal_session(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
   void watch_journal();
 
@@ -108,6 +117,7 @@ class Room {
   std::uint64_t seed_;
   std::uint32_t input_expiry_ms_;
   room::RoomStepper stepper_;  // the match, its event numbering and recent window
+  sim::TickOutput stepped_;    // the last step's results and events, until publish()
   sim::TickInputs pending_;  // connection events and commands for the next step
   std::map<std::uint32_t, Held> held_;
   InputTiming timing_;

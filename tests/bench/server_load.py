@@ -34,6 +34,7 @@ def main():
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--pin", action="store_true")
     ap.add_argument("--max-skipped", type=int, default=None)
+    ap.add_argument("--threads", type=int, default=1, help="the server's --threads (issue 29)")
     a = ap.parse_args()
     load0 = os.getloadavg()
     cpus = sorted(os.sched_getaffinity(0))
@@ -44,7 +45,7 @@ def main():
         os.sched_setaffinity(0, set(cpus[1:]))  # the bots inherit this
     clients = a.rooms * a.bots
     with Server("--stats-interval-ms", "10000", "--log-format", "json", "--tick-rate", "100",
-                "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8))) as srv:
+                "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8)), "--threads", str(a.threads)) as srv:
         if a.pin:
             os.sched_setaffinity(srv.proc.pid, {cpus[0]})
         room = ["--room", "create"] if a.rooms > 1 else []
@@ -58,7 +59,7 @@ def main():
         stats = [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
     report = [b for _, rep, _ in results for b in rep]
     full = [s for s in stats if s["players"] == clients]
-    print(f"{a.rooms} rooms x {a.bots} bots = {clients} clients, {a.seconds:.0f} s at 100 Hz"
+    print(f"{a.rooms} rooms x {a.bots} bots = {clients} clients, {a.seconds:.0f} s at 100 Hz, server --threads {a.threads}"
           + (f"; server pinned to CPU {cpus[0]}, bots on {cpus[1:]}" if a.pin else ""))
     print(f"| interval | players | rooms | tick p50 (µs) | tick p99 (µs) | tick max (µs) | skipped (total) | bytes out/client/s | bytes in/client/s |")
     print("|---|---|---|---|---|---|---|---|---|")

@@ -73,3 +73,16 @@ TEST_CASE("Server options: every documented flag is in the usage text", "[server
     CHECK(usage.find(d.env) != std::string::npos);
   }
 }
+
+TEST_CASE("Server options: --threads (issue 29)", "[server][options][threads]") {
+  auto threads_of = [](std::vector<std::string> args, std::map<std::string, std::string> env) {
+    auto r = parse_options(args, env_of(env));
+    REQUIRE(std::holds_alternative<Options>(r));
+    return std::get<Options>(r).threads;
+  };
+  CHECK(threads_of({}, {}) == 0);  // every usable core
+  CHECK(threads_of({"--threads", "2"}, {}) == 2);
+  CHECK(threads_of({}, {{"FTS_THREADS", "1"}}) == 1);
+  CHECK(error_of({"--threads", "257"}) == R"(--threads: must be 0..256 (0: every core), got "257")");
+  CHECK(error_of({"--threads", "two"}) == R"(--threads: must be 0..256 (0: every core), got "two")");
+}

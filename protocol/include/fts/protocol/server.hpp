@@ -149,6 +149,16 @@ struct Outgoing {
   std::vector<std::uint8_t> bytes;
 };
 
+// A room's own queue of sealed snapshots (issue 29): rooms on several threads each seal
+// into their own lane (its scratch, its queue, the buffers it reuses), and the thread
+// that owns the endpoint adopts the lanes in room order, so the datagrams leave in the
+// same order whatever the thread count.
+struct SendLane {
+  std::vector<Outgoing> out;
+  std::vector<Outgoing> spare;  // buffers of datagrams sent before, reused
+  std::vector<std::uint8_t> payload;
+};
+
 struct PlayerInput {
   std::uint32_t player_id = 0;
   std::uint32_t room = 0;
@@ -180,6 +190,20 @@ class ServerEndpoint {
   explicit ServerEndpoint(ServerConfig config);
 
   void receive(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+
+  // ---- Receiving on several threads (issue 29). receive_later() makes receive()'s cheap
+  // checks at once (the sender's rate, the header, the version, the session and its
+  // address; a handshake datagram is handled at once) and queues the rest of a session's
+  // datagram. open_inbox(i) opens (replay window, tag, payload) the queued datagrams of
+  // the i-th session with any, in arrival order: calls for different i may run at once on
+  // different threads while nothing else calls the endpoint. apply_inbox() then applies
+  // every opened datagram in arrival order, as receive() would have, and empties the
+  // queue. At most max_inbox datagrams wait; beyond, they are dropped (rate_limited).
+  void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+  std::size_t inbox_sessions() const { return inbox_groups_used_; }
+  void open_inbox(std::size_t i);
+  void apply_inbox();
+  static constexpr std::size_t kMaxInbox = 65536;
   // Timers: heartbeats, result resends, time-outs, reconnect windows.
   void update(std::uint64_t now_ms);
 
@@ -187,6 +211,13 @@ class ServerEndpoint {
   void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
   // The same for a snapshot quantized once per tick for every client (quantize()).
   void send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms);
+  // The same into `lane`. Changes only that player's session: calls for players of
+  // different rooms may run at once on different threads, while nothing else calls the
+  // endpoint (no session comes or goes meanwhile).
+  void send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane);
+  // Queues the lane's datagrams after those queued already; the lane keeps buffers of
+  // sent datagrams for its next ones.
+  void adopt(SendLane& lane);
   // Answers a command (reliably). code: "ok" or a refusal code; message for a person.
   // Queued: the next update() sends the session's due results together in one datagram.
   void send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
@@ -290,6 +321,13 @@ class ServerEndpoint {
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
                     std::size_t request_bytes, std::uint64_t now_ms);
   void handle_session(Session& s, const Datagram& d, std::uint64_t now_ms);
+  // receive()'s checks before the crypto: the session a sealed datagram is for, or
+  // nullptr when the datagram was dealt with (dropped and counted, or a handshake).
+  Session* screen(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+  // An opened datagram of `s`: the session's rate, then its messages.
+  void handle_opened(Session& s, const Decoded<Datagram>& d, std::uint64_t now_ms);
+  // The session `player_id` if it is still the connected session `session_id`.
+  Session* live_session(std::uint32_t player_id, std::uint32_t session_id);
   void reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
                          const Message& message, std::size_t request_bytes);
   void send_welcome(Session& s, bool reconnected, std::size_t request_bytes, std::uint64_t now_ms);
@@ -304,8 +342,10 @@ class ServerEndpoint {
   Header session_header(Session& s, std::uint64_t now_ms);
   // Seals payload_ for `s` under `h` and queues it.
   void emit_sealed(Session& s, const Header& h);
-  // The next queued datagram to `to`, empty, with the buffers of a sent one if any.
-  Outgoing& next_outgoing(const Address& to);
+  // Seals `payload` for `s` under `h` into the next datagram of `out` (the buffers of one
+  // from `spare` when there is one).
+  static void seal_into(Session& s, const Header& h, const std::vector<std::uint8_t>& payload,
+                        std::vector<Outgoing>& out, std::vector<Outgoing>& spare);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
   void release(std::uint32_t player_id, const std::string& reason);
   void emit(const Address& to, std::vector<std::uint8_t> bytes);
@@ -329,6 +369,17 @@ class ServerEndpoint {
   static constexpr std::size_t kSpareDatagrams = 4096;
   std::vector<Outgoing> spare_;
   std::vector<std::uint8_t> payload_;  // scratch: the payload being sealed
+  struct Queued {  // a datagram waiting in the inbox
+    std::uint32_t player_id = 0, session_id = 0;
+    std::uint64_t now_ms = 0;
+    std::vector<std::uint8_t> bytes;  // kept for the next datagram's copy
+    std::optional<Decoded<Datagram>> opened;
+  };
+  std::vector<Queued> inbox_;          // the first inbox_used_ are this tick's
+  std::size_t inbox_used_ = 0;
+  std::vector<std::vector<std::size_t>> inbox_groups_;  // per session: its datagrams' places
+  std::size_t inbox_groups_used_ = 0;
+  std::map<std::uint32_t, std::size_t> inbox_group_of_;  // player id -> group
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;

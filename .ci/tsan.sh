@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The ThreadSanitizer run (issue 29): the server's tests in a TSan build, and the rooms
+# and integration tests whose servers step rooms on 2 threads. Not in the default test
+# command (a third full build would not fit its 20 minutes); run it after changing
+# anything the tick's parallel phases touch (server/app/game_host.*, room.*,
+# worker_pool.*, protocol/src/server.cpp):
+#   bash .ci/tsan.sh
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+jobs=${FTS_JOBS:-$(nproc)}
+FTS_TARGETS="fts-server fts-bot fts-client fts_server_tests fts_journal_tests" \
+  bash .ci/build.sh build-tsan -DFTS_WERROR=ON -DFTS_TSAN=ON
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
+build-tsan/tests/fts_server_tests
+build-tsan/tests/fts_journal_tests
+FTS_THREADS=2 ctest --test-dir build-tsan -R '^(rooms\.|integration\.(levels|exactly_once|reconnect|garbage)|journal\.)' \
+  -j "$jobs" --output-on-failure --timeout 900
+echo "tsan: clean"

@@ -1,0 +1,110 @@
+#include "app/worker_pool.hpp"
+
+#include <sched.h>
+
+#include <utility>
+
+namespace fts::server {
+
+unsigned WorkerPool::usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    const int n = CPU_COUNT(&set);
+    if (n > 0) return static_cast<unsigned>(n);
+  }
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? hw : 1;
+}
+
+WorkerPool::WorkerPool(unsigned threads) {
+  if (threads == 0) threads = usable_cores();
+  done_.assign(threads, 0);
+  workers_.reserve(threads - 1);
+  for (std::size_t slot = 1; slot < threads; ++slot) workers_.emplace_back([this, slot] { work(slot); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  start_cv_.notify_all();
+  for (auto& t : workers_) t.join();
+}
+
+// Takes indices until none is left and runs them; how many it ran. The first exception
+// is kept for run().
+std::uint64_t WorkerPool::claim() {
+  std::uint64_t ran = 0;
+  for (std::size_t i = next_.fetch_add(1, std::memory_order_relaxed); i < n_;
+       i = next_.fetch_add(1, std::memory_order_relaxed)) {
+    ++ran;
+    try {
+      (*job_)(i);
+    } catch (...) {
+      std::lock_guard lock(mu_);
+      if (!error_) error_ = std::current_exception();
+    }
+  }
+  return ran;
+}
+
+// A worker joins a run only if it wakes while the run is on (job_ set): the caller never
+// waits for a worker that was not scheduled in time, only for those inside claim().
+void WorkerPool::work(std::size_t slot) {
+  std::uint64_t seen = 0;
+  std::unique_lock lock(mu_);
+  for (;;) {
+    start_cv_.wait(lock, [&] { return stop_ || generation_ != seen; });
+    if (stop_) return;
+    seen = generation_;
+    if (job_ == nullptr) continue;  // that run is over already
+    ++active_;
+    lock.unlock();
+    const std::uint64_t ran = claim();
+    lock.lock();
+    done_[slot] += ran;
+    finished_ += ran;
+    --active_;
+    if (finished_ == n_ && active_ == 0) done_cv_.notify_one();
+  }
+}
+
+void WorkerPool::run(std::size_t n, const Job& job) {
+  if (n == 0) return;
+  if (workers_.empty() || n == 1) {  // nothing to share: no wake-up, no join
+    for (std::size_t i = 0; i < n; ++i) job(i);
+    std::lock_guard lock(mu_);
+    done_[0] += n;
+    return;
+  }
+  {
+    std::lock_guard lock(mu_);
+    job_ = &job;
+    n_ = n;
+    next_.store(0, std::memory_order_relaxed);
+    finished_ = 0;
+    error_ = nullptr;
+    ++generation_;
+  }
+  start_cv_.notify_all();
+  const std::uint64_t ran = claim();
+  std::exception_ptr error;
+  {
+    std::unique_lock lock(mu_);
+    done_[0] += ran;
+    finished_ += ran;
+    done_cv_.wait(lock, [&] { return finished_ == n_ && active_ == 0; });
+    job_ = nullptr;
+    error = std::exchange(error_, nullptr);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+std::vector<std::uint64_t> WorkerPool::jobs_per_thread() const {
+  std::lock_guard lock(mu_);
+  return done_;
+}
+
+}  // namespace fts::server

@@ -1,0 +1,63 @@
+// Fork-join over the rooms (issue 29): run(n, job) calls job(i) once for every i in
+// [0, n), spread over the pool's threads (the caller is one of them), and returns when
+// every call has returned. With one thread it is a plain loop on the caller.
+//
+// What it guarantees: run() returning happens-after every job(i) (the join takes the
+// pool's mutex), and job(i) happens-after everything the caller did before run(); the
+// caller waits for the jobs, never for a worker that did not wake in time (it then runs
+// the jobs itself: an overloaded machine costs speed, not a stall). A
+// room's state is therefore touched by one thread at a time, and which thread that is
+// changes nothing a room computes: each index is claimed from an atomic counter, so
+// the rooms spread over the threads by their cost, not by a fixed assignment.
+// The jobs must not touch what another index's job touches; they may throw: the first
+// exception is rethrown by run() on the caller once every job has finished.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace fts::server {
+
+class WorkerPool {
+ public:
+  using Job = std::function<void(std::size_t)>;
+  // `threads` counts the caller: 1 starts no thread. 0 means every core the process may use.
+  explicit WorkerPool(unsigned threads);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  unsigned threads() const { return static_cast<unsigned>(workers_.size()) + 1; }
+  void run(std::size_t n, const Job& job);
+  // Jobs each thread ran since the start, the caller first (for the stats line).
+  std::vector<std::uint64_t> jobs_per_thread() const;
+
+  // The cores this process may run on (sched_getaffinity; at least 1).
+  static unsigned usable_cores();
+
+ private:
+  void work(std::size_t slot);
+  std::uint64_t claim();
+
+  mutable std::mutex mu_;
+  std::condition_variable start_cv_, done_cv_;
+  const Job* job_ = nullptr;
+  std::size_t n_ = 0;
+  std::atomic<std::size_t> next_{0};
+  std::uint64_t generation_ = 0;  // one per run(): a worker joins each run at most once
+  std::size_t finished_ = 0;      // jobs of the current run done
+  unsigned active_ = 0;           // workers inside the current run's claim()
+  bool stop_ = false;
+  std::exception_ptr error_;
+  std::vector<std::uint64_t> done_;  // per slot, guarded by mu_ (added to at the join)
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace fts::server

@@ -1,0 +1,180 @@
+// fts-host-bench: the host's cost per client in memory (issue 29's capacity model).
+// Real protocol clients (protocol::ClientEndpoint, one per address, playing on the lean
+// uplink as fts-bot does) against a GameHost with --threads T, time stepped by hand:
+// per tick, the clients' datagrams are gathered first, then only the host's calls
+// (receive of every datagram, tick, take_datagrams) are timed: wall time (what the 10 ms
+// budget at 100 Hz is about) and process CPU time (every pool thread's, the clients do
+// not run meanwhile). Heap: the net bytes the host's calls kept (mallinfo2), per room and
+// per client. Prints a table and, with --csv, writes it. Reports figures, never judges.
+//
+//   build/tests/bench/fts-host-bench --clients 8,64,512,1024 --threads 1,2 --ticks 1000
+#include <malloc.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app/game_host.hpp"
+#include "fts/protocol/client.hpp"
+
+using namespace fts;
+
+namespace {
+
+double cpu_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) / 1e3;
+}
+double wall_us() {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+long long heap_bytes() { return static_cast<long long>(mallinfo2().uordblks); }
+
+struct Row {
+  int clients = 0, rooms = 0, threads = 0, ticks = 0;
+  double wall_p50 = 0, wall_p99 = 0, wall_max = 0, wall_mean = 0, cpu_mean = 0;
+  double bytes_in = 0, bytes_out = 0;  // per client per second
+  double heap_per_client = 0;
+  int playing = 0;
+};
+
+Row measure(int clients_n, int seats, unsigned threads, int ticks) {
+  server::Options options;
+  options.max_players = static_cast<std::uint32_t>(seats);
+  options.max_rooms = static_cast<std::uint32_t>((clients_n + seats - 1) / seats);
+  options.threads = threads;
+  sim::MatchConfig config;
+  const long long heap0 = heap_bytes();
+  long long host_heap = 0;  // net bytes kept by the host's own calls
+  server::GameHost host(options, config, protocol::ServerKey{});
+  host_heap += heap_bytes() - heap0;
+  std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
+  std::vector<std::string> addresses;
+  std::map<std::string, std::size_t> index;
+  for (int i = 0; i < clients_n; ++i) {
+    protocol::ClientConfig c;
+    c.name = "p" + std::to_string(i);
+    clients.push_back(std::make_unique<protocol::ClientEndpoint>(c));
+    addresses.push_back("10." + std::to_string(i / 250) + "." + std::to_string(i % 250) + ".1:5000");
+    index[addresses.back()] = static_cast<std::size_t>(i);
+  }
+  std::uint64_t now = 1000;
+  std::vector<std::pair<std::size_t, std::vector<std::uint8_t>>> inbox;
+  std::vector<protocol::Outgoing> batch;
+  std::vector<double> wall;
+  double cpu_sum = 0, bytes_in = 0, bytes_out = 0;
+  auto step = [&](bool timed, bool play) {
+    inbox.clear();
+    for (std::size_t i = 0; i < clients.size(); ++i) {
+      auto& c = *clients[i];
+      if (play && c.state() == protocol::ClientState::connected) {
+        const auto phase = c.latest_snapshot() ? c.latest_snapshot()->phase : protocol::Phase::lobby;
+        if (phase == protocol::Phase::lobby || phase == protocol::Phase::shop) {
+          if (now % 500 == 0) c.send_command(protocol::CommandOp::ready, 0, now);
+        } else {
+          c.hold_input({0, static_cast<std::int8_t>((now / 400 + i) % 3 - 1),
+                        static_cast<std::int8_t>((now / 300 + i) % 3 - 1), false},
+                       now);
+        }
+      }
+      c.update(now);
+      for (auto& d : c.take_datagrams()) inbox.emplace_back(i, std::move(d));
+    }
+    const long long h0 = heap_bytes();
+    const double w0 = wall_us(), c0 = cpu_us();
+    for (const auto& [i, d] : inbox) host.receive(addresses[i], d, now);
+    host.tick(now);
+    host.take_datagrams(batch);
+    const double w1 = wall_us(), c1 = cpu_us();
+    host_heap += heap_bytes() - h0;
+    if (timed) {
+      wall.push_back(w1 - w0);
+      cpu_sum += c1 - c0;
+      for (const auto& [i, d] : inbox) bytes_in += static_cast<double>(d.size());
+      for (const auto& d : batch) bytes_out += static_cast<double>(d.bytes.size());
+    }
+    for (const auto& d : batch) clients[index.at(d.to)]->receive(d.bytes, now);
+    now += 10;
+  };
+  for (std::size_t i = 0; i < clients.size(); ++i) {
+    clients[i]->connect(now);
+    if (i % 8 == 7) step(false, false);
+  }
+  for (int i = 0; i < 100; ++i) step(false, true);
+  for (int i = 0; i < ticks; ++i) step(true, true);
+  Row r;
+  r.clients = clients_n;
+  r.rooms = static_cast<int>(host.room_ids().size());
+  r.threads = static_cast<int>(host.workers().threads());
+  r.ticks = ticks;
+  for (auto id : host.room_ids()) r.playing += host.room(id)->match().phase == sim::Phase::playing;
+  std::sort(wall.begin(), wall.end());
+  r.wall_p50 = wall[wall.size() / 2];
+  r.wall_p99 = wall[wall.size() * 99 / 100];
+  r.wall_max = wall.back();
+  for (double v : wall) r.wall_mean += v / static_cast<double>(wall.size());
+  r.cpu_mean = cpu_sum / ticks;
+  const double seconds = ticks / 100.0;
+  r.bytes_in = bytes_in / clients_n / seconds;
+  r.bytes_out = bytes_out / clients_n / seconds;
+  r.heap_per_client = static_cast<double>(host_heap) / clients_n;
+  return r;
+}
+
+std::vector<int> ints(const std::string& list) {
+  std::vector<int> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(std::stoi(item));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fts-host-bench: the host's CPU, heap and bytes per client, in memory"};
+  std::string clients_list = "8,64,512,1024", threads_list = "1,2", csv;
+  int ticks = 1000, seats = 8;
+  app.add_option("--clients", clients_list, "client counts, comma-separated");
+  app.add_option("--threads", threads_list, "thread counts, comma-separated");
+  app.add_option("--ticks", ticks, "timed ticks per cell (100 Hz)")->check(CLI::Range(10, 100000));
+  app.add_option("--seats", seats, "players per room")->check(CLI::Range(1, 64));
+  app.add_option("--csv", csv, "also write the table here");
+  CLI11_PARSE(app, argc, argv);
+  const std::string header =
+      "clients,rooms,threads,rooms_playing,wall_p50_us,wall_p99_us,wall_max_us,wall_mean_us,cpu_mean_us,"
+      "core_pct_at_100hz,cpu_us_per_client_s,bytes_in_client_s,bytes_out_client_s,heap_bytes_per_client";
+  std::ostringstream table;
+  table << header << "\n";
+  std::cout << header << std::endl;
+  for (int n : ints(clients_list))
+    for (int t : ints(threads_list)) {
+      const Row r = measure(n, seats, static_cast<unsigned>(t), ticks);
+      char line[512];
+      std::snprintf(line, sizeof line, "%d,%d,%d,%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.2f,%.1f,%.0f,%.0f,%.0f", r.clients,
+                    r.rooms, r.threads, r.playing, r.wall_p50, r.wall_p99, r.wall_max, r.wall_mean, r.cpu_mean,
+                    r.cpu_mean / 10000 * 100, r.cpu_mean * 100 / r.clients, r.bytes_in, r.bytes_out,
+                    r.heap_per_client);
+      table << line << "\n";
+      std::cout << line << std::endl;
+    }
+  if (!csv.empty()) {
+    std::ofstream out(csv);
+    out << table.str();
+    if (!out) {
+      std::cerr << "fts-host-bench: cannot write " << csv << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
