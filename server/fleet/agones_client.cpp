@@ -21,6 +21,8 @@ struct Outcome {
 
 const char* op_name(SdkOp op) {
   switch (op) {
+    case SdkOp::counter_capacity: return "counter_capacity";
+    case SdkOp::list_capacity: return "list_capacity";
     case SdkOp::ready: return "ready";
     case SdkOp::health: return "health";
     case SdkOp::label: return "label";

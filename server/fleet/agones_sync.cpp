@@ -1,6 +1,9 @@
 #include "fleet/agones_sync.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -8,6 +11,9 @@ namespace fts::server {
 namespace {
 
 SdkCall post(SdkOp op, const std::string& path) { return SdkCall{op, "POST", path, "{}", {}, {}, 0}; }
+
+// int64 fields travel as JSON strings in the gateway's mapping, as the docs show.
+std::string int64_json(const char* field, std::uint64_t v) { return nlohmann::json{{field, std::to_string(v)}}.dump(); }
 
 // Kubernetes label values: up to 63 of [A-Za-z0-9._-], starting and ending alphanumeric.
 std::string label_value(const std::string& v) {
@@ -23,9 +29,54 @@ std::string label_value(const std::string& v) {
   return out.empty() ? "none" : out;
 }
 
+SdkCall list_value_call(SdkOp op, const char* list, const std::string& value) {
+  const char* verb = op == SdkOp::list_add ? ":addValue" : ":removeValue";
+  return SdkCall{op, "POST", std::string("/v1beta1/lists/") + list + verb, nlohmann::json{{"value", value}}.dump(),
+                 list, value, 0};
+}
+
+// The first call that brings List `list` from `held` (what the sidecar holds) to the
+// first `capacity` distinct values of `wanted`, in its order: removals before additions,
+// so the List never holds more than `capacity` values on the way.
+template <class Values>
+std::optional<SdkCall> list_call(const char* list, const std::set<std::string>& held, const Values& wanted,
+                                 std::uint64_t capacity) {
+  std::set<std::string_view, std::less<>> target;
+  std::vector<const std::string*> order;
+  for (const std::string& v : wanted) {
+    if (order.size() >= capacity) break;
+    if (target.insert(v).second) order.push_back(&v);
+  }
+  for (const auto& v : held)
+    if (!target.count(v)) return list_value_call(SdkOp::list_remove, list, v);
+  for (const auto* v : order)
+    if (!held.count(*v)) return list_value_call(SdkOp::list_add, list, *v);
+  return std::nullopt;
+}
+
 }  // namespace
 
+AgonesCapacity agones_capacity(std::uint32_t max_rooms, std::uint32_t max_players) {
+  AgonesCapacity c;
+  c.seats = std::uint64_t{max_rooms} * max_players;
+  c.rooms = std::min(max_rooms, kAgonesListMax);
+  c.players = static_cast<std::uint32_t>(std::min<std::uint64_t>(c.seats, kAgonesListMax));
+  return c;
+}
+
 std::optional<SdkCall> AgonesSync::next(const AgonesWanted& w) const {
+  // Capacities first: the allocator must never see this server Ready with the manifest's
+  // numbers if the server's own limits differ.
+  if (seats_capacity_ != w.capacity.seats)
+    return SdkCall{SdkOp::counter_capacity, "PATCH", std::string("/v1beta1/counters/") + kSeatsCounter,
+                   int64_json("capacity", w.capacity.seats), kSeatsCounter, {}, w.capacity.seats};
+  for (const auto& [list, cap] : {std::pair{kRoomsList, w.capacity.rooms}, std::pair{kPlayersList, w.capacity.players}}) {
+    const auto it = list_capacity_.find(list);
+    if (it != list_capacity_.end() && it->second == cap) continue;
+    // Only the fields in the body change (the gateway's field mask): the values stay.
+    return SdkCall{SdkOp::list_capacity, "PATCH", std::string("/v1beta1/lists/") + list, int64_json("capacity", cap),
+                   list, {}, cap};
+  }
   if (w.ready && !ready_) return post(SdkOp::ready, "/ready");
   if (w.health_seq != health_seq_) {
     SdkCall c = post(SdkOp::health, "/health");
@@ -41,34 +92,31 @@ std::optional<SdkCall> AgonesSync::next(const AgonesWanted& w) const {
               value, 0};
     return c;
   }
-  if (!rooms_ || *rooms_ != w.state.rooms) {
-    // int64 fields travel as JSON strings in the gateway's mapping, as the docs show.
-    SdkCall c{SdkOp::counter, "PATCH", std::string("/v1beta1/counters/") + kRoomsCounter,
-              nlohmann::json{{"count", std::to_string(w.state.rooms)}}.dump(), {}, {}, w.state.rooms};
-    return c;
-  }
-  for (const auto& name : players_) {
-    if (w.state.players.count(name)) continue;
-    return SdkCall{SdkOp::list_remove, "POST", std::string("/v1beta1/lists/") + kPlayersList + ":removeValue",
-                   nlohmann::json{{"value", name}}.dump(), {}, name, 0};
-  }
-  for (const auto& name : w.state.players) {
-    if (players_.count(name)) continue;
-    return SdkCall{SdkOp::list_add, "POST", std::string("/v1beta1/lists/") + kPlayersList + ":addValue",
-                   nlohmann::json{{"value", name}}.dump(), {}, name, 0};
-  }
+  const std::uint64_t seats = std::min<std::uint64_t>(w.state.seats, w.capacity.seats);
+  if (seats_ != seats)
+    return SdkCall{SdkOp::counter, "PATCH", std::string("/v1beta1/counters/") + kSeatsCounter,
+                   int64_json("count", seats), kSeatsCounter, {}, seats};
+  const auto held = [&](const char* list) -> const std::set<std::string>& {
+    static const std::set<std::string> none;
+    const auto it = lists_.find(list);
+    return it == lists_.end() ? none : it->second;
+  };
+  if (auto c = list_call(kRoomsList, held(kRoomsList), w.state.room_codes, w.capacity.rooms)) return c;
+  if (auto c = list_call(kPlayersList, held(kPlayersList), w.state.players, w.capacity.players)) return c;
   if (w.shutdown && !shutdown_) return post(SdkOp::shutdown, "/shutdown");
   return std::nullopt;
 }
 
 void AgonesSync::done(const SdkCall& c) {
   switch (c.op) {
+    case SdkOp::counter_capacity: seats_capacity_ = c.number; break;
+    case SdkOp::list_capacity: list_capacity_[c.key] = c.number; break;
     case SdkOp::ready: ready_ = true; break;
     case SdkOp::health: health_seq_ = c.number; break;
     case SdkOp::label: labels_[c.key] = c.value; break;
-    case SdkOp::counter: rooms_ = c.number; break;
-    case SdkOp::list_remove: players_.erase(c.value); break;
-    case SdkOp::list_add: players_.insert(c.value); break;
+    case SdkOp::counter: seats_ = c.number; break;
+    case SdkOp::list_remove: lists_[c.key].erase(c.value); break;
+    case SdkOp::list_add: lists_[c.key].insert(c.value); break;
     case SdkOp::shutdown: shutdown_ = true; break;
   }
 }

@@ -18,6 +18,11 @@ Fleet::Fleet(const Options& options) : options_(options), drain_(options.drain_g
     c.port = options.agones_port;
     agones_ = std::make_unique<AgonesClient>(c);
     wanted_.version = FTS_VERSION;
+    wanted_.capacity = agones_capacity(options.max_rooms, options.max_players);
+    if (options.max_rooms > wanted_.capacity.rooms)  // beyond Agones' List limit
+      log_record(spdlog::level::warn, "agones_rooms_bounded",
+                 {{"max_rooms", options.max_rooms}, {"published", wanted_.capacity.rooms},
+                  {"note", "codes of rooms past the first ones (by id) are not in the rooms List until one closes"}});
   }
 }
 
@@ -27,7 +32,9 @@ void Fleet::bound() {
   if (!agones_) return;
   wanted_.ready = true;
   agones_->want(wanted_);
-  log_record(spdlog::level::info, "agones", {{"port", options_.agones_port}, {"health_ms", options_.agones_health_ms}});
+  log_record(spdlog::level::info, "agones",
+             {{"port", options_.agones_port}, {"health_ms", options_.agones_health_ms},
+              {"seats", wanted_.capacity.seats}, {"rooms", wanted_.capacity.rooms}});
 }
 
 void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std::uint64_t now_ms) {

@@ -3,9 +3,15 @@ endpoints fts-server uses as agones.dev documents them ("REST Game Server Client
   POST /ready /health /shutdown /allocate            body {}
   PUT  /metadata/label /metadata/annotation          body {"key": K, "value": V}
   GET  /gameserver                                   {"object_meta": ..., "status": {"state": ...}}
-  GET/PATCH /v1beta1/counters/NAME                   body {"count": "N"} (int64 as a string)
-  GET  /v1beta1/lists/NAME
-  POST /v1beta1/lists/NAME:addValue / :removeValue   body {"value": V}
+  GET/PATCH /v1beta1/counters/NAME                   body {"count": "N", "capacity": "C"}, either or
+                                                     both (int64 as strings); count outside
+                                                     [0, capacity]: 400 (Agones: OUT_OF_RANGE)
+  GET/PATCH /v1beta1/lists/NAME                      body {"capacity": "C", "values": [...]}: only
+                                                     the fields given change (the gateway's field
+                                                     mask); capacity 0..1000; values past the
+                                                     capacity are cut off, as Agones does
+  POST /v1beta1/lists/NAME:addValue / :removeValue   body {"value": V}; a full List: 400, a
+                                                     value already there: 409, one not there: 404
 Every call is recorded (time, method, path, parsed body, status). It can start late
 (start(delay_s)) and fail: the first `fail_first` calls get 500.
 Run alone: python3 agones_sidecar.py PORT [--fail-first N] (prints each call)."""
@@ -17,17 +23,22 @@ LIST = re.compile(r"^/v1beta1/lists/([a-z0-9-]+)(:addValue|:removeValue)?$")
 
 
 class Sidecar:
-    def __init__(self, port, fail_first=0, counters=None, lists=None):
+    def __init__(self, port, fail_first=0, counters=None, lists=None, game_port=7777, fleet="fear-the-sphere",
+                 name="fts-local"):
         self.port = port
+        self.name = name            # metadata.name of the GameServer
+        self.game_port = game_port  # status.ports[0].port: where players connect
+        self.fleet = fleet          # the agones.dev/fleet label Agones puts on a Fleet's servers
         self.fail_first = fail_first
         self.lock = threading.Lock()
         self.calls = []  # dicts: t, method, path, body, status
         self.state = "Scheduled"
         self.labels = {}
         self.annotations = {}
-        # As the GameServer's spec declares them (docker/agones/gameserver.yaml).
-        self.counters = counters or {"rooms": {"count": 0, "capacity": 10}}
-        self.lists = lists or {"players": {"capacity": 100, "values": []}}
+        # As the GameServer's spec declares them (docker/agones/gameserver.yaml), with
+        # capacities unlike the server's so that a test sees the server set its own.
+        self.counters = counters or {"seats": {"count": 0, "capacity": 10}}
+        self.lists = lists or {"rooms": {"capacity": 3, "values": []}, "players": {"capacity": 100, "values": []}}
         self.server = None
         self.thread = None
 
@@ -63,11 +74,12 @@ class Sidecar:
 
     # ---- the gateway --------------------------------------------------------------------
     def gameserver(self):
-        return {"object_meta": {"name": "fts-local", "namespace": "default",
-                                "labels": {"agones.dev/sdk-" + k: v for k, v in self.labels.items()},
+        return {"object_meta": {"name": self.name, "namespace": "default",
+                                "labels": {"agones.dev/fleet": self.fleet,
+                                           **{"agones.dev/sdk-" + k: v for k, v in self.labels.items()}},
                                 "annotations": {"agones.dev/sdk-" + k: v for k, v in self.annotations.items()}},
                 "status": {"state": self.state, "address": "127.0.0.1",
-                           "ports": [{"name": "default", "port": 7777}],
+                           "ports": [{"name": "default", "port": self.game_port}],
                            "counters": {k: {"count": str(v["count"]), "capacity": str(v["capacity"])}
                                         for k, v in self.counters.items()},
                            "lists": {k: {"capacity": str(v["capacity"]), "values": list(v["values"])}
@@ -96,18 +108,36 @@ class Sidecar:
             if c is None:
                 return 404, {"error": "counter not declared"}
             if method == "PATCH":
-                if not isinstance(body.get("count"), str) or not body["count"].isdigit():
-                    return 400, {"error": "count must be an int64 string"}
-                if int(body["count"]) > c["capacity"]:
-                    return 400, {"error": "count over capacity"}
-                c["count"] = int(body["count"])
+                fields = {k: body.get(k) for k in ("count", "capacity") if k in body}
+                if not fields or set(body) - {"count", "capacity"}:
+                    return 400, {"error": "want count and/or capacity"}
+                if not all(isinstance(v, str) and v.isdigit() for v in fields.values()):
+                    return 400, {"error": "count and capacity must be int64 strings"}
+                count = int(fields.get("count", c["count"]))
+                capacity = int(fields.get("capacity", c["capacity"]))
+                if count > capacity:
+                    return 400, {"error": "out of range: count over capacity"}
+                c["count"], c["capacity"] = count, capacity
             return 200, {"name": m.group(1), "count": str(c["count"]), "capacity": str(c["capacity"])}
         m = LIST.match(path)
         if m:
             lst = self.lists.get(m.group(1))
             if lst is None:
                 return 404, {"error": "list not declared"}
-            if method == "POST" and m.group(2):
+            if method == "PATCH" and not m.group(2):
+                if not body or set(body) - {"capacity", "values"}:
+                    return 400, {"error": "want capacity and/or values"}
+                if "capacity" in body:
+                    cap = body["capacity"]
+                    if not isinstance(cap, str) or not cap.isdigit() or int(cap) > 1000:
+                        return 400, {"error": "out of range: capacity must be within [0,1000]"}
+                    lst["capacity"] = int(cap)
+                if "values" in body:
+                    if not isinstance(body["values"], list) or not all(isinstance(v, str) for v in body["values"]):
+                        return 400, {"error": "values must be strings"}
+                    lst["values"] = list(dict.fromkeys(body["values"]))
+                del lst["values"][lst["capacity"]:]
+            elif method == "POST" and m.group(2):
                 value = body.get("value")
                 if not isinstance(value, str):
                     return 400, {"error": "value must be a string"}

@@ -47,9 +47,14 @@ def players(sc):
         return sorted(sc.lists["players"]["values"])
 
 
-def rooms(sc):
+def seats(sc):
     with sc.lock:
-        return sc.counters["rooms"]["count"]
+        return sc.counters["seats"]["count"]
+
+
+def codes(sc):
+    with sc.lock:
+        return sorted(sc.lists["rooms"]["values"])
 
 
 def health_times(sc, after=0.0):
@@ -65,7 +70,8 @@ def test_lifecycle():
             wait_for(lambda: sc.paths("/ready"), 10, "POST /ready")
             wait_for(lambda: sc.labels.get("version") and sc.labels.get("phase") == "lobby", 5,
                      "the version and phase labels")
-            check(rooms(sc) == 0 and players(sc) == [], "an empty server has 0 rooms and no players")
+            check(seats(sc) == 0 and codes(sc) == [] and players(sc) == [],
+                  "an empty server has no seats taken, no rooms and no players")
 
             # Health at the configured period, from the tick loop.
             t0 = time.monotonic()
@@ -88,10 +94,11 @@ def test_lifecycle():
             # Counters and Lists follow the players.
             bots = start_bots("--connect", srv.address, "--name", "ag", "--count", "2", "--behavior", "hunter",
                               "--duration", "4")
-            wait_for(lambda: players(sc) == ["ag1", "ag2"] and rooms(sc) == 1, 10,
-                     "players [ag1, ag2] and rooms 1 in the sidecar")
+            wait_for(lambda: players(sc) == ["ag1", "ag2"] and seats(sc) == 2 and len(codes(sc)) == 1, 10,
+                     "players [ag1, ag2], 2 seats and one room code in the sidecar")
             finish_bots(bots, 30)
-            wait_for(lambda: players(sc) == [] and rooms(sc) == 0, 10, "players [] and rooms 0 after the bots left")
+            wait_for(lambda: players(sc) == [] and seats(sc) == 0 and codes(sc) == [], 10,
+                     "no players, seats or codes after the bots left")
 
             # Allocated (by a GameServerAllocation) is learnt by polling GET /gameserver.
             sc.set_state("Allocated")
@@ -115,7 +122,7 @@ def test_lifecycle():
             check(rc == 0, f"exit status {rc} after the drain")
             shutdowns = sc.paths("/shutdown")
             check(len(shutdowns) == 1, f"one POST /shutdown expected, got {len(shutdowns)}")
-            check(rooms(sc) == 0 and players(sc) == [], "counts not back to 0 before Shutdown")
+            check(seats(sc) == 0 and codes(sc) == [] and players(sc) == [], "counts not back to 0 before Shutdown")
             over = records(srv, "drain_over")
             check(over and over[0].get("timed_out") is False, f"drain_over should not have timed out: {over}")
             bad = [c for c in sc.snapshot() if c["status"] >= 400]

@@ -1,9 +1,15 @@
 """docker/agones/*.yaml checked against the fields Agones requires and against what
-fts-server does: UDP game port 7777 matching FTS_PORT, health checking on, the "rooms"
-Counter and "players" List declared with the names the server's SDK client uses, the
-autoscaler's Counter policy on a declared counter of the right Fleet, the allocation's
-high-density selectors (Allocated with a free room first, then Ready), a drain grace
-shorter than Kubernetes' termination grace.
+fts-server does: UDP game port 7777 matching FTS_PORT, health checking on, the "seats"
+Counter and the "rooms" and "players" Lists declared with the names the server's SDK
+client uses and the capacities it sets (seats = FTS_MAX_ROOMS x FTS_MAX_PLAYERS, rooms >=
+FTS_MAX_ROOMS, Lists within Agones' 1000), the autoscaler's Counter policy on a declared
+counter of the right Fleet, the two allocations (quick play and create: Allocated with a free
+seat and a free room slot first, the fullest first, then Ready; join code X: a rooms
+containsValue selector whose placeholder is no room code), a drain grace shorter than Kubernetes' termination grace.
+The GameServerAllocations are checked field by field against the keys Agones' reference
+(examples/gameserverallocation.yaml, GameServerSelector) allows, so a misspelt selector
+(which Agones would ignore or refuse) fails here. This is a hand-written check of the
+fields we use, not Agones' own OpenAPI schema (no cluster here).
   test_agones_manifests.py SOURCE_DIR"""
 import os, re, sys
 
@@ -35,12 +41,14 @@ def server_names():
     """The Counter and List names the server's SDK client uses (server/fleet/agones_sync.hpp)."""
     with open(os.path.join(root, "server", "fleet", "agones_sync.hpp")) as f:
         text = f.read()
-    counter = re.search(r'kRoomsCounter = "([^"]+)"', text).group(1)
-    lst = re.search(r'kPlayersList = "([^"]+)"', text).group(1)
-    return counter, lst
+    name = lambda const: re.search(const + r' = "([^"]+)"', text).group(1)
+    return name("kSeatsCounter"), name("kRoomsList"), name("kPlayersList")
 
 
-COUNTER, LIST = server_names()
+SEATS, ROOMS, PLAYERS = server_names()
+LIST_MAX = 1000  # Agones' limit on one List
+ROOM_CODE = re.compile(r"^[ABCDEFGHJKMNPQRSTUVWXYZ]{5}$")  # server/app/room_codes.hpp
+PHASES = ("lobby", "playing", "shop", "game_over", "draining")  # the sdk-phase label's values
 
 
 def check_gameserver_spec(where, spec):
@@ -59,16 +67,26 @@ def check_gameserver_spec(where, spec):
              f"{where}: health.{key} must be a positive integer")
     # The server pings every 2 s (--agones-health-ms default): well inside a period.
     need(health.get("periodSeconds", 0) * 1000 >= 2 * 2000, f"{where}: health.periodSeconds shorter than two pings")
-    counters = spec.get("counters") or {}
-    need(COUNTER in counters, f"{where}: counter {COUNTER!r} not declared")
-    c = counters.get(COUNTER) or {}
-    need(isinstance(c.get("capacity"), int) and c["capacity"] >= 1, f"{where}: {COUNTER}.capacity must be >= 1")
-    need(c.get("count", 0) == 0, f"{where}: {COUNTER}.count must start at 0")
-    lists = spec.get("lists") or {}
-    need(LIST in lists, f"{where}: list {LIST!r} not declared")
-    lcap = (lists.get(LIST) or {}).get("capacity")
-    need(isinstance(lcap, int) and 1 <= lcap <= 1000, f"{where}: {LIST}.capacity must be 1..1000 (Agones' limit)")
     pod = (spec.get("template") or {}).get("spec") or {}
+    env = {}
+    for ct in pod.get("containers") or []:
+        env.update({e["name"]: str(e.get("value", "")) for e in ct.get("env") or []})
+    max_rooms, max_players = int(env.get("FTS_MAX_ROOMS", "64")), int(env.get("FTS_MAX_PLAYERS", "8"))
+    counters = spec.get("counters") or {}
+    need(set(counters) == {SEATS}, f"{where}: counters must be exactly {SEATS!r}, got {sorted(counters)}")
+    c = counters.get(SEATS) or {}
+    need(c.get("capacity") == max_rooms * max_players,
+         f"{where}: {SEATS}.capacity must be FTS_MAX_ROOMS x FTS_MAX_PLAYERS = {max_rooms * max_players}, "
+         f"got {c.get('capacity')}")
+    need(c.get("count", 0) == 0, f"{where}: {SEATS}.count must start at 0")
+    lists = spec.get("lists") or {}
+    need(set(lists) == {ROOMS, PLAYERS}, f"{where}: lists must be exactly {ROOMS!r} and {PLAYERS!r}, got {sorted(lists)}")
+    for name, least in ((ROOMS, min(max_rooms, LIST_MAX)), (PLAYERS, 1)):
+        lst = lists.get(name) or {}
+        cap = lst.get("capacity")
+        need(isinstance(cap, int) and least <= cap <= LIST_MAX,
+             f"{where}: {name}.capacity must be {least}..{LIST_MAX}, got {cap}")
+        need(lst.get("values", []) == [], f"{where}: {name} must start empty")
     containers = pod.get("containers") or []
     need(len(containers) == 1, f"{where}: one container expected")
     for ct in containers:
@@ -94,9 +112,11 @@ fspec = fleet.get("spec") or {}
 need(fspec.get("scheduling", "Packed") in ("Packed", "Distributed"), "fleet.yaml: scheduling Packed or Distributed")
 check_gameserver_spec("fleet.yaml template", (fspec.get("template") or {}).get("spec") or {})
 need(fspec.get("template", {}).get("spec") == dict(gs["spec"]), "fleet.yaml: template differs from gameserver.yaml's spec")
+DECLARED = {"Counter": set((gs["spec"].get("counters") or {})), "List": set((gs["spec"].get("lists") or {}))}
 for p in fspec.get("priorities") or []:
     need(p.get("type") in ("Counter", "List") and p.get("order") in ("Ascending", "Descending"),
          f"fleet.yaml: priority {p}")
+    need(p.get("key") in DECLARED.get(p.get("type"), ()), f"fleet.yaml: priority on an undeclared {p.get('type')}")
 
 fas = load("fleetautoscaler.yaml")
 need(fas.get("apiVersion") == "autoscaling.agones.dev/v1" and fas.get("kind") == "FleetAutoscaler",
@@ -106,33 +126,116 @@ need(aspec.get("fleetName") == fleet_name, f"fleetautoscaler.yaml: fleetName mus
 policy = aspec.get("policy") or {}
 need(policy.get("type") == "Counter", "fleetautoscaler.yaml: a Counter policy")
 pc = policy.get("counter") or {}
-need(pc.get("key") == COUNTER, f"fleetautoscaler.yaml: counter key must be {COUNTER!r}")
+need(pc.get("key") == SEATS, f"fleetautoscaler.yaml: counter key must be {SEATS!r}")
 buf, lo, hi = pc.get("bufferSize"), pc.get("minCapacity"), pc.get("maxCapacity")
 need(isinstance(buf, int) and buf >= 1, "fleetautoscaler.yaml: bufferSize >= 1")
 need(isinstance(hi, int) and isinstance(lo, int) and buf is not None and buf <= lo <= hi,
      "fleetautoscaler.yaml: bufferSize <= minCapacity <= maxCapacity")
 
-alloc = load("allocation.yaml")
-need(alloc.get("apiVersion") == "allocation.agones.dev/v1" and alloc.get("kind") == "GameServerAllocation",
-     "allocation.yaml: kind GameServerAllocation")
-sel = (alloc.get("spec") or {}).get("selectors") or []
-need(len(sel) >= 2, "allocation.yaml: two selectors (Allocated with a free room, then Ready)")
+# The keys a GameServerAllocation may carry (Agones' reference); anything else is a typo.
+ALLOC_SPEC = {"selectors", "scheduling", "priorities", "counters", "lists", "metadata", "multiClusterSetting"}
+SELECTOR = {"matchLabels", "matchExpressions", "gameServerState", "players", "counters", "lists"}
+SELECTOR_COUNTER = {"minCount", "maxCount", "minAvailable", "maxAvailable"}
+SELECTOR_LIST = {"containsValue", "minAvailable", "maxAvailable"}
+COUNTER_ACTION = {"action", "amount", "capacity"}
+LIST_ACTION = {"addValues", "deleteValues", "capacity"}
+
+
+def keys_in(where, obj, allowed):
+    if not need(isinstance(obj, dict), f"{where}: a mapping expected, got {obj!r}"):
+        return {}
+    extra = set(obj) - allowed
+    need(not extra, f"{where}: unknown field(s) {sorted(extra)} (allowed: {sorted(allowed)})")
+    return obj
+
+
+def check_allocation(name):
+    alloc = load(name)
+    need(alloc.get("apiVersion") == "allocation.agones.dev/v1" and alloc.get("kind") == "GameServerAllocation",
+         f"{name}: kind GameServerAllocation")
+    spec = keys_in(f"{name} spec", alloc.get("spec") or {}, ALLOC_SPEC)
+    need(spec.get("scheduling", "Packed") in ("Packed", "Distributed"), f"{name}: scheduling {spec.get('scheduling')}")
+    for p in spec.get("priorities") or []:
+        keys_in(f"{name} priority", p, {"type", "key", "order"})
+        need(p.get("type") in ("Counter", "List") and p.get("order") in ("Ascending", "Descending"), f"{name}: priority {p}")
+        need(p.get("key") in DECLARED.get(p.get("type"), ()), f"{name}: priority on an undeclared {p.get('type')} {p.get('key')!r}")
+    sel = spec.get("selectors") or []
+    need(sel, f"{name}: no selectors")
+    for i, s in enumerate(sel):
+        where = f"{name} selector {i}"
+        keys_in(where, s, SELECTOR)
+        need(s.get("gameServerState", "Ready") in ("Ready", "Allocated"), f"{where}: gameServerState {s.get('gameServerState')}")
+        labels = s.get("matchLabels") or {}
+        need(labels.get("agones.dev/fleet") == fleet_name, f"{where}: not on fleet {fleet_name!r}")
+        phase_values = [v for k, v in labels.items() if k == "agones.dev/sdk-phase"]
+        for k in labels:
+            if k.startswith("agones.dev/sdk-"):
+                # Labels the server sets itself (agones_sync.cpp): phase and version.
+                need(k in ("agones.dev/sdk-phase", "agones.dev/sdk-version"), f"{where}: {k} is not set by fts-server")
+        for e in s.get("matchExpressions") or []:
+            keys_in(f"{where} matchExpression", e, {"key", "operator", "values"})
+            need(e.get("operator") in ("In", "NotIn", "Exists", "DoesNotExist"), f"{where}: operator {e.get('operator')}")
+            if e.get("key") == "agones.dev/sdk-phase":
+                phase_values += list(e.get("values") or [])
+        for v in phase_values:
+            need(v in PHASES, f"{where}: phase {v!r} is never set by fts-server")
+        for cname, c in (s.get("counters") or {}).items():
+            need(cname in DECLARED["Counter"], f"{where}: counter {cname!r} not declared")
+            for k, v in keys_in(f"{where} counter {cname}", c, SELECTOR_COUNTER).items():
+                need(isinstance(v, int) and v >= 0, f"{where}: {cname}.{k} must be an integer >= 0")
+        for lname, l in (s.get("lists") or {}).items():
+            need(lname in DECLARED["List"], f"{where}: list {lname!r} not declared")
+            keys_in(f"{where} list {lname}", l, SELECTOR_LIST)
+            need(isinstance(l.get("containsValue", ""), str), f"{where}: {lname}.containsValue must be a string")
+    for cname, a in (spec.get("counters") or {}).items():
+        need(cname in DECLARED["Counter"], f"{name}: counter action on undeclared {cname!r}")
+        keys_in(f"{name} counter action {cname}", a, COUNTER_ACTION)
+        need(a.get("action") in ("Increment", "Decrement") and isinstance(a.get("amount"), int) and a["amount"] >= 1,
+             f"{name}: counter action {a}")
+    for lname, a in (spec.get("lists") or {}).items():
+        need(lname in DECLARED["List"], f"{name}: list action on undeclared {lname!r}")
+        keys_in(f"{name} list action {lname}", a, LIST_ACTION)
+    return spec, sel
+
+
+def not_draining(s):
+    return any(e.get("key") == "agones.dev/sdk-phase" and e.get("operator") == "NotIn" and "draining" in (e.get("values") or [])
+               for e in s.get("matchExpressions") or [])
+
+
+# Quick play: an Allocated server with a free seat and room slot first, the fullest first; then Ready.
+spec, sel = check_allocation("allocation-quick.yaml")
+need(len(sel) >= 2, "allocation-quick.yaml: two selectors (Allocated with a free seat, then Ready)")
 if len(sel) >= 2:
-    need(sel[0].get("gameServerState") == "Allocated", "allocation.yaml: the first selector prefers Allocated")
-    need(sel[-1].get("gameServerState", "Ready") == "Ready", "allocation.yaml: the last selector takes Ready")
-    need(((sel[0].get("counters") or {}).get(COUNTER) or {}).get("minAvailable", 0) >= 1,
-         f"allocation.yaml: the Allocated selector needs {COUNTER}.minAvailable >= 1")
-for s in sel:
-    labels = s.get("matchLabels") or {}
-    need(labels.get("agones.dev/fleet") == fleet_name, f"allocation.yaml: selector not on fleet {fleet_name!r}")
-    for k, v in labels.items():
-        if k.startswith("agones.dev/sdk-"):
-            # Labels the server sets itself (agones_sync.cpp): phase and version.
-            need(k in ("agones.dev/sdk-phase", "agones.dev/sdk-version"), f"allocation.yaml: {k} is not set by fts-server")
-            if k == "agones.dev/sdk-phase":
-                need(v in ("lobby", "playing", "shop", "game_over"), f"allocation.yaml: phase {v!r} never set")
-act = ((alloc.get("spec") or {}).get("counters") or {}).get(COUNTER) or {}
-need(act.get("action") == "Increment" and act.get("amount", 0) >= 1, f"allocation.yaml: Increment {COUNTER} on allocation")
+    need(sel[0].get("gameServerState") == "Allocated", "allocation-quick.yaml: the first selector prefers Allocated")
+    need(sel[-1].get("gameServerState", "Ready") == "Ready", "allocation-quick.yaml: the last selector takes Ready")
+for i, s in enumerate(sel):
+    need(((s.get("counters") or {}).get(SEATS) or {}).get("minAvailable", 0) >= 1,
+         f"allocation-quick.yaml: selector {i} needs {SEATS}.minAvailable >= 1 (a free seat)")
+    need(((s.get("lists") or {}).get(ROOMS) or {}).get("minAvailable", 0) >= 1,
+         f"allocation-quick.yaml: selector {i} needs {ROOMS}.minAvailable >= 1 (a free room slot)")
+    need(not_draining(s), f"allocation-quick.yaml: selector {i} must leave draining servers out")
+need(spec.get("scheduling", "Packed") == "Packed", "allocation-quick.yaml: Packed scheduling")
+need({"type": "Counter", "key": SEATS, "order": "Ascending"} in (spec.get("priorities") or []),
+     f"allocation-quick.yaml: priority Counter {SEATS} Ascending (the fewest free seats first)")
+act = (spec.get("counters") or {}).get(SEATS) or {}
+need(act.get("action") == "Increment" and act.get("amount", 0) == 1, f"allocation-quick.yaml: Increment {SEATS} by 1")
+
+# Join code X: every selector finds the code in the rooms List; the placeholder is no code.
+spec, sel = check_allocation("allocation-join.yaml")
+need(len(sel) >= 2 and sel[0].get("gameServerState") == "Allocated",
+     "allocation-join.yaml: Allocated first (where rooms live), then Ready")
+for i, s in enumerate(sel):
+    held = ((s.get("lists") or {}).get(ROOMS) or {}).get("containsValue")
+    need(held == "ROOMCODE", f"allocation-join.yaml: selector {i} needs {ROOMS}.containsValue ROOMCODE, got {held!r}")
+    need(not s.get("counters"), f"allocation-join.yaml: selector {i}: a code join needs no free seat (spectators)")
+    need(not_draining(s), f"allocation-join.yaml: selector {i} must leave draining servers out")
+need(not ROOM_CODE.match("ROOMCODE"), "allocation-join.yaml: the placeholder must never be a real room code")
+need(not spec.get("counters") and not spec.get("lists"), "allocation-join.yaml: a code join changes no Counter or List")
+with open(os.path.join(adir, "allocation-join.yaml")) as f:
+    need(f.read().count("ROOMCODE") >= len(sel), "allocation-join.yaml: ROOMCODE in every selector")
+stale = os.path.join(adir, "allocation.yaml")
+need(not os.path.exists(stale), "allocation.yaml: replaced by allocation-quick.yaml and allocation-join.yaml")
 
 if problems:
     for p in problems:

@@ -26,17 +26,26 @@ struct Rig : test::HostRig {
 
 }  // namespace
 
-TEST_CASE("Fleet: observe() counts the connected players and the live room", "[fleet]") {
+TEST_CASE("Fleet: observe() counts the connected players, the seats and the live room's code", "[fleet]") {
   Rig rig;
   server::Fleet fleet(rig.options);
-  CHECK(server::observe(*rig.host) == server::FleetState{0, {}, "lobby", false});
+  CHECK(server::observe(*rig.host) == server::FleetState{});
   auto& a = rig.add("ann");
   rig.add("bob");
   for (int i = 0; i < 20; ++i) rig.tick(fleet);
-  CHECK(server::observe(*rig.host) == server::FleetState{1, {"ann", "bob"}, "lobby", false});
+  const auto s = server::observe(*rig.host);
+  const auto ids = rig.host->room_ids();
+  REQUIRE(ids.size() == 1);
+  CHECK(s.rooms == 1);
+  CHECK(s.seats == 2);
+  CHECK(s.room_codes == std::vector<std::string>{rig.host->room(ids[0])->code()});
+  CHECK(s.players == std::set<std::string>{"ann", "bob"});
+  CHECK(s.phase == "lobby");
+  CHECK_FALSE(s.draining);
   a.disconnect(rig.now);
   for (int i = 0; i < 5; ++i) rig.tick(fleet);
   CHECK(server::observe(*rig.host).players == std::set<std::string>{"bob"});
+  CHECK(server::observe(*rig.host).seats == 1);  // a quit gives the seat back
 }
 
 TEST_CASE("Fleet: a drain refuses new players and is over when the last one leaves", "[fleet]") {
