@@ -6,12 +6,20 @@
                  exit 0;
   late_failing   the sidecar starts 5 s late and then answers 500 three times: retried,
                  never fatal, the server plays on meanwhile;
-  drain_grace    a player who never leaves: Shutdown when --drain-grace-ms runs out.
+  drain_grace    a player who never leaves: Shutdown when --drain-grace-ms runs out;
+  rooms_list     the capacities set from --max-rooms/--max-players; quick and private rooms
+                 made by bots: the rooms List holds exactly the open codes (the private one
+                 too), the seats Counter the seats taken; a closed room's code goes;
+  join_by_code   two servers, two sidecars: allocate() applies docker/agones/allocation-*.yaml
+                 to the sidecars' GameServers as Agones would; quick play picks the fullest
+                 server with a free seat and room slot, then the other once the first has
+                 no slot left; "join code X" picks
+                 the server holding X and a bot joins X there; an unknown code is UnAllocated.
 Every wait polls with a deadline."""
-import json, os, signal, socket, subprocess, sys, time
+import json, os, re, signal, socket, subprocess, sys, time, urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import BOT, Failure, Server, check, finish_bots, main, start_bots, wait_for  # noqa: E402
+from harness import BOT, Failure, Server, check, finish_bots, main, run_bots, start_bots, wait_for  # noqa: E402
 from agones_sidecar import Sidecar  # noqa: E402
 
 HEALTH_MS = 200
@@ -55,6 +63,12 @@ def seats(sc):
 def codes(sc):
     with sc.lock:
         return sorted(sc.lists["rooms"]["values"])
+
+
+def open_codes(srv):
+    """The codes of the rooms open now, from the server's own room_open/room_closed records."""
+    closed = {r["code"] for r in records(srv, "room_closed")}
+    return sorted(r["code"] for r in records(srv, "room_open") if r["code"] not in closed)
 
 
 def health_times(sc, after=0.0):
@@ -177,5 +191,216 @@ def test_drain_grace():
         sc.stop()
 
 
+def test_rooms_list():
+    port = free_tcp_port()
+    sc = Sidecar(port)
+    sc.start()
+    try:
+        with agones_server(port, "--max-rooms", "4", "--max-players", "3") as srv:
+            wait_for(lambda: sc.paths("/ready"), 10, "POST /ready")
+            # The server's own limits, not the declared ones (seats 10, rooms 3).
+            with sc.lock:
+                caps = (sc.counters["seats"]["capacity"], sc.lists["rooms"]["capacity"], sc.lists["players"]["capacity"])
+            check(caps == (12, 4, 12), f"capacities seats/rooms/players {caps}, want 4 x 3 = 12, 4, 12")
+            ready_at = sc.paths("/ready")[0]["t"]
+            check(all(c["t"] < ready_at for c in sc.snapshot() if c["method"] == "PATCH" and "capacity" in (c["body"] or {})),
+                  "a capacity was set after Ready")
+
+            quick = start_bots("--connect", srv.address, "--name", "qa", "--count", "2", "--room", "quick",
+                               "--behavior", "hunter", "--duration", "15")
+            private = start_bots("--connect", srv.address, "--name", "pb", "--count", "2", "--room", "create",
+                                 "--behavior", "hunter", "--duration", "3")
+            wait_for(lambda: len(open_codes(srv)) == 2 and codes(sc) == open_codes(srv) and seats(sc) == 4, 15,
+                     "both rooms' codes in the rooms List and 4 seats taken")
+            opened = {r["code"]: r["private"] for r in records(srv, "room_open")}
+            check(sorted(opened.values()) == [False, True], f"one public and one private room expected: {opened}")
+            private_code = next(c for c, p in opened.items() if p)
+
+            # The private room empties (its bots' 3 s end) and closes after --room-idle-ms:
+            # its code leaves the List, its seats the Counter.
+            rc, report, err = finish_bots(private, 30)
+            check(rc == 0 and {b["room"] for b in report} == {private_code}, f"private bots: {rc} {report} {err}")
+            wait_for(lambda: any(r["code"] == private_code for r in records(srv, "room_closed")), 10,
+                     "the private room's room_closed record")
+            wait_for(lambda: codes(sc) == open_codes(srv) and private_code not in codes(sc) and seats(sc) == 2, 10,
+                     "the closed room's code out of the List, 2 seats taken")
+            finish_bots(quick, 30)
+            wait_for(lambda: codes(sc) == [] and seats(sc) == 0, 10, "no codes and no seats once every room closed")
+            bad = [c for c in sc.snapshot() if c["status"] >= 400]
+            check(not bad, f"calls the sidecar refused: {bad}")
+            # Removals before additions: the List never held more than its capacity.
+            check(max(len(v) for v in list_history(sc, "rooms")) <= 4, "the rooms List went over its capacity")
+    finally:
+        sc.stop()
+
+
+def list_history(sc, name):
+    """The List's values after each of the server's calls to it (replayed from the record)."""
+    values, out = [], []
+    for c in sc.snapshot():
+        if c["status"] == 200 and c["path"].startswith(f"/v1beta1/lists/{name}:"):
+            (values.append if c["path"].endswith(":addValue") else values.remove)(c["body"]["value"])
+            out.append(list(values))
+    return out or [[]]
+
+
+# ---- a matchmaker's allocator over stand-in sidecars ----------------------------------
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ALLOCATIONS = os.path.join(ROOT, "docker", "agones")
+ROOM_CODE = re.compile(r"^[ABCDEFGHJKMNPQRSTUVWXYZ]{5}$")
+
+
+def gameserver_view(sc):
+    """The GameServer as Agones' allocator sees it: the sidecar's GET /gameserver."""
+    with urllib.request.urlopen(f"http://127.0.0.1:{sc.port}/gameserver", timeout=5) as r:
+        return json.loads(r.read())
+
+
+def selects(sel, gs):
+    """Whether GameServerSelector `sel` (the fields our manifests use) matches `gs`."""
+    labels, status = gs["object_meta"]["labels"], gs["status"]
+    if status["state"] != sel.get("gameServerState", "Ready"):
+        return False
+    if any(labels.get(k) != v for k, v in (sel.get("matchLabels") or {}).items()):
+        return False
+    for e in sel.get("matchExpressions") or []:
+        have, op = labels.get(e["key"]), e["operator"]
+        if (op == "In" and have not in e["values"]) or (op == "NotIn" and have in e["values"]) or \
+           (op == "Exists" and have is None) or (op == "DoesNotExist" and have is not None):
+            return False
+    for name, f in (sel.get("counters") or {}).items():
+        c = status["counters"][name]
+        count, available = int(c["count"]), int(c["capacity"]) - int(c["count"])
+        if count < f.get("minCount", 0) or available < f.get("minAvailable", 0):
+            return False
+        if ("maxCount" in f and count > f["maxCount"]) or ("maxAvailable" in f and available > f["maxAvailable"]):
+            return False
+    for name, f in (sel.get("lists") or {}).items():
+        lst = status["lists"][name]
+        available = int(lst["capacity"]) - len(lst["values"])
+        if f.get("containsValue", "") and f["containsValue"] not in lst["values"]:
+            return False
+        if available < f.get("minAvailable", 0) or (f.get("maxAvailable", 0) and available > f["maxAvailable"]):
+            return False
+    return True
+
+
+def available(gs, priority):
+    if priority["type"] == "Counter":
+        c = gs["status"]["counters"][priority["key"]]
+        return int(c["capacity"]) - int(c["count"])
+    lst = gs["status"]["lists"][priority["key"]]
+    return int(lst["capacity"]) - len(lst["values"])
+
+
+def allocate(manifest_text, sidecars):
+    """Applies a GameServerAllocation to the stand-in sidecars as Agones does: the first
+    selector that matches any server wins; its matches are ordered by the priorities
+    ("Ascending": the least available first; Packed's node packing does not apply, all
+    run on one host), the first is Allocated and the Counter actions applied to it.
+    Returns {"state", "address", "port", "sidecar"}; state UnAllocated when none matched."""
+    import yaml  # checked by the caller
+    spec = yaml.safe_load(manifest_text)["spec"]
+    views = [(sc, gameserver_view(sc)) for sc in sidecars]
+    for sel in spec["selectors"]:
+        matched = [(sc, gs) for sc, gs in views if selects(sel, gs)]
+        if not matched:
+            continue
+        order = spec.get("priorities") or []
+        matched.sort(key=lambda v: ([available(v[1], p) * (1 if p["order"] == "Ascending" else -1) for p in order],
+                                    v[1]["object_meta"]["name"]))
+        sc, gs = matched[0]
+        with sc.lock:
+            sc.state = "Allocated"
+            for name, act in (spec.get("counters") or {}).items():
+                c = sc.counters[name]
+                step = act["amount"] if act["action"] == "Increment" else -act["amount"]
+                c["count"] = max(0, min(c["capacity"], c["count"] + step))
+        return {"state": "Allocated", "address": gs["status"]["address"], "port": gs["status"]["ports"][0]["port"],
+                "sidecar": sc}
+    return {"state": "UnAllocated", "address": "", "port": None, "sidecar": None}
+
+
+def quick_manifest():
+    with open(os.path.join(ALLOCATIONS, "allocation-quick.yaml")) as f:
+        return f.read()
+
+
+def join_manifest(typed):
+    """allocation-join.yaml with the code in, as README's front end does (checked, then sed)."""
+    code = typed.strip().upper()
+    check(ROOM_CODE.match(code), f"not a room code: {typed!r}")
+    with open(os.path.join(ALLOCATIONS, "allocation-join.yaml")) as f:
+        return f.read().replace("ROOMCODE", code)
+
+
+def test_join_by_code():
+    try:
+        import yaml  # noqa: F401
+    except ImportError:
+        print("SKIP: PyYAML is absent (apt-get install python3-yaml; .ci/deps.sh does)")
+        sys.exit(77)
+    ports = [free_tcp_port(), free_tcp_port()]
+    sidecars = [Sidecar(p, name=n) for p, n in zip(ports, ("fts-a", "fts-b"))]
+    for sc in sidecars:
+        sc.start()
+    stay = []
+    try:
+        with agones_server(ports[0], "--max-rooms", "4", "--max-players", "3") as a, \
+             agones_server(ports[1], "--max-rooms", "2", "--max-players", "3") as b:
+            sa, sb = sidecars
+            sa.game_port, sb.game_port = a.port, b.port
+            wait_for(lambda: sa.paths("/ready") and sb.paths("/ready"), 10, "both servers Ready")
+            # Server a: one private room of one player; server b: one public room of two.
+            stay.append(start_bots("--connect", a.address, "--name", "host", "--room", "create",
+                                   "--behavior", "hunter", "--duration", "40"))
+            stay.append(start_bots("--connect", b.address, "--name", "qb", "--count", "2", "--room", "quick",
+                                   "--behavior", "hunter", "--duration", "40"))
+            wait_for(lambda: len(codes(sa)) == 1 and seats(sa) == 1 and len(codes(sb)) == 1 and seats(sb) == 2, 15,
+                     "one code and 1 seat on a, one code and 2 seats on b")
+            private_code, public_code = codes(sa)[0], codes(sb)[0]
+            for sc in sidecars:  # the players above were sent there by earlier allocations
+                sc.set_state("Allocated")
+
+            # Join code X: the server holding X, whatever its seats; a bot joins X there.
+            got = allocate(join_manifest(private_code.lower()), sidecars)
+            check(got["state"] == "Allocated" and got["sidecar"] is sa and got["port"] == a.port,
+                  f"join {private_code}: {got}, want server a (port {a.port})")
+            rc, report, err = run_bots("--connect", f"{got['address']}:{got['port']}", "--name", "friend",
+                                       "--room", private_code, "--behavior", "hunter", "--duration", "2", timeout_s=30)
+            check(rc == 0 and report and report[0]["room"] == private_code,
+                  f"the friend did not play in {private_code}: {rc} {report} {err}")
+            got = allocate(join_manifest(public_code), sidecars)
+            check(got["sidecar"] is sb, f"join {public_code}: {got}, want server b")
+            unknown = next(c for c in ("KXQPT", "MNPQR", "ZZZZZ") if c not in (private_code, public_code))
+            got = allocate(join_manifest(unknown), sidecars)
+            check(got["state"] == "UnAllocated" and got["sidecar"] is None, f"join of unknown {unknown}: {got}")
+
+            # Quick play: the fullest server with a free seat and a free room slot (b: 4 of
+            # 6 seats free, 1 of 2 slots; a: 11 of 12, 3 of 4), which takes the seat. b's
+            # room is being played, so qq gets b's second room; then b has no slot left: a.
+            got = allocate(quick_manifest(), sidecars)
+            check(got["sidecar"] is sb, f"quick play: {got}, want the fullest server b")
+            check(seats(sb) == 3, f"the allocation's Increment: b's seats {seats(sb)}, want 3")
+            stay.append(start_bots("--connect", f"{got['address']}:{got['port']}", "--name", "qq", "--room", "quick",
+                                   "--behavior", "hunter", "--duration", "40"))
+            wait_for(lambda: "qq" in players(sb) and seats(sb) == 3 and len(codes(sb)) == 2, 10,
+                     "qq seated on b, in b's second room")
+            got = allocate(quick_manifest(), sidecars)
+            check(got["sidecar"] is sa, f"quick play with b's room slots taken: {got}, want server a")
+            rc, report, err = run_bots("--connect", f"{got['address']}:{got['port']}", "--name", "qa", "--room", "quick",
+                                       "--behavior", "hunter", "--duration", "2", timeout_s=30)
+            check(rc == 0 and report and report[0]["room"] not in (private_code, ""),
+                  f"quick play on a must open a public room, not join the private one: {rc} {report} {err}")
+    finally:
+        for p, _ in stay:
+            p.kill()
+            p.wait()
+        for sc in sidecars:
+            sc.stop()
+
+
 if __name__ == "__main__":
-    sys.exit(main({"lifecycle": test_lifecycle, "late_failing": test_late_failing, "drain_grace": test_drain_grace}))
+    sys.exit(main({"lifecycle": test_lifecycle, "late_failing": test_late_failing, "drain_grace": test_drain_grace,
+                   "rooms_list": test_rooms_list, "join_by_code": test_join_by_code}))
