@@ -4,7 +4,6 @@
 
 #include "term/terminal.hpp"
 #include "ui/render.hpp"
-#include "term/io.hpp"
 
 namespace fts::client::term {
 
@@ -21,6 +20,10 @@ std::vector<KeyEvent> KeyReader::read(std::uint64_t now_ms) {
   if (decoder_.pending() && now_ms - last_key_ms_ > kPauseMs) {
     auto more = decoder_.flush();
     events.insert(events.end(), more.begin(), more.end());
+  }
+  if (decoder_.kitty_answered() && !kitty_pushed_) {
+    term::push_kitty();
+    kitty_pushed_ = true;
   }
   return events;
 }

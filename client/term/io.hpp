@@ -14,13 +14,15 @@ namespace fts::client::term {
 class KeyReader {
  public:
   // Every key read from stdin since the last call (non-blocking), decoded; an escape
-  // sequence left incomplete for kPauseMs is taken as typed.
+  // sequence left incomplete for kPauseMs is taken as typed. Pushes the kitty flags once
+  // the terminal has answered the query.
   std::vector<KeyEvent> read(std::uint64_t now_ms);
   static constexpr std::uint64_t kPauseMs = 50;
 
  private:
   KeyDecoder decoder_;
   std::uint64_t last_key_ms_ = 0;
+  bool kitty_pushed_ = false;
 };
 
 class Painter {

@@ -8,6 +8,16 @@ namespace fts::client {
 
 std::string kitty_push() { return "\x1b[>" + std::to_string(kKittyFlags) + "u"; }
 
+std::string enter_bytes(bool kitty_query, bool mouse) {
+  std::string out = "\x1b[?1049h\x1b[?25l\x1b[2J";
+  if (kitty_query) {
+    out += kKittyQuery;
+    out += kDeviceQuery;
+  }
+  if (mouse) out += kMouseOn;
+  return out;
+}
+
 namespace {
 
 KeyEvent from_char(unsigned char c) {
@@ -58,8 +68,14 @@ KeyEvent typed_elsewhere() {
   return e;
 }
 
+// What a CSI sequence answered: nothing, the kitty query (with its flags), or DA1.
+struct Reply {
+  enum Kind : std::uint8_t { none, kitty, device } kind = none;
+  long kitty_flags = 0;
+};
+
 // One complete CSI sequence: parameters (without a leading private marker) and final byte.
-std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, bool& kitty_answer) {
+std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, Reply& reply) {
   if (!params.empty() && params[0] == '<') {
     // SGR mouse: CSI < button ; column ; row M (press, motion) or m (release), 1-based.
     if (final_byte != 'M' && final_byte != 'm') return std::nullopt;
@@ -77,8 +93,9 @@ std::optional<KeyEvent> decode_csi(std::string_view params, char final_byte, boo
     return e;
   }
   if (!params.empty() && params[0] == '?') {
-    // CSI ? flags u: the query's answer; releases come only with "report event types".
-    if (final_byte == 'u') kitty_answer = (param(parse_params(params.substr(1)), 0, 0, 0) & 2) != 0;
+    // CSI ? flags u: the kitty query's answer; CSI ? attributes c: DA1's.
+    if (final_byte == 'u') reply = Reply{Reply::kitty, param(parse_params(params.substr(1)), 0, 0, 0)};
+    if (final_byte == 'c') reply.kind = Reply::device;
     return std::nullopt;
   }
   if (params.empty() && (final_byte == 'I' || final_byte == 'O')) {  // focus reporting (1004)
@@ -182,14 +199,17 @@ std::vector<KeyEvent> KeyDecoder::feed(std::string_view bytes) {
     }
     const auto fb = static_cast<unsigned char>(buffer_[j]);
     if (fb >= 0x40 && fb < 0x7f) {
-      bool answer = false;
-      if (auto e = decode_csi(std::string_view(buffer_).substr(i + 2, j - i - 2), static_cast<char>(fb), answer)) {
+      Reply reply;
+      if (auto e = decode_csi(std::string_view(buffer_).substr(i + 2, j - i - 2), static_cast<char>(fb), reply)) {
         // A terminal that answered the kitty query reports releases even for a plain
         // "CSI A" press (its event type 1 may be left out).
         if (kitty_supported_) e->kitty = true;
         out.push_back(*e);
       }
-      if (answer) kitty_supported_ = true;
+      if (reply.kind == Reply::device) device_answered_ = true;
+      // Releases come only with "report event types"; an answer after DA1's is too late.
+      if (reply.kind == Reply::kitty && !device_answered_) kitty_answered_ = true;
+      if (reply.kind == Reply::kitty && (reply.kitty_flags & 2) != 0) kitty_supported_ = true;
     }
     i = j + 1;
   }

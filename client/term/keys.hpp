@@ -43,15 +43,22 @@ struct KeyEvent {
 
 // The kitty keyboard protocol: push flags disambiguate (1) | report event types (2) |
 // report all keys as escape codes (8, needed for releases of plain letters), pop them,
-// and the query whose answer (CSI ? flags u) tells that the terminal supports it.
+// and the query whose answer (CSI ? flags u) tells that the terminal supports it. The
+// query is followed by the primary device attributes request (DA1, CSI c), which every
+// terminal answers: a DA1 answer without a kitty answer before it means no kitty (the
+// protocol's documented detection), and the flags are pushed only after an answer.
 inline constexpr int kKittyFlags = 1 | 2 | 8;
 std::string kitty_push();
 inline constexpr std::string_view kKittyPop = "\x1b[<u";
 inline constexpr std::string_view kKittyQuery = "\x1b[?u";
+inline constexpr std::string_view kDeviceQuery = "\x1b[c";
 // xterm mouse reporting: any-motion tracking (1003) in the SGR form (1006), with focus
 // reporting (1004: mouse steering ends when the window loses the focus), and off again.
 inline constexpr std::string_view kMouseOn = "\x1b[?1003h\x1b[?1006h\x1b[?1004h";
 inline constexpr std::string_view kMouseOff = "\x1b[?1004l\x1b[?1006l\x1b[?1003l";
+// What entering game mode writes: the alternate screen, a hidden cursor, a clear; with
+// kitty_query the kitty query and DA1 (never the push: see above); with mouse, kMouseOn.
+std::string enter_bytes(bool kitty_query, bool mouse);
 
 class KeyDecoder {
  public:
@@ -60,12 +67,20 @@ class KeyDecoder {
   // A lone ESC with nothing after it for a while is the Escape key.
   std::vector<KeyEvent> flush();
   bool pending() const { return !buffer_.empty(); }
-  // The terminal answered the kitty query: it supports key release events.
+  // The terminal answered the kitty query with "report event types" set (after our
+  // push): it reports key release events.
   bool kitty_supported() const { return kitty_supported_; }
+  // The terminal answered the kitty query (any flags) before its DA1 answer: it speaks
+  // the protocol, so the flags may be pushed.
+  bool kitty_answered() const { return kitty_answered_; }
+  // The terminal answered DA1 (CSI ? ... c).
+  bool device_answered() const { return device_answered_; }
 
  private:
   std::string buffer_;
   bool kitty_supported_ = false;
+  bool kitty_answered_ = false;
+  bool device_answered_ = false;
 };
 
 enum class Direction : std::uint8_t { up, down, left, right };

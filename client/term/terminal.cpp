@@ -86,19 +86,16 @@ bool enter(bool kitty_keys, bool mouse) {
   install(SIGABRT, on_crash, SA_RESETHAND);
   install(SIGBUS, on_crash, SA_RESETHAND);
   install(SIGFPE, on_crash, SA_RESETHAND);
-  // Alternate screen, hidden cursor, cleared; then the kitty flags and the query.
-  std::string init = "\x1b[?1049h\x1b[?25l\x1b[2J";
-  if (kitty_keys) {
-    init += kitty_push();
-    init += kKittyQuery;
-    g_kitty = 1;
-  }
-  if (mouse) {
-    init += kMouseOn;
-    g_mouse = 1;
-  }
-  write_all(init);
+  // Alternate screen, hidden cursor, cleared; the kitty query (no push yet), the mouse.
+  g_mouse = mouse ? 1 : 0;
+  write_all(enter_bytes(kitty_keys, mouse));
   return true;
+}
+
+void push_kitty() {
+  if (!g_active || g_kitty) return;
+  g_kitty = 1;
+  write_all(kitty_push() + std::string(kKittyQuery));
 }
 
 void leave() {

@@ -11,8 +11,12 @@
 namespace fts::client::term {
 
 // Enters game mode on stdin/stdout. Returns false (and changes nothing) when stdin or
-// stdout is not a terminal.
+// stdout is not a terminal. kitty_keys asks whether the terminal speaks the kitty
+// protocol; the flags are pushed by push_kitty once it answers (KeyReader does).
 bool enter(bool kitty_keys, bool mouse = false);
+// Pushes the kitty flags (popped again by leave) and asks again, so that the answer
+// tells whether releases will be reported.
+void push_kitty();
 // Restores the terminal; safe to call more than once and from a signal handler.
 void leave();
 // The terminal's size now (80x24 when unknown).

@@ -179,3 +179,34 @@ TEST_CASE("keys mean different things in play and in the shop", "[client][keys]"
   CHECK(action_of(KeyEvent{Key::character, 'q'}, Phase::shop).kind == ActionKind::quit);
   CHECK(action_of(KeyEvent{Key::ctrl_c}, Phase::play).kind == ActionKind::quit);
 }
+
+// Issue 31 (a terminal at the other end of ssh may be anything): the flags are pushed
+// only where the kitty query is answered before DA1, which every terminal answers.
+TEST_CASE("kitty flags wait for the terminal's answer", "[client][keys][ssh]") {
+  const std::string init = enter_bytes(true, false);
+  CHECK(init.find(kKittyQuery) != std::string::npos);
+  CHECK(init.find(kDeviceQuery) > init.find(kKittyQuery));
+  CHECK(init.find("\x1b[>") == std::string::npos);  // no push before an answer
+  CHECK(enter_bytes(false, false).find(kKittyQuery) == std::string::npos);
+  CHECK(enter_bytes(false, true).find(kMouseOn) != std::string::npos);
+
+  KeyDecoder plain;  // tmux, xterm, PuTTY: DA1 only, and no key comes of it
+  CHECK(plain.feed("\x1b[?62;22c").empty());
+  CHECK(plain.device_answered());
+  CHECK_FALSE(plain.kitty_answered());
+  CHECK(plain.feed("\x1b[?0u").empty());  // too late: after DA1
+  CHECK_FALSE(plain.kitty_answered());
+  CHECK(plain.feed("\x1b[A").at(0) == KeyEvent{Key::up});
+
+  KeyDecoder kitty;  // answers both, in order; after our push, again with the flags
+  CHECK(kitty.feed("\x1b[?0u\x1b[?1;2c").empty());
+  CHECK(kitty.kitty_answered());
+  CHECK_FALSE(kitty.kitty_supported());
+  CHECK(kitty.feed("\x1b[?11u").empty());
+  CHECK(kitty.kitty_supported());
+
+  KeyDecoder split;  // an answer cut in two reads
+  CHECK(split.feed("\x1b[?0").empty());
+  CHECK(split.feed("u").empty());
+  CHECK(split.kitty_answered());
+}
