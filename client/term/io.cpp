@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include "term/hangup.hpp"
 #include "term/terminal.hpp"
 #include "ui/render.hpp"
 
@@ -25,6 +26,7 @@ std::vector<KeyEvent> KeyReader::read(std::uint64_t now_ms) {
     term::push_kitty();
     kitty_pushed_ = true;
   }
+  if (hung_up(STDIN_FILENO)) term::note_hangup();
   return events;
 }
 

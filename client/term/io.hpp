@@ -15,7 +15,7 @@ class KeyReader {
  public:
   // Every key read from stdin since the last call (non-blocking), decoded; an escape
   // sequence left incomplete for kPauseMs is taken as typed. Pushes the kitty flags once
-  // the terminal has answered the query.
+  // the terminal has answered the query, and notes a terminal that hung up.
   std::vector<KeyEvent> read(std::uint64_t now_ms);
   static constexpr std::uint64_t kPauseMs = 50;
 

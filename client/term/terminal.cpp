@@ -98,6 +98,8 @@ void push_kitty() {
   write_all(kitty_push() + std::string(kKittyQuery));
 }
 
+void note_hangup() { g_stop = SIGHUP; }
+
 void leave() {
   if (!g_active) return;
   g_active = 0;

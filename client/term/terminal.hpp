@@ -1,7 +1,8 @@
 // The terminal as the game uses it: raw keys, the alternate screen, a hidden cursor and
 // the kitty keyboard protocol, all undone on every way out (normal exit, atexit, SIGINT,
 // SIGTERM, SIGHUP, SIGSEGV, SIGABRT). Signals that ask to stop set a flag the main loop
-// reads; crashes restore the terminal and re-raise.
+// reads; crashes restore the terminal and re-raise. A terminal that hangs up (an ssh
+// connection gone) stops the loop too, even where no SIGHUP reaches us.
 #pragma once
 
 #include <string_view>
@@ -17,6 +18,8 @@ bool enter(bool kitty_keys, bool mouse = false);
 // Pushes the kitty flags (popped again by leave) and asks again, so that the answer
 // tells whether releases will be reported.
 void push_kitty();
+// The terminal hung up: stop_signal() says SIGHUP from now on.
+void note_hangup();
 // Restores the terminal; safe to call more than once and from a signal handler.
 void leave();
 // The terminal's size now (80x24 when unknown).
