@@ -24,6 +24,8 @@ constexpr const char* kUsage =
     "Options:\n"
     "  --connect HOST:PORT     the server (e.g. 127.0.0.1:7777)\n"
     "  --name NAME             your name: 1 to 16 printable ASCII characters\n"
+  "  --name-file PATH        or the name kept in PATH (asked for and saved there when it\n"
+  "                          holds none; cleaned of control and non-ASCII characters)\n"
     "  --encoding json|msgpack wire encoding (default msgpack)\n"
     "  --interp-delay-ms N     draw other balls this far behind the server, fixed (default:\n"
     "                          adaptive, from the measured jitter and loss of snapshots)\n"
@@ -42,7 +44,9 @@ constexpr const char* kUsage =
     "  --join CODE             join the room with this code\n"
     "  --spectate CODE         watch the room with this code\n"
     "                          (none of these: a start screen asks)\n"
-    "  --help                  this text\n"
+    "  --idle-exit-s N         end the session after N s without a key (exit status 3;\n"
+  "                          default 0: never), at the prompts and in the game\n"
+  "  --help                  this text\n"
     "\n"
     "Controls: arrows, WASD or hjkl thrust (a tap is a short push, holding keeps pushing),\n"
     "the mouse pointer steers (the ball thrusts toward it; a click fires), space fires\n"
@@ -83,7 +87,7 @@ int parse_options(int argc, char** argv, Options& o) {
   const CLI::Option* create = app.add_flag("--create");
   const CLI::Option* no_predict = app.add_flag("--no-predict");
   for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate",
-                           "--stats-file"})
+                           "--stats-file", "--name-file", "--idle-exit-s"})
     app.add_option(flag);
   try {
     app.parse(argc, argv);
@@ -122,16 +126,30 @@ int parse_options(int argc, char** argv, Options& o) {
     else if (*v == "msgpack") o.encoding = proto::Encoding::msgpack;
     else return usage_error("--encoding is json or msgpack, got '" + *v + "'");
   }
-  for (const bool fps : {false, true}) {
-    const std::string flag = fps ? "--fps" : "--interp-delay-ms";
-    const auto v = value(flag);
+  // The numeric options: flag, range, where the value goes.
+  struct Numeric {
+    const char* flag;
+    long min, max;
+    void (*store)(Options&, int);
+  };
+  static constexpr Numeric kNumeric[] = {
+      {"--fps", 1, 240, [](Options& x, int n) { x.fps = n; }},
+      {"--interp-delay-ms", 0, 2000, [](Options& x, int n) { x.interp_delay_ms = n; }},
+      {"--idle-exit-s", 0, 86400, [](Options& x, int n) { x.idle_exit_s = n; }},
+  };
+  for (const Numeric& num : kNumeric) {
+    const auto v = value(num.flag);
     if (!v) continue;
     char* end = nullptr;
     const long n = std::strtol(v->c_str(), &end, 10);
-    if (end == v->c_str() || *end != '\0' || n < (fps ? 1 : 0) || n > (fps ? 240 : 2000))
-      return usage_error(flag + (fps ? " is 1..240" : " is 0..2000") + ", got '" + *v + "'");
-    if (fps) o.fps = static_cast<int>(n);
-    else o.interp_delay_ms = static_cast<int>(n);
+    if (end == v->c_str() || *end != '\0' || n < num.min || n > num.max)
+      return usage_error(std::string(num.flag) + " is " + std::to_string(num.min) + ".." + std::to_string(num.max) +
+                         ", got '" + *v + "'");
+    num.store(o, static_cast<int>(n));
+  }
+  if (const auto v = value("--name-file")) {
+    if (v->empty()) return usage_error("--name-file needs a path");
+    o.name_file = *v;
   }
   if (const auto v = value("--replay")) {
     if (v->empty()) return usage_error("--replay needs a record file");
@@ -151,6 +169,7 @@ int parse_options(int argc, char** argv, Options& o) {
     o.room = std::get<RoomChoice>(choice);
   }
   if (o.host.empty()) return usage_error("--connect HOST:PORT is required");
+  if (o.name.empty() && !o.name_file.empty()) return -1;  // main asks or reads the file
   if (o.name.empty() || o.name.size() > proto::kMaxNameBytes || sanitize(o.name) != o.name)
     return usage_error("--name must be 1 to 16 printable ASCII characters");
   return -1;

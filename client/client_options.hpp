@@ -24,7 +24,16 @@ struct Options {
   bool fresh = false;  // --new: ignore the saved session token
   std::string replay;  // --replay FILE: play a record back, no server
   std::optional<RoomChoice> room;  // none: the start screen asks
+  // --name-file PATH: the name kept there (a host's ssh gate keeps one per key); asked
+  // for once when the file has none, and saved. --name wins over it.
+  std::string name_file;
+  // --idle-exit-s N: with no key for N s (at a prompt or in the game) the client ends
+  // with kIdleExitCode; 0: never (the server's own idle kick is another matter).
+  int idle_exit_s = 0;
 };
+
+// fts-client's exit status after --idle-exit-s ran out (0 quit, 1 error, 2 bad option).
+inline constexpr int kIdleExitCode = 3;
 
 // The connection the options ask for: name, encoding, room choice, and `saved_token`
 // (this server's last session, from the session store) to take our player back.

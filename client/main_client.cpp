@@ -1,6 +1,11 @@
-// fts-client: the program. Options, the replay mode, the server's address, the start
-// screen in the plain terminal, then the game (game.cpp) in the raw one, and at the end
-// the terminal given back and --stats-file written.
+// fts-client: the program. Options, the replay mode, the server's address, the name
+// (--name-file) and the start screen in the plain terminal, then the game (game.cpp) in
+// the raw one, and at the end the terminal given back and --stats-file written.
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -10,9 +15,49 @@
 #include "game.hpp"
 #include "replay/replay_loop.hpp"
 #include "term/terminal.hpp"
+#include "ui/sanitize.hpp"
 #include "ui/start_screen.hpp"
 
 using namespace fts::client;
+
+namespace {
+
+// One line typed in the plain terminal, waiting at most idle_s (0: for ever). False at
+// the end of input and when the time ran out (timed_out set).
+bool read_line(std::string& line, int idle_s, bool& timed_out) {
+  if (idle_s > 0 && std::cin.rdbuf()->in_avail() <= 0) {
+    pollfd p{STDIN_FILENO, POLLIN, 0};
+    int n = 0;
+    do {
+      n = ::poll(&p, 1, idle_s * 1000);
+    } while (n < 0 && errno == EINTR);
+    if (n == 0) {
+      timed_out = true;
+      return false;
+    }
+  }
+  return static_cast<bool>(std::getline(std::cin, line));
+}
+
+// The name kept in path (--name-file); asked for and saved when it holds none. "" when
+// the person typed none (end of input, time-out).
+std::string name_from_file(const std::string& path, int idle_s, bool& timed_out) {
+  std::string line;
+  if (std::ifstream in(path); in && std::getline(in, line) && !player_name(line).empty()) return player_name(line);
+  for (int tries = 0; tries < 5; ++tries) {
+    std::cout << "Your name (1 to 16 letters, digits or signs): " << std::flush;
+    if (!read_line(line, idle_s, timed_out)) return "";
+    const std::string name = player_name(line);
+    if (name.empty()) continue;
+    const mode_t old = ::umask(077);
+    std::ofstream(path) << name << "\n";
+    ::umask(old);
+    return name;
+  }
+  return "";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   Options opts;
@@ -30,11 +75,19 @@ int main(int argc, char** argv) {
     std::cerr << "fts-client: cannot resolve " << opts.host << ":" << opts.port << ": " << why << "\n";
     return 1;
   }
+  bool timed_out = false;
+  const auto idle_end = [&] {
+    std::cerr << "\nfts-client: no key for " << opts.idle_exit_s << " s: goodbye\n";
+    return kIdleExitCode;
+  };
+  if (opts.name.empty()) opts.name = name_from_file(opts.name_file, opts.idle_exit_s, timed_out);
+  if (timed_out) return idle_end();
+  if (opts.name.empty()) return 1;
   // The start screen: asked in the plain terminal, before the game takes it over.
   while (!opts.room) {
     std::cout << start_menu_text() << "> " << std::flush;
     std::string line;
-    if (!std::getline(std::cin, line)) return 1;
+    if (!read_line(line, opts.idle_exit_s, timed_out)) return timed_out ? idle_end() : 1;
     const auto choice = parse_start_choice(line);
     if (const auto* bad = std::get_if<std::string>(&choice)) std::cout << *bad << "\n";
     else opts.room = std::get<RoomChoice>(choice);

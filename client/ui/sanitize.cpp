@@ -1,5 +1,7 @@
 #include "ui/sanitize.hpp"
 
+#include <algorithm>
+
 namespace fts::client {
 
 std::string sanitize(std::string_view text, std::size_t max_chars) {
@@ -21,6 +23,18 @@ std::string sanitize(std::string_view text, std::size_t max_chars) {
     out += '?';
     i = j;
   }
+  return out;
+}
+
+std::string player_name(std::string_view text, std::size_t max_chars) {
+  std::string out = sanitize(text);
+  const auto trim = [&out] {
+    out.erase(0, std::min(out.find_first_not_of(' '), out.size()));
+    out.erase(out.find_last_not_of(' ') + 1);
+  };
+  trim();
+  if (out.size() > max_chars) out.resize(max_chars);
+  trim();
   return out;
 }
 

@@ -13,4 +13,9 @@ namespace fts::client {
 // (C1 controls included) becomes one '?'; the result is at most max_chars long.
 std::string sanitize(std::string_view text, std::size_t max_chars = 64);
 
+// A player's name from text a person typed or a host wrote (an ssh key's comment, a
+// name file): sanitized, spaces trimmed at both ends, at most max_chars long; "" when
+// nothing is left.
+std::string player_name(std::string_view text, std::size_t max_chars = 16);
+
 }  // namespace fts::client

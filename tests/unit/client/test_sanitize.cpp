@@ -43,3 +43,17 @@ TEST_CASE("a name carrying escape sequences reaches the screen clean", "[client]
   const std::string shop = to_ansi(render(snap, snap, 0, {120, 40}, view), false);
   CHECK(shop.find("\x1b[31m") == std::string::npos);
 }
+
+// Issue 31: over ssh the name comes from the key's comment or a prompt, cleaned as names
+// from the network are.
+TEST_CASE("a player's name from a key comment or a prompt", "[client][sanitize][ssh]") {
+  CHECK(player_name("alice") == "alice");
+  CHECK(player_name("  bob@laptop \r\n") == "bob@laptop");
+  CHECK(player_name("\x1b[31mred") == "[31mred");
+  CHECK(player_name("Zo\xc3\xab") == "Zo?");
+  CHECK(player_name("a very long name indeed, longer") == "a very long name");
+  CHECK(player_name("fifteen chars  x") == "fifteen chars  x");
+  CHECK(player_name("fifteen chars   xyz") == "fifteen chars");  // clipped, then trimmed
+  CHECK(player_name("   ").empty());
+  CHECK(player_name("\x01\x02").empty());
+}
