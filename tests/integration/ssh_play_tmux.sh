@@ -1,0 +1,247 @@
+#!/usr/bin/env bash
+# End to end, issue 31's closing test: "ssh play@host" plays. A real sshd on a loopback
+# port (its own host key and sshd_config in a temp directory, the Match block that
+# docker/ssh/fts-ssh-setup prints, run in the foreground: -D -e -f), the game account's
+# ForceCommand docker/ssh/fts-ssh-play, a real fts-server and a room of two shopper bots.
+#  1. alice's key (registered: its comment is her name) with ssh -tt in tmux: the start
+#     screen, join the bots' room by code, buy in the shop; the ssh client is killed
+#     (the connection drops): fts-client gets the hang-up, leaves, and exits.
+#  2. alice again with the same key: no name asked, "Reconnected", the same coins; the
+#     pane resized over ssh (SIGWINCH) relays the game out again.
+#  3. The same key a second time at once: refused (one session per key).
+#  4. bob's key (unknown: the open door, AuthorizedKeysCommand) with NO_COLOR sent: the
+#     name prompt, another player, a screen without colour.
+#  5. A third key: refused (two sessions in all). `ssh host ls`, sftp, -W and -L are
+#     refused. A guest (no key) is asked for a name and ends at the idle time-out.
+#  6. The counters (fts-ssh-play --status) say what happened; q, y quit both players.
+# sshd runs the ForceCommand as the logged-in user, and switches users only as root:
+# the test logs in as root through a `Match User root` block, and is skipped otherwise.
+#
+# usage: ssh_play_tmux.sh FTS_SERVER FTS_CLIENT FTS_BOT SOURCE_DIR
+set -euo pipefail
+
+SERVER=${1:?usage: ssh_play_tmux.sh FTS_SERVER FTS_CLIENT FTS_BOT SOURCE_DIR}
+CLIENT=${2:?} BOT=${3:?} SRC=${4:?}
+SERVER=$(realpath "$SERVER") CLIENT=$(realpath "$CLIENT") BOT=$(realpath "$BOT") SRC=$(realpath "$SRC")
+for tool in tmux ssh ssh-keygen flock python3; do
+  command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed"; exit 77; }
+done
+[[ -x /usr/sbin/sshd ]] || { echo "SKIP: no /usr/sbin/sshd (bash .ci/deps.sh installs openssh-server)"; exit 77; }
+[[ $(id -u) -eq 0 ]] || { echo "SKIP: sshd runs a login's ForceCommand as that user only when it runs as root (uid $(id -u) here)"; exit 77; }
+
+source "$(dirname "$0")/tmux_lib.sh"
+tmux_setup ssh
+PANES=(alice)
+SSHD_PID="" LIBEXEC=""
+cleanup_all() {
+  [[ -n $SSHD_PID ]] && kill "$SSHD_PID" 2>/dev/null || true
+  [[ -n $BOT_PID ]] && kill "$BOT_PID" 2>/dev/null || true
+  [[ -n $LIBEXEC ]] && rm -rf "$LIBEXEC"
+  tmux_cleanup
+}
+trap cleanup_all EXIT
+started=$SECONDS
+wait_log() {  # wait_log FILE SECONDS REGEX
+  local deadline=$((SECONDS + $2))
+  until grep -qsE -- "$3" "$1"; do
+    ((SECONDS < deadline)) || fail "no '$3' in $1 within $2 s"
+    sleep 0.1
+  done
+}
+hud_coins() { pane "$1" | head -n 1 | sed -nE 's/^Level:? .*Coins:? ([0-9,]+).*/\1/p' | tr -d ,; }
+wait_coins() {  # wait_coins PANE SECONDS N: the HUD shows N coins (written 4,983)
+  local deadline=$((SECONDS + $2))
+  until [[ $(hud_coins "$1") == "$3" ]]; do
+    ((SECONDS < deadline)) || fail "$1's HUD does not show $3 coins within $2 s"
+    sleep 0.1
+  done
+}
+
+# The game: a server at 4x speed, one enemy a level, start coins to shop with and no
+# interest at level ends (a coin count is then only spent or earned); two bots.
+cat >"$WORK/config.json" <<'JSON'
+{"enemies_cap": 1, "lobby_timeout_s": 4, "shop_timeout_s": 40, "player_coins": 5000,
+ "bank_interest_factor": 1.0}
+JSON
+start_server "$SERVER" --time-scale 4 --max-per-address 16 --config "$WORK/config.json"
+"$BOT" --connect "127.0.0.1:$PORT" --name bot --count 2 --behavior shopper --room create --duration 120 \
+  >"$WORK/bot.log" 2>&1 &
+BOT_PID=$!
+wait_log "$WORK/server.log" 10 'room_open room=[0-9]+ code=[A-Z]+'
+code=$(sed -nE 's/.*room_open room=[0-9]+ code=([A-Z]+).*/\1/p' "$WORK/server.log" | head -n 1)
+echo "bots' room $code"
+
+# sshd: keys and scripts where it accepts them (a root-owned path nobody can write to:
+# it checks the AuthorizedKeysCommand's), its config from fts-ssh-setup's Match block.
+LIBEXEC=$(mktemp -d /run/fts-ssh-test.XXXXXX)
+chmod 755 "$LIBEXEC"
+install -m 755 "$SRC/docker/ssh/fts-ssh-play" "$SRC/docker/ssh/fts-ssh-keys" "$LIBEXEC/"
+install -d -m 755 /run/sshd  # sshd's privilege separation directory (Debian makes it at boot)
+ssh-keygen -q -t ed25519 -N '' -C host -f "$WORK/host_key"
+ssh-keygen -q -t ed25519 -N '' -C 'alice' -f "$WORK/alice"
+ssh-keygen -q -t ed25519 -N '' -C 'not-sent' -f "$WORK/bob"
+ssh-keygen -q -t ed25519 -N '' -C 'carol' -f "$WORK/carol"
+cp "$WORK/alice.pub" "$WORK/authorized_keys"
+SPORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+STATE=$WORK/state
+{
+  cat <<CONF
+Port $SPORT
+ListenAddress 127.0.0.1
+HostKey $WORK/host_key
+PidFile none
+UsePAM no
+StrictModes no
+PasswordAuthentication no
+KbdInteractiveAuthentication no
+LogLevel VERBOSE
+Subsystem sftp internal-sftp
+CONF
+  bash "$SRC/docker/ssh/fts-ssh-setup" --user root --libexec "$LIBEXEC" --client "$CLIENT" \
+    --connect "127.0.0.1:$PORT" --state "$STATE" --keys "$WORK/authorized_keys" --open \
+    --max-sessions 2 --max-per-key 1 --idle-exit-s 60 print
+} >"$WORK/sshd_config"
+/usr/sbin/sshd -t -f "$WORK/sshd_config" || fail "sshd rejects the config"
+: >"$WORK/sshd.log"
+/usr/sbin/sshd -D -e -f "$WORK/sshd_config" 2>"$WORK/sshd.log" &
+SSHD_PID=$!
+wait_log "$WORK/sshd.log" 5 "Server listening on 127.0.0.1 port $SPORT"
+SSH=(ssh -F /dev/null -p "$SPORT" -o StrictHostKeyChecking=no -o UserKnownHostsFile=/dev/null
+     -o IdentitiesOnly=yes -o BatchMode=yes -o LogLevel=ERROR)
+# play SESSION KEY [ENV...]: ssh -tt in a tmux pane of 100x30; the exit status printed.
+play() {
+  local s=$1 key=$2
+  shift 2
+  tm new-session -d -s "$s" -x 100 -y 30 \
+    "env $* ${SSH[*]} -tt -o SendEnv=NO_COLOR -i $WORK/$key root@127.0.0.1; echo SSH_EXIT=\$?; sleep 600"
+}
+status() { "$LIBEXEC/fts-ssh-play" --state "$STATE" --status; }
+counter() { status | awk -v k="$1" '$1 == k { print $2 }'; }
+
+# 1. alice: the start screen over ssh, her key's comment as her name.
+play alice alice
+wait_for alice 10 'pick a room'
+pane alice | grep -q 'Your name' && fail "alice was asked for a name (her key's comment is one)"
+tm send-keys -t alice "3 $code" Enter
+wait_for alice 10 "^Level:? [0-9]+ +Coins:? [0-9,]+ .*Room $code"
+wait_log "$WORK/server.log" 5 "connect player=[0-9]+ name=alice room="
+alice_id=$(sed -nE 's/.*connect player=([0-9]+) name=alice room=.*/\1/p' "$WORK/server.log" | head -n 1)
+echo "alice (player $alice_id) plays over ssh in room $code after $((SECONDS - started)) s"
+tm send-keys -t alice Enter  # ready, if the room is in its lobby
+in_shop() { pane alice | grep -q 'Press Enter to begin next level\.'; }
+deadline=$((SECONDS + 30))
+until in_shop; do
+  ((SECONDS < deadline)) || fail "the bots did not finish a level within 30 s"
+  sleep 0.1
+done
+coins=$(hud_coins alice)
+read -r key price <<<"$(pane alice | sed -nE "s/.*press '([msarlxb])' \(([0-9,]+) coins\).*/\1 \2/p" |
+  tr -d , | sort -k2 -n | head -n 1)"
+[[ -n $price ]] && ((price <= coins)) || fail "alice cannot buy: $coins coins, cheapest '${key:-?}' ${price:-?}"
+deadline=$((SECONDS + 10))
+until pane alice | grep -qE '(Bought|You bought) [a-z]'; do
+  ((SECONDS < deadline)) || fail "pressing '$key' in the shop bought nothing"
+  tm send-keys -t alice "$key"  # (keys count from a moment after the shop opens)
+  sleep 0.5
+done
+after=$((coins - price))
+wait_coins alice 5 "$after"
+wait_log "$WORK/server.log" 5 "purchase player=$alice_id item=[a-z]+ ok=true"
+echo "alice bought '$key' for $price: $after coins"
+# The connection drops: the ssh client dies; sshd hangs the pty up; the client leaves.
+ssh_pid=$(tm list-panes -t alice -F '#{pane_pid}')
+pkill -KILL -P "$ssh_pid" -x ssh || fail "no ssh client under alice's pane"
+wait_log "$WORK/server.log" 10 "disconnect player=$alice_id reason=quit"
+deadline=$((SECONDS + 10))
+while pgrep -f "$STATE/keys/.*/name" >/dev/null; do
+  ((SECONDS < deadline)) || fail "fts-client still runs after the connection dropped"
+  sleep 0.1
+done
+wait_log "$STATE/counts" 5 '^hangups 1$'
+echo "the dropped connection ended fts-client (it left: disconnect reason=quit; counter hangups 1)"
+
+# 2. alice again: the same key is the same player, with the same coins.
+PANES=(alice2)
+play alice2 alice
+wait_for alice2 10 'pick a room'
+tm send-keys -t alice2 "3 $code" Enter
+wait_for alice2 10 'Reconnected: welcome back'
+wait_coins alice2 5 "$after"
+wait_log "$WORK/server.log" 5 "reconnect player=$alice_id "
+echo "alice is back as player $alice_id with $after coins"
+tm resize-window -t alice2 -x 50 -y 14
+wait_for alice2 5 'terminal too small: 50x14'
+tm resize-window -t alice2 -x 100 -y 30
+wait_for alice2 5 "^Level:? [0-9]+ +Coins:? "
+echo "resized over ssh: the client followed (50x14 too small, then 100x30)"
+
+# 3. The same key once more while alice plays: one session per key.
+out=$(timeout 10 "${SSH[@]}" -tt -i "$WORK/alice" root@127.0.0.1 </dev/null 2>&1 || true)
+grep -q 'This key already plays in 1 session' <<<"$out" || fail "a second session of alice's key: $out"
+echo "a second session for alice's key is refused"
+
+# 4. bob: a key nobody registered (the open door), so a name prompt; NO_COLOR sent.
+PANES=(alice2 bob)
+play bob bob NO_COLOR=1
+wait_for bob 10 'Your name'
+tm send-keys -t bob "bob" Enter
+wait_for bob 5 'pick a room'
+tm send-keys -t bob "3 $code" Enter
+wait_for bob 10 '^Connected\.|Connected\.$| Connected\.'
+pane bob | grep -q 'Reconnected' && fail "bob's key took someone's player"
+wait_log "$WORK/server.log" 5 "connect player=[0-9]+ name=bob room="
+bob_id=$(sed -nE 's/.*connect player=([0-9]+) name=bob room=.*/\1/p' "$WORK/server.log" | head -n 1)
+((bob_id != alice_id)) || fail "bob is player $bob_id, alice's"
+tm capture-pane -e -p -t bob | grep -qE $'\x1b\\[[0-9;]*(3[0-7]|38;|4[0-7]|48;)' && fail "NO_COLOR: bob's screen has colours"
+tm capture-pane -e -p -t alice2 | grep -qE $'\x1b\\[[0-9;]*(3[0-7]|38;)' || fail "alice's screen has no colours"
+echo "bob is another player ($bob_id), named at the prompt, without colours (NO_COLOR)"
+
+# 5. Two sessions in all: a third key is refused; commands and forwarding too.
+out=$(timeout 10 "${SSH[@]}" -tt -i "$WORK/carol" root@127.0.0.1 </dev/null 2>&1 || true)
+grep -q 'The server is full (2 players over ssh)' <<<"$out" || fail "a third session: $out"
+out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" root@127.0.0.1 ls / 2>&1 || true)
+grep -q 'commands, scp and sftp are refused' <<<"$out" || fail "ssh host ls: $out"
+grep -qE '^(bin|etc|usr)$' <<<"$out" && fail "ssh host ls listed files: $out"
+out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" -s root@127.0.0.1 sftp 2>&1 </dev/null || true)
+grep -q 'commands, scp and sftp are refused' <<<"$out" || fail "the sftp subsystem: $out"
+out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" -W 127.0.0.1:22 root@127.0.0.1 2>&1 </dev/null || true)
+grep -q 'stdio forwarding failed' <<<"$out" || fail "ssh -W: $out"
+LPORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+timeout 10 "${SSH[@]}" -i "$WORK/alice" -N -o ExitOnForwardFailure=yes -L "127.0.0.1:$LPORT:127.0.0.1:$SPORT" \
+  root@127.0.0.1 2>"$WORK/fwd.err" &
+fwd=$!
+deadline=$((SECONDS + 5))
+until python3 -c "import socket,sys; socket.create_connection(('127.0.0.1', $LPORT), 1).recv(64)" 2>/dev/null; do
+  ((SECONDS < deadline)) || break
+  sleep 0.1
+done
+wait_log "$WORK/sshd.log" 5 "refused local port forward: .* port $SPORT"
+kill "$fwd" 2>/dev/null || true
+echo "refused: a third key (full), ssh host ls, sftp, -W, -L"
+# A guest (no key: an empty password, where the host allows one) is asked for a name
+# and, idle, ends at the time-out (the ForceCommand alone, outside sshd).
+tm new-session -d -s guest -x 80 -y 24 \
+  "'$LIBEXEC/fts-ssh-play' --client '$CLIENT' --connect 127.0.0.1:$PORT --state '$STATE' --idle-exit-s 2 --max-sessions 3; echo GUEST_EXIT=\$?; sleep 600"
+PANES=(guest)
+wait_for guest 5 'Your name'
+wait_for guest 6 '^GUEST_EXIT=3'
+ls -A "$STATE/guests" | grep -q . && fail "the guest's directory was left behind"
+echo "a guest is asked for a name; idle, it ends after 2 s (status 3)"
+
+# 6. The counters, then both players quit.
+status
+[[ $(counter sessions) == 2 && $(counter refused_full) == 1 && $(counter refused_key_busy) == 1 &&
+   $(counter refused_command) == 2 && $(counter idle_exits) == 1 && $(counter guests) == 1 &&
+   $(counter started) == 4 ]] || fail "counters: $(status | tr '\n' ' ')"
+PANES=(alice2 bob)
+for s in alice2 bob; do
+  tm send-keys -t "$s" q
+  wait_for "$s" 5 'Quit\?'
+  tm send-keys -t "$s" y
+  wait_for "$s" 5 '^SSH_EXIT=0'
+  # The terminal given back: the main screen, the cursor shown, keys echoed again.
+  [[ $(tm display-message -p -t "$s" '#{alternate_on} #{cursor_flag}') == "0 1" ]] ||
+    fail "$s's terminal was not restored: $(tm display-message -p -t "$s" '#{alternate_on} #{cursor_flag}')"
+done
+[[ $(counter ended) == 2 && $(counter sessions) == 0 ]] || fail "counters: $(status | tr '\n' ' ')"
+echo "PASS in $((SECONDS - started)) s"
