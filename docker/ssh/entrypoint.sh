@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The ssh image's entry point (Dockerfile stage "ssh", compose service "ssh"): host keys
+# made once into the volume /etc/ssh/host-keys (a restarted container keeps its identity,
+# so players' known_hosts stay valid), the game account "play" set up by fts-ssh-setup
+# (open to any key), then sshd in the foreground on port 2222, logging to stderr.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+keys=/etc/ssh/host-keys
+install -d -m 700 "$keys"
+for type in ed25519 rsa; do
+  [[ -f $keys/ssh_host_${type}_key ]] || ssh-keygen -q -t "$type" -N '' -f "$keys/ssh_host_${type}_key"
+done
+empty=()
+[[ -n ${FTS_SSH_EMPTY_PASSWORD:-} ]] && empty=(--empty-password)
+bash "$here/fts-ssh-setup" --connect "${FTS_SSH_SERVER:-server:7777}" --open "${empty[@]}" \
+  --max-sessions "${FTS_SSH_MAX_SESSIONS:-8}" --max-per-key "${FTS_SSH_MAX_PER_KEY:-2}" \
+  --idle-exit-s "${FTS_SSH_IDLE_EXIT_S:-600}" install
+install -d -m 755 /run/sshd
+exec /usr/sbin/sshd -D -e -p 2222 -o "HostKey=$keys/ssh_host_ed25519_key" -o "HostKey=$keys/ssh_host_rsa_key"
