@@ -43,6 +43,16 @@ fi
 ((${#room[@]})) || room=(--create)
 echo "fts-server is on UDP port $port with $nbots bots (log: $log)${code:+ in room $code}."
 echo "Join from any terminal:  ./build/client/fts-client --connect 127.0.0.1:$port --name YOURNAME ${room[*]}"
+# Over ssh (README, "Playing over ssh"), once this host's sshd has the game account.
+ssh_conf=/etc/ssh/sshd_config.d/fts-play.conf
+if [[ -x /usr/sbin/sshd && -f $ssh_conf ]]; then
+  ssh_user=$(awk '$1 == "Match" && $2 == "User" { print $3; exit }' "$ssh_conf")
+  ssh_port=$(/usr/sbin/sshd -T 2>/dev/null | awk '$1 == "port" { print $2; exit }' || true)
+  grep -q -- "--connect 127.0.0.1:$port " "$ssh_conf" || echo "(the ssh account plays on the server named in $ssh_conf)"
+  echo "Or with nothing installed:  ssh -t -p ${ssh_port:-22} $ssh_user@$(hostname -f 2>/dev/null || hostname)"
+elif [[ -x /usr/sbin/sshd ]]; then
+  echo "To let players join with ssh alone: bash docker/ssh/fts-ssh-setup --open install (README, \"Playing over ssh\")"
+fi
 if [[ -t 0 && -t 1 && -x build/client/fts-client ]]; then
   ./build/client/fts-client --connect "127.0.0.1:$port" --name "${name:0:16}" "${room[@]}"
 else
