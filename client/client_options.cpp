@@ -74,6 +74,12 @@ protocol::ClientConfig connection_config(const Options& o, std::optional<std::st
   return cfg;
 }
 
+bool idle_over(const Options& o, std::uint64_t idle_ms) {
+  return o.idle_exit_s > 0 && idle_ms > static_cast<std::uint64_t>(o.idle_exit_s) * 1000;
+}
+
+std::string idle_text(const Options& o) { return "no key for " + std::to_string(o.idle_exit_s) + " s: goodbye"; }
+
 int parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"", "fts-client"};
   app.set_help_flag();

@@ -1,6 +1,7 @@
 // fts-client's command line: the options, their checks and the usage text.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -34,6 +35,9 @@ struct Options {
 
 // fts-client's exit status after --idle-exit-s ran out (0 quit, 1 error, 2 bad option).
 inline constexpr int kIdleExitCode = 3;
+// Whether idle_ms without a key is past --idle-exit-s, and what the client then says.
+bool idle_over(const Options& o, std::uint64_t idle_ms);
+std::string idle_text(const Options& o);
 
 // The connection the options ask for: name, encoding, room choice, and `saved_token`
 // (this server's last session, from the session store) to take our player back.

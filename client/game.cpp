@@ -127,8 +127,7 @@ class Game {
     const std::uint64_t now = now_ms();
     if (const int sig = term::stop_signal()) return finish(0, "stopped by signal " + std::to_string(sig));
     read_keys(now);
-    if (opts_.idle_exit_s > 0 && now - last_key_ms_ > static_cast<std::uint64_t>(opts_.idle_exit_s) * 1000)
-      return finish(kIdleExitCode, "no key for " + std::to_string(opts_.idle_exit_s) + " s: goodbye");
+    if (idle_over(opts_, now - std::max(keys_.last_key_ms(), started_ms_))) return finish(kIdleExitCode, idle_text(opts_));
     if (done_) return;
     conn_.update(now);
     if (conn_.attempt() != socket_attempt_) open_socket();
@@ -176,7 +175,6 @@ class Game {
 
   void handle_key(const KeyEvent& e, std::uint64_t now) {
     if (e.key == Key::focus_out) steer_.stop();  // a window without the focus steers nothing
-    if (e.key != Key::focus_in && e.key != Key::focus_out) last_key_ms_ = now;  // a person's input
     if (idle_ && e.action != KeyAction::release && !is_report(e)) {  // kicked as idle: q leaves, any key plays
       if (e.key == Key::ctrl_c || (e.key == Key::character && e.ch == 'q')) return finish(0, "");
       return rejoin(now);
@@ -468,7 +466,6 @@ class Game {
   PointerSteering steer_;  // mouse steering: toward the pointer, arriving there
   NetTiming net_;  // server clock, remote delay, own-ball prediction and their meters (issue 28)
   std::uint64_t started_ms_ = now_ms();
-  std::uint64_t last_key_ms_ = now_ms();  // the last key or pointer move (--idle-exit-s)
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120, kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome

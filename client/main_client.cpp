@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   }
   bool timed_out = false;
   const auto idle_end = [&] {
-    std::cerr << "\nfts-client: no key for " << opts.idle_exit_s << " s: goodbye\n";
+    std::cerr << "\nfts-client: " << idle_text(opts) << "\n";
     return kIdleExitCode;
   };
   if (opts.name.empty()) opts.name = name_from_file(opts.name_file, opts.idle_exit_s, timed_out);

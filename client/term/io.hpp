@@ -18,6 +18,8 @@ class KeyReader {
   // the terminal has answered the query, and notes a terminal that hung up.
   std::vector<KeyEvent> read(std::uint64_t now_ms);
   static constexpr std::uint64_t kPauseMs = 50;
+  // When the terminal last sent something (a key, the pointer; 0: never).
+  std::uint64_t last_key_ms() const { return last_key_ms_; }
 
  private:
   KeyDecoder decoder_;
