@@ -11,8 +11,9 @@
 #  3. The same key a second time at once: refused (one session per key).
 #  4. bob's key (unknown: the open door, AuthorizedKeysCommand) with NO_COLOR sent: the
 #     name prompt, another player, a screen without colour.
-#  5. A third key: refused (two sessions in all). `ssh host ls`, sftp, -W and -L are
-#     refused. A guest (no key) is asked for a name and ends at the idle time-out.
+#  5. A third key: refused (two sessions in all). `ssh host ls`, ssh -T, sftp, -W, -L are
+#     refused. Guests (no key) are asked for a name and end at the idle time-out (one
+#     at the prompt, one in the game).
 #  6. The counters (fts-ssh-play --status) say what happened; q, y quit both players.
 # sshd runs the ForceCommand as the logged-in user, and switches users only as root:
 # the test logs in as root through a `Match User root` block, and is skipped otherwise.
@@ -32,8 +33,14 @@ done
 source "$(dirname "$0")/tmux_lib.sh"
 tmux_setup ssh
 PANES=(alice)
-SSHD_PID="" LIBEXEC=""
+SSHD_PID="" LIBEXEC="" STATE=""
 cleanup_all() {
+  # The panes' ssh clients first: their sessions' gates end and write their counts.
+  tm kill-server 2>/dev/null || true
+  local deadline=$((SECONDS + 5))
+  while [[ -n ${STATE:-} ]] && pgrep -f "fts-ssh-play .*--state $STATE" >/dev/null && ((SECONDS < deadline)); do
+    sleep 0.1
+  done
   [[ -n $SSHD_PID ]] && kill "$SSHD_PID" 2>/dev/null || true
   [[ -n $BOT_PID ]] && kill "$BOT_PID" 2>/dev/null || true
   [[ -n $LIBEXEC ]] && rm -rf "$LIBEXEC"
@@ -128,21 +135,27 @@ wait_log "$WORK/server.log" 5 "connect player=[0-9]+ name=alice room="
 alice_id=$(sed -nE 's/.*connect player=([0-9]+) name=alice room=.*/\1/p' "$WORK/server.log" | head -n 1)
 echo "alice (player $alice_id) plays over ssh in room $code after $((SECONDS - started)) s"
 tm send-keys -t alice Enter  # ready, if the room is in its lobby
+# The shop: the cheapest item, its key pressed until the result shows (keys count from a
+# moment after the shop opens); a shop that closes first (alice came as it ended, the
+# others ready) is followed by the next one.
 in_shop() { pane alice | grep -q 'Press Enter to begin next level\.'; }
 deadline=$((SECONDS + 30))
-until in_shop; do
-  ((SECONDS < deadline)) || fail "the bots did not finish a level within 30 s"
-  sleep 0.1
-done
-coins=$(hud_coins alice)
-read -r key price <<<"$(pane alice | sed -nE "s/.*press '([msarlxb])' \(([0-9,]+) coins\).*/\1 \2/p" |
-  tr -d , | sort -k2 -n | head -n 1)"
-[[ -n $price ]] && ((price <= coins)) || fail "alice cannot buy: $coins coins, cheapest '${key:-?}' ${price:-?}"
-deadline=$((SECONDS + 10))
-until pane alice | grep -qE '(Bought|You bought) [a-z]'; do
-  ((SECONDS < deadline)) || fail "pressing '$key' in the shop bought nothing"
-  tm send-keys -t alice "$key"  # (keys count from a moment after the shop opens)
-  sleep 0.5
+bought=0
+while ((!bought)); do
+  ((SECONDS < deadline)) || fail "alice did not buy in a shop within 30 s"
+  in_shop || { sleep 0.1; continue; }
+  coins=$(hud_coins alice)
+  read -r key price <<<"$(pane alice | sed -nE "s/.*press '([msarlxb])' \(([0-9,]+) coins\).*/\1 \2/p" |
+    tr -d , | sort -k2 -n | head -n 1)"
+  [[ -n $price && -n $coins ]] || { sleep 0.1; continue; }
+  ((price <= coins)) || fail "alice cannot buy: $coins coins, the cheapest ('$key') costs $price"
+  while in_shop && ((!bought)); do
+    tm send-keys -t alice "$key"
+    for _ in 1 2 3 4 5; do
+      pane alice | grep -qE '(Bought|You bought) [a-z]' && { bought=1; break; }
+      sleep 0.1
+    done
+  done
 done
 after=$((coins - price))
 wait_coins alice 5 "$after"
@@ -165,9 +178,9 @@ PANES=(alice2)
 play alice2 alice
 wait_for alice2 10 'pick a room'
 tm send-keys -t alice2 "3 $code" Enter
-wait_for alice2 10 'Reconnected: welcome back'
+wait_log "$WORK/server.log" 10 "reconnect player=$alice_id "
+wait_for alice2 10 "^Level:? [0-9]+ +Coins:? [0-9,]+ .*Room $code"
 wait_coins alice2 5 "$after"
-wait_log "$WORK/server.log" 5 "reconnect player=$alice_id "
 echo "alice is back as player $alice_id with $after coins"
 tm resize-window -t alice2 -x 50 -y 14
 wait_for alice2 5 'terminal too small: 50x14'
@@ -187,9 +200,9 @@ wait_for bob 10 'Your name'
 tm send-keys -t bob "bob" Enter
 wait_for bob 5 'pick a room'
 tm send-keys -t bob "3 $code" Enter
-wait_for bob 10 '^Connected\.|Connected\.$| Connected\.'
-pane bob | grep -q 'Reconnected' && fail "bob's key took someone's player"
-wait_log "$WORK/server.log" 5 "connect player=[0-9]+ name=bob room="
+wait_for bob 10 "^Level:? [0-9]+ +Coins:? [0-9,]+ .*Room $code"
+wait_log "$WORK/server.log" 5 " connect player=[0-9]+ name=bob room="
+grep -qE "reconnect player=[0-9]+ name=bob" "$WORK/server.log" && fail "bob's key took someone's player"
 bob_id=$(sed -nE 's/.*connect player=([0-9]+) name=bob room=.*/\1/p' "$WORK/server.log" | head -n 1)
 ((bob_id != alice_id)) || fail "bob is player $bob_id, alice's"
 tm capture-pane -e -p -t bob | grep -qE $'\x1b\\[[0-9;]*(3[0-7]|38;|4[0-7]|48;)' && fail "NO_COLOR: bob's screen has colours"
@@ -202,6 +215,8 @@ grep -q 'The server is full (2 players over ssh)' <<<"$out" || fail "a third ses
 out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" root@127.0.0.1 ls / 2>&1 || true)
 grep -q 'commands, scp and sftp are refused' <<<"$out" || fail "ssh host ls: $out"
 grep -qE '^(bin|etc|usr)$' <<<"$out" && fail "ssh host ls listed files: $out"
+out=$(timeout 10 "${SSH[@]}" -T -i "$WORK/alice" root@127.0.0.1 2>&1 </dev/null || true)
+grep -q 'needs a terminal' <<<"$out" || fail "a session without a tty: $out"
 out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" -s root@127.0.0.1 sftp 2>&1 </dev/null || true)
 grep -q 'commands, scp and sftp are refused' <<<"$out" || fail "the sftp subsystem: $out"
 out=$(timeout 10 "${SSH[@]}" -i "$WORK/alice" -W 127.0.0.1:22 root@127.0.0.1 2>&1 </dev/null || true)
@@ -217,7 +232,7 @@ until python3 -c "import socket,sys; socket.create_connection(('127.0.0.1', $LPO
 done
 wait_log "$WORK/sshd.log" 5 "refused local port forward: .* port $SPORT"
 kill "$fwd" 2>/dev/null || true
-echo "refused: a third key (full), ssh host ls, sftp, -W, -L"
+echo "refused: a third key (full), ssh host ls, no tty, sftp, -W, -L"
 # A guest (no key: an empty password, where the host allows one) is asked for a name
 # and, idle, ends at the time-out (the ForceCommand alone, outside sshd).
 tm new-session -d -s guest -x 80 -y 24 \
@@ -225,14 +240,25 @@ tm new-session -d -s guest -x 80 -y 24 \
 PANES=(guest)
 wait_for guest 5 'Your name'
 wait_for guest 6 '^GUEST_EXIT=3'
-ls -A "$STATE/guests" | grep -q . && fail "the guest's directory was left behind"
-echo "a guest is asked for a name; idle, it ends after 2 s (status 3)"
+# A second guest names itself, creates a room, and idles in the game: the same end.
+tm new-session -d -s guest2 -x 80 -y 24 \
+  "'$LIBEXEC/fts-ssh-play' --client '$CLIENT' --connect 127.0.0.1:$PORT --state '$STATE' --idle-exit-s 2 --max-sessions 3; echo GUEST_EXIT=\$?; sleep 600"
+PANES=(guest2)
+wait_for guest2 5 'Your name'
+tm send-keys -t guest2 "guest" Enter
+wait_for guest2 5 'pick a room'
+tm send-keys -t guest2 2 Enter
+wait_for guest2 10 '^Level:? [0-9]+ +Coins:? '
+wait_for guest2 6 '^GUEST_EXIT=3'
+wait_log "$WORK/server.log" 5 'disconnect player=[0-9]+ reason=quit .*name=guest'
+ls -A "$STATE/guests" | grep -q . && fail "a guest's directory was left behind"
+echo "guests are asked for a name; idle (at the prompt, in the game) they end after 2 s (status 3)"
 
 # 6. The counters, then both players quit.
 status
 [[ $(counter sessions) == 2 && $(counter refused_full) == 1 && $(counter refused_key_busy) == 1 &&
-   $(counter refused_command) == 2 && $(counter idle_exits) == 1 && $(counter guests) == 1 &&
-   $(counter started) == 4 ]] || fail "counters: $(status | tr '\n' ' ')"
+   $(counter refused_command) == 2 && $(counter refused_no_tty) == 1 && $(counter idle_exits) == 2 && $(counter guests) == 2 &&
+   $(counter started) == 5 ]] || fail "counters: $(status | tr '\n' ' ')"
 PANES=(alice2 bob)
 for s in alice2 bob; do
   tm send-keys -t "$s" q
