@@ -1,163 +1,115 @@
 #include "host/match_state_json.hpp"
 
-#include <algorithm>
+#include "host/checkpoint_fields.hpp"
 
 namespace fts::host {
 namespace {
 
-using nlohmann::json;
+using namespace checkpoint;
+using sim::BallId;
+using sim::Coins;
+using I64 = Value<std::int64_t>;
 
-json economy_to_json(const sim::Economy& e) {
-  json prices = json::array();
-  for (double p : e.prices.by_item) prices.push_back(p);
-  return json::array({e.coins, e.lives, e.mass, e.vmax_u_per_s, e.accel_u_per_s2, e.multiplier, e.bank, e.rockets,
-                      prices, e.start_coins, e.earned_defeats, e.earned_interest, e.spent, e.purchases, e.defeats});
-}
+// One table per struct: the one place a checkpoint field is named. Objects have keys;
+// the economy, a ball and a body are rows (values by position, in table order), as the
+// checkpoints already written have them.
+constexpr auto kVec2Fields = std::make_tuple(field("x", &sim::Vec2::x, Value<double>{}),
+                                             field("y", &sim::Vec2::y, Value<double>{}));
+static_assert(names_every_member<sim::Vec2>(kVec2Fields));
 
-sim::Economy economy_from_json(const json& a) {
-  if (!a.is_array() || a.size() != 15) throw std::invalid_argument("eco must be an array of 15 values");
-  sim::Economy e;
-  e.coins = a[0].get<sim::Coins>();
-  e.lives = a[1].get<std::int64_t>();
-  e.mass = a[2].get<std::int64_t>();
-  e.vmax_u_per_s = a[3].get<double>();
-  e.accel_u_per_s2 = a[4].get<double>();
-  e.multiplier = a[5].get<double>();
-  e.bank = a[6].get<bool>();
-  e.rockets = a[7].get<bool>();
-  if (!a[8].is_array() || a[8].size() != sim::kItemCount) throw std::invalid_argument("eco prices: wrong count");
-  for (std::size_t i = 0; i < sim::kItemCount; ++i) e.prices.by_item[i] = a[8][i].get<double>();
-  e.start_coins = a[9].get<sim::Coins>();
-  e.earned_defeats = a[10].get<sim::Coins>();
-  e.earned_interest = a[11].get<sim::Coins>();
-  e.spent = a[12].get<sim::Coins>();
-  e.purchases = a[13].get<std::int64_t>();
-  e.defeats = a[14].get<std::int64_t>();
-  return e;
-}
+constexpr auto kPricesFields =
+    std::make_tuple(field("prices", &sim::Prices::by_item, Array<double, sim::kItemCount>{}));
+static_assert(names_every_member<sim::Prices>(kPricesFields));
 
-template <class E>
-E enum_from(const json& v, E last, const char* what) {
-  const auto n = v.get<std::uint64_t>();
-  if (n > static_cast<std::uint64_t>(last)) throw std::invalid_argument(std::string(what) + " out of range");
-  return static_cast<E>(n);
-}
+constexpr auto kEconomyFields = std::make_tuple(
+    field("coins", &sim::Economy::coins, Value<Coins>{}), field("lives", &sim::Economy::lives, I64{}),
+    field("mass", &sim::Economy::mass, I64{}), field("vmax_u_per_s", &sim::Economy::vmax_u_per_s, Value<double>{}),
+    field("accel_u_per_s2", &sim::Economy::accel_u_per_s2, Value<double>{}),
+    field("multiplier", &sim::Economy::multiplier, Value<double>{}), field("bank", &sim::Economy::bank, Value<bool>{}),
+    field("rockets", &sim::Economy::rockets, Value<bool>{}), field("prices", &sim::Economy::prices, Splice{kPricesFields}),
+    field("start_coins", &sim::Economy::start_coins, Value<Coins>{}),
+    field("earned_defeats", &sim::Economy::earned_defeats, Value<Coins>{}),
+    field("earned_interest", &sim::Economy::earned_interest, Value<Coins>{}),
+    field("spent", &sim::Economy::spent, Value<Coins>{}), field("purchases", &sim::Economy::purchases, I64{}),
+    field("defeats", &sim::Economy::defeats, I64{}));
+static_assert(names_every_member<sim::Economy>(kEconomyFields));
+static_assert(row_width(kEconomyFields) == 15);  // checkpoints already written have 15
+
+constexpr auto kPlayerFields = std::make_tuple(
+    field("id", &sim::Player::id, IdValue{}), field("name", &sim::Player::name, Value<std::string>{}),
+    field("eco", &sim::Player::eco, Row{kEconomyFields}), field("ready", &sim::Player::ready, Value<bool>{}),
+    field("ball", &sim::Player::ball, IdValue{}), field("respawn_tick", &sim::Player::respawn_tick, I64{}),
+    // Absent in checkpoints written before spawn protection: not protected.
+    field("protected_until_tick", &sim::Player::protected_until_tick, I64{}, true),
+    field("next_fire_tick", &sim::Player::next_fire_tick, I64{}), field("aim", &sim::Player::aim, Row{kVec2Fields}),
+    field("connected", &sim::Player::connected, Value<bool>{}), field("parked", &sim::Player::parked, Value<bool>{}));
+static_assert(names_every_member<sim::Player>(kPlayerFields));
+
+constexpr auto kBallFields = std::make_tuple(
+    field("id", &sim::Ball::id, IdValue{}), field("pos", &sim::Ball::pos, Splice{kVec2Fields}),
+    field("vel", &sim::Ball::vel, Splice{kVec2Fields}), field("radius", &sim::Ball::radius, Value<double>{}),
+    field("mass", &sim::Ball::mass, Value<double>{}),
+    field("thrust_axes", &sim::Ball::thrust_axes, Skip{}));  // not state: step() clears it
+static_assert(names_every_member<sim::Ball>(kBallFields));
+static_assert(row_width(kBallFields) == 7);
+
+constexpr auto kWorldFields = std::make_tuple(field("arena", &sim::World::arena, Skip{}),  // from the config
+                                              field("balls", &sim::World::balls, Ascending{Row{kBallFields}}),
+                                              field("buffers", &sim::World::buffers, Skip{}));  // the step's memory
+static_assert(names_every_member<sim::World>(kWorldFields));
+
+constexpr auto kEnemySpecFields = std::make_tuple(
+    field("mass", &sim::EnemySpec::mass, Value<double>{}), field("radius_u", &sim::EnemySpec::radius_u, Value<double>{}),
+    field("accel_u_per_s2", &sim::EnemySpec::accel_u_per_s2, Value<double>{}),
+    field("vmax_u_per_s", &sim::EnemySpec::vmax_u_per_s, Value<double>{}),
+    field("role", &sim::EnemySpec::role, Enum{sim::EnemyRole::chaser}));
+static_assert(names_every_member<sim::EnemySpec>(kEnemySpecFields));
+
+constexpr auto kBodyFields = std::make_tuple(
+    field("kind", &sim::Body::kind, Enum{sim::BodyKind::rocket}), field("owner", &sim::Body::owner, IdValue{}),
+    field("index", &sim::Body::index, I64{}), field("spec", &sim::Body::spec, Splice{kEnemySpecFields}),
+    field("goal", &sim::Body::goal, Splice{kVec2Fields}), field("credit", &sim::Body::credit, IdValue{}),
+    field("credit_tick", &sim::Body::credit_tick, I64{}), field("expires_tick", &sim::Body::expires_tick, I64{}));
+static_assert(names_every_member<sim::Body>(kBodyFields));
+
+// A body as the match holds it: by its ball's id, written first.
+struct BodyEntry {
+  BallId id;
+  sim::Body value;
+};
+constexpr auto kBodyEntryFields = std::make_tuple(field("id", &BodyEntry::id, IdValue{}),
+                                                  field("body", &BodyEntry::value, Splice{kBodyFields}));
+static_assert(names_every_member<BodyEntry>(kBodyEntryFields));
+static_assert(row_width(kBodyEntryFields) == 14);
+
+using M = sim::MatchState;
+constexpr auto kMatchFields = std::make_tuple(
+    field("cfg", &M::cfg, Skip{}),  // the journal's header has it; make_match gives what it derives
+    field("phase", &M::phase, Enum{sim::Phase::game_over}), field("tick", &M::tick, I64{}),
+    field("level", &M::level, I64{}), field("levels_cleared", &M::levels_cleared, I64{}),
+    field("shop_deadline_tick", &M::shop_deadline_tick, I64{}),
+    field("lobby_deadline_tick", &M::lobby_deadline_tick, I64{}),
+    field("matches_started", &M::matches_started, I64{}), field("rng", &M::rng, RngState{}),
+    field("world", &M::world, Splice{kWorldFields}), field("physics", &M::physics, Skip{}),
+    field("step_k", &M::step_k, Skip{}), field("bodies", &M::bodies, by_id<BodyEntry>(Row{kBodyEntryFields})),
+    field("players", &M::players, Ascending{Object{kPlayerFields}}),
+    field("next_ball_id", &M::next_ball_id, Value<std::uint32_t>{}));
+static_assert(names_every_member<M>(kMatchFields));
 
 }  // namespace
 
-json match_state_to_json(const sim::MatchState& s) {
-  json j;
-  j["phase"] = static_cast<int>(s.phase);
-  j["tick"] = s.tick;
-  j["level"] = s.level;
-  j["levels_cleared"] = s.levels_cleared;
-  j["shop_deadline_tick"] = s.shop_deadline_tick;
-  j["lobby_deadline_tick"] = s.lobby_deadline_tick;
-  j["matches_started"] = s.matches_started;
-  j["rng"] = s.rng.state();
-  j["next_ball_id"] = s.next_ball_id;
-  json& players = j["players"] = json::array();
-  for (const sim::Player& p : s.players)
-    players.push_back({{"id", p.id.value},
-                       {"name", p.name},
-                       {"eco", economy_to_json(p.eco)},
-                       {"ready", p.ready},
-                       {"ball", p.ball.value},
-                       {"respawn_tick", p.respawn_tick},
-                       {"protected_until_tick", p.protected_until_tick},
-                       {"next_fire_tick", p.next_fire_tick},
-                       {"aim", {p.aim.x, p.aim.y}},
-                       {"connected", p.connected},
-                       {"parked", p.parked}});
-  // Balls and bodies are many: one array each, fields by position.
-  json& balls = j["balls"] = json::array();
-  for (const sim::Ball& b : s.world.balls)
-    balls.push_back({b.id.value, b.pos.x, b.pos.y, b.vel.x, b.vel.y, b.radius, b.mass});
-  json& bodies = j["bodies"] = json::array();
-  for (const auto& [id, b] : s.bodies)
-    bodies.push_back({id.value, static_cast<int>(b.kind), b.owner.value, b.index, b.spec.mass, b.spec.radius_u,
-                      b.spec.accel_u_per_s2, b.spec.vmax_u_per_s, static_cast<int>(b.spec.role), b.goal.x, b.goal.y,
-                      b.credit.value, b.credit_tick, b.expires_tick});
+nlohmann::json match_state_to_json(const sim::MatchState& s) {
+  nlohmann::json j = nlohmann::json::object();
+  write_object(j, s, kMatchFields);
   return j;
 }
 
-std::variant<sim::MatchState, std::string> match_state_from_json(const json& j, sim::MatchState s) {
-  const char* field = "checkpoint";
+std::variant<sim::MatchState, std::string> match_state_from_json(const nlohmann::json& j, sim::MatchState s) {
+  if (!j.is_object()) return std::string("checkpoint: not an object");
   try {
-    if (!j.is_object()) return std::string("checkpoint: not an object");
-    field = "phase";
-    s.phase = enum_from(j.at("phase"), sim::Phase::game_over, "phase");
-    field = "tick";
-    s.tick = j.at("tick").get<std::int64_t>();
-    field = "level";
-    s.level = j.at("level").get<std::int64_t>();
-    field = "levels_cleared";
-    s.levels_cleared = j.at("levels_cleared").get<std::int64_t>();
-    field = "shop_deadline_tick";
-    s.shop_deadline_tick = j.at("shop_deadline_tick").get<std::int64_t>();
-    field = "lobby_deadline_tick";
-    s.lobby_deadline_tick = j.at("lobby_deadline_tick").get<std::int64_t>();
-    field = "matches_started";
-    s.matches_started = j.at("matches_started").get<std::int64_t>();
-    field = "rng";
-    s.rng.set_state(j.at("rng").get<std::array<std::uint64_t, 4>>());
-    field = "next_ball_id";
-    s.next_ball_id = j.at("next_ball_id").get<std::uint32_t>();
-    field = "players";
-    s.players.clear();
-    for (const json& p : j.at("players")) {
-      sim::Player pl;
-      pl.id = p.at("id").get<std::uint32_t>();
-      pl.name = p.at("name").get<std::string>();
-      pl.eco = economy_from_json(p.at("eco"));
-      pl.ready = p.at("ready").get<bool>();
-      pl.ball = p.at("ball").get<std::uint32_t>();
-      pl.respawn_tick = p.at("respawn_tick").get<std::int64_t>();
-      // Absent in checkpoints written before spawn protection: not protected.
-      pl.protected_until_tick = p.value("protected_until_tick", std::int64_t{-1});
-      pl.next_fire_tick = p.at("next_fire_tick").get<std::int64_t>();
-      const auto aim = p.at("aim").get<std::array<double, 2>>();
-      pl.aim = {aim[0], aim[1]};
-      pl.connected = p.at("connected").get<bool>();
-      pl.parked = p.at("parked").get<bool>();
-      if (!s.players.empty() && !(s.players.back().id < pl.id)) return std::string("players: ids not ascending");
-      s.players.push_back(std::move(pl));
-    }
-    field = "balls";
-    s.world.balls.clear();
-    for (const json& b : j.at("balls")) {
-      const auto v = b.get<std::array<double, 7>>();
-      sim::Ball ball;
-      ball.id = b[0].get<std::uint32_t>();
-      ball.pos = {v[1], v[2]};
-      ball.vel = {v[3], v[4]};
-      ball.radius = v[5];
-      ball.mass = v[6];
-      if (!s.world.balls.empty() && !(s.world.balls.back().id < ball.id)) return std::string("balls: ids not ascending");
-      s.world.balls.push_back(ball);
-    }
-    field = "bodies";
-    s.bodies.clear();
-    for (const json& b : j.at("bodies")) {
-      if (!b.is_array() || b.size() != 14) return std::string("bodies: each must be an array of 14 values");
-      sim::Body body;
-      body.kind = enum_from(b[1], sim::BodyKind::rocket, "body kind");
-      body.owner = b[2].get<std::uint32_t>();
-      body.index = b[3].get<std::int64_t>();
-      body.spec.mass = b[4].get<double>();
-      body.spec.radius_u = b[5].get<double>();
-      body.spec.accel_u_per_s2 = b[6].get<double>();
-      body.spec.vmax_u_per_s = b[7].get<double>();
-      body.spec.role = enum_from(b[8], sim::EnemyRole::chaser, "enemy role");
-      body.goal = {b[9].get<double>(), b[10].get<double>()};
-      body.credit = b[11].get<std::uint32_t>();
-      body.credit_tick = b[12].get<std::int64_t>();
-      body.expires_tick = b[13].get<std::int64_t>();
-      if (!s.bodies.emplace(sim::BallId(b[0].get<std::uint32_t>()), body).second)
-        return std::string("bodies: an id twice");
-    }
+    read_object(j, s, kMatchFields);
   } catch (const std::exception& e) {
-    return std::string("checkpoint: ") + field + ": " + e.what();
+    return std::string("checkpoint: ") + e.what();
   }
   return s;
 }

@@ -127,7 +127,23 @@ TEST_CASE("Journal: a match state survives JSON bit for bit", "[journal]") {
   broken["players"][0]["eco"] = "rich";
   auto bad = host::match_state_from_json(broken, sim::make_match(p.cfg, 7));
   REQUIRE(std::holds_alternative<std::string>(bad));
-  CHECK_THAT(std::get<std::string>(bad), Catch::Contains("checkpoint: players"));
+  CHECK(std::get<std::string>(bad) == "checkpoint: players: 0: eco: must be an array of 15 values");
+
+  // The tables' messages name the path to a bad value (rows by their field's name).
+  auto error_of = [&](auto edit) {
+    auto k = j;
+    edit(k);
+    auto r = host::match_state_from_json(k, sim::make_match(p.cfg, 7));
+    return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string("read");
+  };
+  CHECK_THAT(error_of([](auto& k) { k["balls"][0][2] = "up"; }), Catch::StartsWith("checkpoint: balls: 0: y: "));
+  CHECK(error_of([](auto& k) { k["balls"][0].erase(6); }) == "checkpoint: balls: 0: must be an array of 7 values");
+  CHECK(error_of([](auto& k) { k["players"][1]["id"] = 1; }) == "checkpoint: players: ids not ascending");
+  CHECK(error_of([](auto& k) { k["phase"] = 9; }) == "checkpoint: phase: out of range, got 9");
+  if (!p.state.bodies.empty()) {
+    CHECK(error_of([](auto& k) { k["bodies"][0][1] = 7; }) == "checkpoint: bodies: 0: kind: out of range, got 7");
+    CHECK(error_of([](auto& k) { k["bodies"].push_back(k["bodies"][0]); }) == "checkpoint: bodies: an id twice");
+  }
 }
 
 TEST_CASE("Journal: round trip to the last tick, sessions and event numbers included", "[journal]") {

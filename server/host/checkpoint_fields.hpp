@@ -1,0 +1,351 @@
+// The field-table machinery of the checkpoint (internal to match_state_json.cpp), after
+// protocol/src/fields.hpp: a struct is one table of fields, each named once with its key
+// and its kind, and the table drives both the writer and the reader. A table is written
+// as a JSON object (keys) or as a positional array (a row: balls and bodies are many).
+// Every member of the struct has a row in its table, those left out of the file included
+// (`Skip`), and names_every_member() checks that at compile time: a member added to a
+// struct and not to its table does not build. nlohmann-json here, not the wire's
+// byte-driven readers: a checkpoint is a file record (ARCHITECTURE.md).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fts/sim/id.hpp"
+#include "fts/sim/rng.hpp"
+
+namespace fts::host::checkpoint {
+
+using nlohmann::json;
+
+// ---- the member count of an aggregate: the most "anythings" it can be braced from ----
+// Counted down from kMaxMembers: a shorter list would leave members to their defaults,
+// which fails for a member without an implicit default (sim::Rng's is explicit).
+struct Anything {
+  template <class T>
+  operator T() const;  // NOLINT(google-explicit-constructor); declared only: unevaluated use
+};
+
+inline constexpr std::size_t kMaxMembers = 24;
+
+template <class T, std::size_t... I>
+constexpr bool braces_from(std::index_sequence<I...>) {
+  return requires { T{(void(I), Anything{})...}; };
+}
+
+template <class T, std::size_t N = kMaxMembers>
+constexpr std::size_t member_count() {
+  static_assert(std::is_aggregate_v<T>, "a checkpoint table is for an aggregate struct");
+  if constexpr (N == 0) return 0;
+  else if constexpr (braces_from<T>(std::make_index_sequence<N>{})) return N;
+  else return member_count<T, N - 1>();
+}
+
+template <class M, class Table>
+constexpr bool names_every_member(const Table&) {
+  static_assert(member_count<M>() < kMaxMembers, "raise kMaxMembers");
+  return std::tuple_size_v<Table> == member_count<M>();
+}
+
+// ---- a field: key, member, kind -----------------------------------------------------
+
+template <class M, class T, class K>
+struct Field {
+  std::string_view key;
+  T M::*member;
+  K kind;
+  bool may_be_absent = false;  // absent in older checkpoints: keeps the struct's default
+};
+
+template <class M, class T, class K>
+constexpr Field<M, T, K> field(std::string_view key, T M::*member, K kind, bool may_be_absent = false) {
+  return {key, member, kind, may_be_absent};
+}
+
+// A member made again by make_match(config, seed) (the config, the arena, the physics)
+// or not state at all (a step's working memory): named, never written.
+struct Skip {};
+
+// `what` of the value in j, as a message that names the path to it.
+[[noreturn]] inline void rethrow_at(std::string_view where, const std::exception& e) {
+  throw std::invalid_argument(std::string(where) + ": " + e.what());
+}
+
+// ---- value kinds ------------------------------------------------------------------------
+
+// A number, boolean or string as itself.
+template <class T>
+struct Value {
+  json put(const T& v) const { return v; }
+  void get(const json& j, T& v) const { v = j.get<T>(); }
+};
+
+// A typed id as its number.
+struct IdValue {
+  template <class Tag>
+  json put(sim::Id<Tag> v) const { return v.value; }
+  template <class Tag>
+  void get(const json& j, sim::Id<Tag>& v) const { v = j.get<std::uint32_t>(); }
+};
+
+// An enum as its number, 0..last.
+template <class E>
+struct Enum {
+  E last;
+  json put(E v) const { return static_cast<int>(v); }
+  void get(const json& j, E& v) const {
+    const auto n = j.get<std::uint64_t>();
+    if (n > static_cast<std::uint64_t>(last)) throw std::invalid_argument("out of range, got " + j.dump());
+    v = static_cast<E>(n);
+  }
+};
+
+// Exactly N values of one type.
+template <class T, std::size_t N>
+struct Array {
+  json put(const std::array<T, N>& v) const { return v; }
+  void get(const json& j, std::array<T, N>& v) const {
+    if (!j.is_array() || j.size() != N) throw std::invalid_argument("must be an array of " + std::to_string(N) + " values");
+    for (std::size_t i = 0; i < N; ++i) v[i] = j[i].get<T>();
+  }
+};
+
+// The generator's four words of state.
+struct RngState {
+  json put(const sim::Rng& r) const { return Array<std::uint64_t, 4>{}.put(r.state()); }
+  void get(const json& j, sim::Rng& r) const {
+    std::array<std::uint64_t, 4> s{};
+    Array<std::uint64_t, 4>{}.get(j, s);
+    r.set_state(s);
+  }
+};
+
+// ---- tables: object and row -------------------------------------------------------------
+
+template <class K>
+inline constexpr bool is_skip = std::is_same_v<K, Skip>;
+
+template <class Table>
+struct Splice;
+template <class K>
+struct is_splice : std::false_type {};
+template <class Table>
+struct is_splice<Splice<Table>> : std::true_type {};
+
+// Values a field takes in a row: none for Skip, its table's for Splice, else one.
+template <class K>
+constexpr std::size_t width_of(const K& kind);
+
+template <class Table>
+constexpr std::size_t row_width(const Table& table) {
+  return std::apply([](const auto&... f) { return (std::size_t{0} + ... + width_of(f.kind)); }, table);
+}
+
+// A struct member whose own fields are written at its parent's level (the world's balls
+// among the match's keys; a position's x and y among a ball's values).
+template <class Table>
+struct Splice {
+  Table table;
+};
+
+template <class K>
+constexpr std::size_t width_of(const K& kind) {
+  if constexpr (is_skip<K>) return 0;
+  else if constexpr (is_splice<K>::value) return row_width(kind.table);
+  else return 1;
+}
+
+template <class M, class Table>
+void write_object(json& j, const M& m, const Table& table);
+template <class M, class Table>
+void read_object(const json& j, M& m, const Table& table);
+template <class M, class Table>
+void write_row(json& row, const M& m, const Table& table);
+template <class M, class Table>
+void read_row(const json& row, std::size_t& at, M& m, const Table& table);
+
+template <class M, class Table>
+void write_object(json& j, const M& m, const Table& table) {
+  std::apply(
+      [&](const auto&... f) {
+        (
+            [&] {
+              using K = std::decay_t<decltype(f.kind)>;
+              if constexpr (is_splice<K>::value) write_object(j, m.*f.member, f.kind.table);
+              else if constexpr (!is_skip<K>) j[std::string(f.key)] = f.kind.put(m.*f.member);
+            }(),
+            ...);
+      },
+      table);
+}
+
+template <class M, class Table>
+void read_object(const json& j, M& m, const Table& table) {
+  std::apply(
+      [&](const auto&... f) {
+        (
+            [&] {
+              using K = std::decay_t<decltype(f.kind)>;
+              if constexpr (is_splice<K>::value) {
+                read_object(j, m.*f.member, f.kind.table);
+              } else if constexpr (!is_skip<K>) {
+                if (f.may_be_absent && !j.contains(f.key)) return;
+                try {
+                  f.kind.get(j.at(f.key), m.*f.member);
+                } catch (const std::exception& e) {
+                  rethrow_at(f.key, e);
+                }
+              }
+            }(),
+            ...);
+      },
+      table);
+}
+
+template <class M, class Table>
+void write_row(json& row, const M& m, const Table& table) {
+  std::apply(
+      [&](const auto&... f) {
+        (
+            [&] {
+              using K = std::decay_t<decltype(f.kind)>;
+              if constexpr (is_splice<K>::value) write_row(row, m.*f.member, f.kind.table);
+              else if constexpr (!is_skip<K>) row.push_back(f.kind.put(m.*f.member));
+            }(),
+            ...);
+      },
+      table);
+}
+
+// Reads the table's values from row[at...], advancing `at`.
+template <class M, class Table>
+void read_row(const json& row, std::size_t& at, M& m, const Table& table) {
+  std::apply(
+      [&](const auto&... f) {
+        (
+            [&] {
+              using K = std::decay_t<decltype(f.kind)>;
+              if constexpr (is_splice<K>::value) {
+                read_row(row, at, m.*f.member, f.kind.table);
+              } else if constexpr (!is_skip<K>) {
+                try {
+                  f.kind.get(row[at++], m.*f.member);
+                } catch (const std::exception& e) {
+                  rethrow_at(f.key, e);
+                }
+              }
+            }(),
+            ...);
+      },
+      table);
+}
+
+// ---- record kinds: a struct inside a value ------------------------------------------------
+
+// A struct as an object of its table's keys.
+template <class Table>
+struct Object {
+  Table table;
+  template <class T>
+  json put(const T& v) const {
+    json j = json::object();
+    write_object(j, v, table);
+    return j;
+  }
+  template <class T>
+  void get(const json& j, T& v) const {
+    if (!j.is_object()) throw std::invalid_argument("must be an object, got " + j.dump());
+    read_object(j, v, table);
+  }
+};
+
+// A struct as an array of its table's values, by position.
+template <class Table>
+struct Row {
+  Table table;
+  template <class T>
+  json put(const T& v) const {
+    json j = json::array();
+    write_row(j, v, table);
+    return j;
+  }
+  template <class T>
+  void get(const json& j, T& v) const {
+    const std::size_t n = row_width(table);
+    if (!j.is_array() || j.size() != n) throw std::invalid_argument("must be an array of " + std::to_string(n) + " values");
+    std::size_t at = 0;
+    read_row(j, at, v, table);
+  }
+};
+
+// A vector of records whose ids ascend strictly (the match keeps players and balls so).
+template <class K>
+struct Ascending {
+  K record;
+  template <class T>
+  json put(const std::vector<T>& v) const {
+    json j = json::array();
+    for (const T& x : v) j.push_back(record.put(x));
+    return j;
+  }
+  template <class T>
+  void get(const json& j, std::vector<T>& v) const {
+    if (!j.is_array()) throw std::invalid_argument("must be an array");
+    v.clear();
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      T x{};
+      try {
+        record.get(j[i], x);
+      } catch (const std::exception& e) {
+        rethrow_at(std::to_string(i), e);
+      }
+      if (!v.empty() && !(v.back().id < x.id)) throw std::invalid_argument("ids not ascending");
+      v.push_back(std::move(x));
+    }
+  }
+};
+
+// A map of records by id, each written as an Entry {id, value} (a row whose first value
+// is the id); an id twice is refused.
+template <class Entry, class K>
+struct ById {
+  K entry;
+  template <class Id, class V>
+  json put(const std::map<Id, V>& m) const {
+    json j = json::array();
+    for (const auto& [id, value] : m) j.push_back(entry.put(Entry{id, value}));
+    return j;
+  }
+  template <class Id, class V>
+  void get(const json& j, std::map<Id, V>& m) const {
+    if (!j.is_array()) throw std::invalid_argument("must be an array");
+    m.clear();
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      Entry e{};
+      try {
+        entry.get(j[i], e);
+      } catch (const std::exception& ex) {
+        rethrow_at(std::to_string(i), ex);
+      }
+      if (!m.emplace(e.id, std::move(e.value)).second) throw std::invalid_argument("an id twice");
+    }
+  }
+};
+
+template <class Entry, class K>
+constexpr ById<Entry, K> by_id(K entry) {
+  return {entry};
+}
+
+}  // namespace fts::host::checkpoint
