@@ -192,10 +192,7 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
 }
 
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
-  ++stats_.datagrams_in;
-  stats_.bytes_in += bytes.size();
-  ++stats_.totals.datagrams_in;
-  stats_.totals.bytes_in += bytes.size();
+  stats_.received(bytes.size());
   if (!bans_.empty()) {
     auto it = bans_.find(protocol::host_of(from));
     if (it != bans_.end() && now_ms < it->second) {
@@ -214,12 +211,7 @@ std::vector<protocol::Outgoing> GameHost::take_datagrams() {
 
 void GameHost::take_datagrams(std::vector<protocol::Outgoing>& batch) {
   endpoint_.take_datagrams(batch);
-  for (const auto& d : batch) {
-    ++stats_.datagrams_out;
-    stats_.bytes_out += d.bytes.size();
-    ++stats_.totals.datagrams_out;
-    stats_.totals.bytes_out += d.bytes.size();
-  }
+  for (const auto& d : batch) stats_.sent(d.bytes.size());
 }
 
 void GameHost::answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {

@@ -16,4 +16,9 @@ Percentiles percentiles(std::vector<double>& v) {
   return p;
 }
 
+Stats::Totals Stats::Totals::operator-(const Totals& e) const {
+  return {datagrams_in - e.datagrams_in, datagrams_out - e.datagrams_out, bytes_in - e.bytes_in,
+          bytes_out - e.bytes_out,       purchases - e.purchases,         purchases_refused - e.purchases_refused};
+}
+
 }  // namespace fts::server

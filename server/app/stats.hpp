@@ -1,9 +1,7 @@
-// Counters and tick-time percentiles for the periodic stats line.
+// Counters and tick-time percentiles for the periodic stats line and /metrics.
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <string>
 #include <vector>
 
 namespace fts::server {
@@ -17,20 +15,33 @@ struct Percentiles {
 Percentiles percentiles(std::vector<double>& samples_us);
 
 struct Stats {
-  std::uint64_t datagrams_in = 0, datagrams_out = 0, bytes_in = 0, bytes_out = 0;
-  std::uint64_t skipped_ticks = 0;
-  std::map<std::string, std::uint64_t> drops;  // by reason, ordered for stable output
-  std::vector<double> tick_us;
-  // Since the start, never reset: the counters /metrics reports (server/fleet/metrics).
+  // Since the start, never reset, and the only place they are counted: /metrics
+  // (server/fleet/metrics) reports them, the stats line their change since its last line.
   struct Totals {
     std::uint64_t datagrams_in = 0, datagrams_out = 0, bytes_in = 0, bytes_out = 0;
     std::uint64_t purchases = 0, purchases_refused = 0;
+    Totals operator-(const Totals& earlier) const;
   } totals;
+  std::uint64_t skipped_ticks = 0;
+  std::vector<double> tick_us;  // this interval's tick times
+
+  void received(std::size_t bytes) {
+    ++totals.datagrams_in;
+    totals.bytes_in += bytes;
+  }
+  void sent(std::size_t bytes) {
+    ++totals.datagrams_out;
+    totals.bytes_out += bytes;
+  }
+  // The totals' change since the last reset_interval().
+  Totals interval() const { return totals - interval_start_; }
   void reset_interval() {
-    datagrams_in = datagrams_out = bytes_in = bytes_out = 0;
-    drops.clear();
+    interval_start_ = totals;
     tick_us.clear();
   }
+
+ private:
+  Totals interval_start_;
 };
 
 }  // namespace fts::server

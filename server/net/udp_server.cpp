@@ -199,6 +199,7 @@ class Loop {
       if (ec) return;
       Stats& s = host_.stats();
       const auto p = percentiles(s.tick_us);
+      const Stats::Totals interval = s.interval();
       nlohmann::ordered_json drops = nlohmann::ordered_json::object();
       const auto& rejects = host_.endpoint().rejects();
       for (std::size_t i = 0; i < protocol::kRejectCount; ++i) {
@@ -222,8 +223,8 @@ class Loop {
                   {"tick", host_.match().tick}, {"rooms", host_.room_ids().size()},
                   {"tick_p50_us", p.p50_us}, {"tick_p99_us", p.p99_us}, {"tick_max_us", p.max_us},
                   {"ticks_skipped_total", clock_.skipped()},
-                  {"datagrams_in", s.datagrams_in}, {"datagrams_out", s.datagrams_out},
-                  {"bytes_in", s.bytes_in}, {"bytes_out", s.bytes_out},
+                  {"datagrams_in", interval.datagrams_in}, {"datagrams_out", interval.datagrams_out},
+                  {"bytes_in", interval.bytes_in}, {"bytes_out", interval.bytes_out},
                   {"send_errors", socket_.send_errors()}, {"drops", drops}, {"session_drops", session_drops},
                   // Input frames against the tick they named (PROTOCOL.md 4.5), in the open rooms.
                   {"inputs", {{"on_time", timing.on_time}, {"late", timing.late}, {"untimed", timing.untimed},

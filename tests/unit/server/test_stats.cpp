@@ -17,3 +17,20 @@ TEST_CASE("Stats: percentiles by nearest rank", "[server][stats]") {
   std::vector<double> one{7};
   CHECK(fts::sim::percentile(one, 0.99) == 7);
 }
+
+TEST_CASE("Stats: datagrams and bytes counted once, the interval is the totals' change", "[server][stats]") {
+  fts::server::Stats s;
+  s.received(100);
+  s.sent(40);
+  s.sent(60);
+  CHECK(s.totals.datagrams_in == 1);
+  CHECK(s.totals.bytes_out == 100);
+  CHECK(s.interval().datagrams_out == 2);
+  s.reset_interval();
+  s.received(5);
+  CHECK(s.interval().datagrams_in == 1);
+  CHECK(s.interval().bytes_in == 5);
+  CHECK(s.interval().datagrams_out == 0);
+  CHECK(s.totals.datagrams_in == 2);
+  CHECK(s.totals.bytes_in == 105);
+}
