@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "app/admission.hpp"
+
 #include "fts/room/snapshot_build.hpp"
 #include "fts/protocol/limits.hpp"
 #include "fts/room/text.hpp"
@@ -14,13 +16,6 @@ std::uint64_t fold_key(const protocol::ServerKey& key) {
   std::uint64_t v = 0x6A09E667F3BCC908ull;
   for (auto b : key) v = (v ^ b) * 0x100000001B3ull;
   return v;
-}
-
-protocol::Admission refusal(std::string code, std::string message) {
-  protocol::Admission a;
-  a.error = std::move(code);
-  a.message = std::move(message);
-  return a;
 }
 
 }  // namespace
@@ -41,12 +36,8 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.max_sessions_total = (4 * static_cast<std::size_t>(o.max_players) + o.max_spectators) * o.max_rooms;
   c.timeout_ms = o.timeout_ms;
   c.reconnect_window_ms = o.reconnect_window_ms;
-  c.max_sessions_per_address = o.max_per_address;
   c.idle_timeout_ms = o.idle_timeout_ms;
-  // A host may send what its sessions may send together.
-  c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * o.max_per_address;
-  // ... and may shake hands as often as it may seat players (never under the default 10/s).
-  c.hellos_per_s = c.hello_burst = std::max<std::uint32_t>(c.hellos_per_s, o.max_per_address);
+  apply_address_limits(c, o.max_per_address);
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
   c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
@@ -128,78 +119,9 @@ Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_pri
   return rooms_.emplace(id, std::move(room)).first->second.get();
 }
 
-// Called by the endpoint for a new player whose hello passed every other check.
-protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
-  const std::string& how = ask.join;
-  auto admitted = [&](const Room& r, bool spectator) {
-    protocol::Admission a;
-    a.room = r.id();
-    a.code = r.code();
-    a.spectator = spectator;
-    a.server_tick = static_cast<std::uint32_t>(r.match().tick);
-    return a;
-  };
-  if (refuse_players_) {
-    log_record(spdlog::level::info, "join_refused", {{"address", ask.from}, {"reason", "draining"}});
-    return refusal("draining", "this server is shutting down; join another");
-  }
-  auto new_room = [&](bool is_private) -> protocol::Admission {
-    if (draining_) return refusal("server_full", "the server is draining (about to restart): no new rooms");
-    if (rooms_.size() >= options_.max_rooms)
-      return refusal("server_full", "the server has " + std::to_string(options_.max_rooms) +
-                                        " rooms already, all full; try again later");
-    Room* r = create_room(is_private);
-    if (!r) return refusal("server_full", "no room code is free");
-    return admitted(*r, false);
-  };
-  if (how.empty() || how == "quick") {
-    // The public room in the lobby or the shop with the most players and a free seat
-    // (the lowest id among equals), else a new one.
-    const Room* best = nullptr;
-    std::size_t best_seats = 0;
-    for (const auto& [id, r] : rooms_) {
-      if (r->is_private()) continue;
-      const auto phase = r->match().phase;
-      if (phase != sim::Phase::lobby && phase != sim::Phase::shop) continue;
-      const std::size_t seats = endpoint_.seats_in_room(id);
-      if (seats >= options_.max_players) continue;
-      if (!best || seats > best_seats) {
-        best = r.get();
-        best_seats = seats;
-      }
-    }
-    if (best) return admitted(*best, false);
-    return new_room(false);
-  }
-  if (how == "create") return new_room(true);
-  if (how == "join" || how == "spectate") {
-    const auto code = normalize_room_code(ask.room);
-    if (!code) return refusal("no_such_room", "a room code is 5 letters (A-Z without I, L, O)");
-    const Room* r = room_by_code(*code);
-    if (!r) return refusal("no_such_room", "there is no room " + *code + " on this server");
-    if (how == "join") {
-      if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
-        return refusal("room_full", "room " + *code + " has all " + std::to_string(options_.max_players) +
-                                        " seats taken; spectate it or try again later");
-      return admitted(*r, false);
-    }
-    if (endpoint_.spectators_in_room(r->id()) >= options_.max_spectators)
-      return refusal("room_full", "room " + *code + " has " + std::to_string(options_.max_spectators) +
-                                      " spectators already (the most it takes)");
-    return admitted(*r, true);
-  }
-  return refusal("bad_join", "join must be quick, create, join or spectate");
-}
-
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   stats_.received(bytes.size());
-  if (!bans_.empty()) {
-    auto it = bans_.find(protocol::host_of(from));
-    if (it != bans_.end() && now_ms < it->second) {
-      ++banned_datagrams_;  // dropped without an answer: a ban costs the server nothing
-      return;
-    }
-  }
+  if (bans_.drops(from, now_ms)) return;  // dropped without an answer: a ban costs the server nothing
   endpoint_.receive_later(from, bytes, now_ms);  // opened at the tick, on the pool
 }
 
@@ -334,7 +256,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   for (auto id : idle) close_room(id, "room_closed", "the room was empty and is closed", now_ms);
   std::erase_if(closing_journals_, [](const auto& j) { return j->stopped(); });
-  if (!bans_.empty()) std::erase_if(bans_, [&](const auto& kv) { return now_ms >= kv.second; });
+  bans_.expire(now_ms);
 }
 
 void GameHost::close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms) {
@@ -351,6 +273,16 @@ void GameHost::close_room(std::uint32_t id, const std::string& code, const std::
   endpoint_.forget_room(id);
   rooms_.erase(it);
   if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
+}
+
+void GameHost::kick(std::uint32_t player_id, const std::string& code, const std::string& message,
+                    std::uint64_t now_ms) {
+  endpoint_.kick(player_id, code, message, now_ms);
+}
+
+void GameHost::stop_new_rooms() {
+  draining_ = true;
+  if (rooms_.empty()) log_record(spdlog::level::info, "drained", {});
 }
 
 void GameHost::shutdown(std::uint64_t now_ms) {

@@ -1,8 +1,10 @@
 // The server without its socket, process part: the one endpoint of the port (sessions,
-// limits, rate caps are process-wide), the room table and its lifecycle, the host's
-// console commands. Each room (app/room.hpp) is a match of its own; the tick steps the
-// rooms on --threads threads (issue 29) and does everything else on the caller's thread,
-// in room-id order. Driven by the time passed in, so tests step it by hand.
+// limits, rate caps are process-wide), the room table and its lifecycle, and what the
+// host's console (app/console_commands.hpp) asks of them. Admission (which room a new
+// player gets) is app/admission.cpp; bans are app/bans.hpp. Each room (app/room.hpp) is
+// a match of its own; the tick steps the rooms on --threads threads (issue 29) and does
+// everything else on the caller's thread, in room-id order. Driven by the time passed
+// in, so tests step it by hand.
 //
 // What the threads share, and how: the endpoint (sessions, queues, limits), the room
 // table, codes, chat and the console are touched only by the caller's thread, except in
@@ -31,6 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bans.hpp"
 #include "app/chat_relay.hpp"
 #include "app/log.hpp"
 #include "app/options.hpp"
@@ -63,9 +66,18 @@ class GameHost {
   // (ServerEndpoint::take_datagrams).
   void take_datagrams(std::vector<protocol::Outgoing>& batch);
 
-  // The console (JSON in, JSON out; PROTOCOL-free: see README "The host's console").
-  // Bad input gets {"ok":false,"error":...} and changes nothing.
-  nlohmann::ordered_json command(const nlohmann::json& request, std::uint64_t now_ms);
+  // ---- what the console's commands (app/console_commands.cpp) do
+  // Ends a player's session; its client gets error `code` with `message`.
+  void kick(std::uint32_t player_id, const std::string& code, const std::string& message, std::uint64_t now_ms);
+  // Kicks the room's clients with `code` and `message`, finishes its journal and record.
+  void close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms);
+  // A chat line from the host to every connected client; how many were told.
+  std::size_t announce(const std::string& text, std::uint64_t now_ms);
+  // The console's drain: no new rooms from now on (see drained()).
+  void stop_new_rooms();
+  Bans& bans() { return bans_; }
+  const Bans& bans() const { return bans_; }
+  const Options& options() const { return options_; }
   // drain was asked and the last room has closed: the process should exit 0.
   bool drained() const { return draining_ && rooms_.empty(); }
   // The fleet's drain (SIGTERM under Agones): no new rooms, and a new player is refused
@@ -114,15 +126,11 @@ class GameHost {
   void start_journal(Room& r);
   void finish_journal(Room& r);
   bool journal_exists(const std::string& code) const;  // a directory of that code under the root
-  void close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms);
   void dispatch(std::uint64_t now_ms);
   void answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
   // A chat command: refused, or relayed to everybody connected in the sender's room.
   void relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
-  // The console's announce: a chat line from the host to every connected client.
-  std::size_t announce(const std::string& text, std::uint64_t now_ms);
   std::string room_list_text() const;
-  nlohmann::ordered_json room_json(const Room& r) const;
 
   Options options_;
   sim::MatchConfig config_;
@@ -137,8 +145,7 @@ class GameHost {
   ChatRelay chat_;
   std::optional<host::JournalConfig> journal_base_;  // journal_rooms(): dir is the root
   std::vector<std::unique_ptr<host::JournalWriter>> closing_journals_;
-  std::map<std::string, std::uint64_t, std::less<>> bans_;  // host -> until (ms)
-  std::uint64_t banned_datagrams_ = 0;
+  Bans bans_;
   std::ostream* first_record_ = nullptr;
   std::string record_dir_;
   std::string version_;

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/console_commands.hpp"
+
 namespace fts::server {
 
 namespace asio = boost::asio;
@@ -82,56 +84,6 @@ void ConsoleServer::accept() {
     if (!ec && *open_ < kMaxConnections) std::make_shared<Connection>(std::move(s), handle_, open_)->read();
     accept();
   });
-}
-
-std::string console_request(const std::vector<std::string>& words, std::string& error) {
-  if (words.empty()) {
-    error = "a command is needed: rooms, players [ROOM], kick PLAYER [REASON], ban ADDRESS [MINUTES], announce TEXT, "
-            "close ROOM, drain, stats";
-    return "";
-  }
-  const std::string& cmd = words[0];
-  if (!cmd.empty() && cmd.front() == '{') return cmd;  // a request object as is
-  nlohmann::json j;
-  j["cmd"] = cmd;
-  auto number = [&](const std::string& s, const char* what) -> std::optional<std::uint64_t> {
-    std::uint64_t v = 0;
-    if (s.empty() || s.size() > 12 || s.find_first_not_of("0123456789") != std::string::npos) {
-      error = std::string(what) + " must be a number, got \"" + s + "\"";
-      return std::nullopt;
-    }
-    v = std::stoull(s);
-    return v;
-  };
-  if (cmd == "players" && words.size() > 1) {
-    j["room"] = words[1];
-  } else if (cmd == "kick") {
-    if (words.size() < 2) return error = "kick PLAYER [REASON]", "";
-    auto id = number(words[1], "PLAYER");
-    if (!id) return "";
-    j["player"] = *id;
-    std::string reason;
-    for (std::size_t i = 2; i < words.size(); ++i) reason += (i > 2 ? " " : "") + words[i];
-    if (!reason.empty()) j["reason"] = reason;
-  } else if (cmd == "ban") {
-    if (words.size() < 2) return error = "ban ADDRESS [MINUTES]", "";
-    j["address"] = words[1];
-    if (words.size() > 2) {
-      auto m = number(words[2], "MINUTES");
-      if (!m) return "";
-      j["minutes"] = *m;
-    }
-  } else if (cmd == "announce") {
-    // The words after the command are the line, as `kick`'s reason: quoting is optional.
-    std::string text;
-    for (std::size_t i = 1; i < words.size(); ++i) text += (i > 1 ? " " : "") + words[i];
-    if (text.find_first_not_of(' ') == std::string::npos) return error = "announce TEXT: the line every player is shown", "";
-    j["text"] = text;
-  } else if (cmd == "close") {
-    if (words.size() < 2) return error = "close ROOM", "";
-    j["room"] = words[1];
-  }
-  return j.dump();
 }
 
 int run_console_client(const std::string& path, const std::vector<std::string>& words) {

@@ -36,10 +36,7 @@ class ConsoleServer {
   bool bound_ = false;
 };
 
-// `CMD ARGS...` -> the request object's JSON text, or "" with `error` set.
-std::string console_request(const std::vector<std::string>& words, std::string& error);
-
-// Front end: sends one request to the socket and prints the reply. Exit code: 0 ok,
+// Front end: sends one request (console_request of app/console_commands.hpp) to the socket and prints the reply. Exit code: 0 ok,
 // 1 the server refused the command, 2 usage or connection error.
 int run_console_client(const std::string& path, const std::vector<std::string>& words);
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "app/console_commands.hpp"
 #include "app/log.hpp"
 #include "app/tick_clock.hpp"
 #include "fleet/fleet.hpp"
@@ -91,7 +92,7 @@ class Loop {
       reply = {{"ok", false}, {"error", "not a JSON line"}};
       log_record(spdlog::level::warn, "console", {{"request", "(not JSON)"}, {"ok", false}});
     } else {
-      reply = host_.command(request, now_ms());
+      reply = console_command(host_, request, now_ms());
     }
     flush();
     // A drain with no room left ends the process at the next tick, after this reply is

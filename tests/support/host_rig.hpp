@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/console_commands.hpp"
 #include "app/game_host.hpp"
 #include "fts/protocol/client.hpp"
 
@@ -46,6 +47,12 @@ struct HostRig {
       const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
       clients[idx]->receive(out.bytes, now);
     }
+  }
+  // A console request (JSON text) and its reply; the datagrams it caused are delivered.
+  nlohmann::ordered_json console(const std::string& text) {
+    auto reply = server::console_command(*host, nlohmann::json::parse(text), now);
+    deliver();
+    return reply;
   }
   void tick() {
     send();

@@ -156,7 +156,7 @@ TEST_CASE("Host resume: every room comes back under its code, each player by tok
 
   // A room that closes takes its journal with it: a later resume does not bring it back.
   const std::string closed = seats[1].code;
-  CHECK(b.host->command({{"cmd", "close"}, {"room", closed}}, b.now)["ok"] == true);
+  CHECK(b.console(R"({"cmd":"close","room":")" + closed + R"("})")["ok"] == true);
   REQUIRE(journals_finished(b));
   CHECK_FALSE(fs::exists(root / closed));
   CHECK_FALSE(fs::exists(root / (closed + ".closed")));

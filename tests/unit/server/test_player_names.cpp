@@ -31,11 +31,6 @@ struct Rig : test::HostRig {
   void ticks(int n) {
     for (int i = 0; i < n; ++i) tick();
   }
-  nlohmann::ordered_json console(const std::string& text) {
-    auto reply = host->command(nlohmann::json::parse(text), now);
-    deliver();
-    return reply;
-  }
 };
 
 }  // namespace

@@ -39,11 +39,6 @@ struct Rig : test::HostRig {
     for (int i = 0; i < n; ++i) tick();
   }
   static std::string room_of(const protocol::ClientEndpoint& c) { return c.welcome() ? c.welcome()->room : ""; }
-  nlohmann::ordered_json console(const std::string& text) {
-    auto reply = host->command(nlohmann::json::parse(text), now);
-    deliver();
-    return reply;
-  }
 };
 
 }  // namespace

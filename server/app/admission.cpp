@@ -1,0 +1,89 @@
+#include "app/admission.hpp"
+
+#include "app/game_host.hpp"
+
+namespace fts::server {
+namespace {
+
+protocol::Admission refusal(std::string code, std::string message) {
+  protocol::Admission a;
+  a.error = std::move(code);
+  a.message = std::move(message);
+  return a;
+}
+
+}  // namespace
+
+void apply_address_limits(protocol::ServerConfig& c, std::uint32_t max_per_address) {
+  // The seats one host may hold (the endpoint refuses the next with address_full).
+  c.max_sessions_per_address = max_per_address;
+  // A host may send what its sessions may send together...
+  c.address_datagrams_per_s = c.address_datagram_burst = c.session_datagrams_per_s * max_per_address;
+  // ... and may shake hands as often as it may seat players (never under the default 10/s).
+  c.hellos_per_s = c.hello_burst = std::max<std::uint32_t>(c.hellos_per_s, max_per_address);
+}
+
+// Called by the endpoint for a new player whose hello passed every other check.
+protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
+  const std::string& how = ask.join;
+  auto admitted = [&](const Room& r, bool spectator) {
+    protocol::Admission a;
+    a.room = r.id();
+    a.code = r.code();
+    a.spectator = spectator;
+    a.server_tick = static_cast<std::uint32_t>(r.match().tick);
+    return a;
+  };
+  if (refuse_players_) {
+    log_record(spdlog::level::info, "join_refused", {{"address", ask.from}, {"reason", "draining"}});
+    return refusal("draining", "this server is shutting down; join another");
+  }
+  auto new_room = [&](bool is_private) -> protocol::Admission {
+    if (draining_) return refusal("server_full", "the server is draining (about to restart): no new rooms");
+    if (rooms_.size() >= options_.max_rooms)
+      return refusal("server_full", "the server has " + std::to_string(options_.max_rooms) +
+                                        " rooms already, all full; try again later");
+    Room* r = create_room(is_private);
+    if (!r) return refusal("server_full", "no room code is free");
+    return admitted(*r, false);
+  };
+  if (how.empty() || how == "quick") {
+    // The public room in the lobby or the shop with the most players and a free seat
+    // (the lowest id among equals), else a new one.
+    const Room* best = nullptr;
+    std::size_t best_seats = 0;
+    for (const auto& [id, r] : rooms_) {
+      if (r->is_private()) continue;
+      const auto phase = r->match().phase;
+      if (phase != sim::Phase::lobby && phase != sim::Phase::shop) continue;
+      const std::size_t seats = endpoint_.seats_in_room(id);
+      if (seats >= options_.max_players) continue;
+      if (!best || seats > best_seats) {
+        best = r.get();
+        best_seats = seats;
+      }
+    }
+    if (best) return admitted(*best, false);
+    return new_room(false);
+  }
+  if (how == "create") return new_room(true);
+  if (how == "join" || how == "spectate") {
+    const auto code = normalize_room_code(ask.room);
+    if (!code) return refusal("no_such_room", "a room code is 5 letters (A-Z without I, L, O)");
+    const Room* r = room_by_code(*code);
+    if (!r) return refusal("no_such_room", "there is no room " + *code + " on this server");
+    if (how == "join") {
+      if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
+        return refusal("room_full", "room " + *code + " has all " + std::to_string(options_.max_players) +
+                                        " seats taken; spectate it or try again later");
+      return admitted(*r, false);
+    }
+    if (endpoint_.spectators_in_room(r->id()) >= options_.max_spectators)
+      return refusal("room_full", "room " + *code + " has " + std::to_string(options_.max_spectators) +
+                                      " spectators already (the most it takes)");
+    return admitted(*r, true);
+  }
+  return refusal("bad_join", "join must be quick, create, join or spectate");
+}
+
+}  // namespace fts::server
