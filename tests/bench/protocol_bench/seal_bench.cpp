@@ -1,6 +1,6 @@
 // Cost of sealing and opening one datagram (issue 12, PROTOCOL.md 5.7), one core. A
-// benchmark: figures are printed for BENCHMARKS.md, never asserted on time. Hidden from
-// the default run: fts_protocol_tests "[.bench][seal]".
+// benchmark: figures are printed for BENCHMARKS.md, never asserted on time. Run:
+// fts-protocol-bench "[seal]".
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -19,7 +19,7 @@ double ns_per(std::size_t n, std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-TEST_CASE("Seal and open cost per datagram", "[.bench][seal]") {
+TEST_CASE("Seal and open cost per datagram", "[bench][seal]") {
   SessionKeys k;
   for (std::size_t i = 0; i < k.rx.size(); ++i) k.rx[i] = static_cast<std::uint8_t>(i), k.tx[i] = static_cast<std::uint8_t>(~i);
   std::printf("| payload | seal (ns) | open (ns) | open, forged tag (ns) |\n|---|---|---|---|\n");
