@@ -18,6 +18,8 @@
 #include "term/io.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
+#include "ui/chat_line.hpp"
+#include "ui/game_frame.hpp"
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/link_meters.hpp"
@@ -27,6 +29,7 @@
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
 #include "ui/session_store.hpp"
+#include "ui/welcome_view.hpp"
 
 namespace asio = fts::io::asio;
 using fts::io::udp;
@@ -153,24 +156,10 @@ class Game {
     for (const KeyEvent& e : keys_.read(now)) handle_key(e, now);
   }
 
-  // The chat line being typed takes every key: Enter sends, Esc cancels.
   void chat_key(const KeyEvent& e, std::uint64_t now) {
-    if (e.action == KeyAction::release || is_report(e)) return;
-    if (e.key == Key::escape || e.key == Key::ctrl_c) {
-      view_.chat_open = false;
-      view_.chat_draft.clear();
-    } else if (e.key == Key::enter) {
-      const std::string line = sanitize(view_.chat_draft, kChatMaxChars);
-      view_.chat_open = false;
-      view_.chat_draft.clear();
-      if (!line.empty() && conn_.state() == proto::ClientState::connected)
-        pending_chats_.insert(conn_.endpoint().send_chat(line, now));
-    } else if (e.key == Key::backspace) {
-      if (!view_.chat_draft.empty()) view_.chat_draft.pop_back();
-    } else if (view_.chat_draft.size() < kChatMaxChars) {
-      if (e.key == Key::space) view_.chat_draft += ' ';
-      else if (e.key == Key::character && e.text != 0) view_.chat_draft += e.text;
-    }
+    const auto line = edit_chat_line(view_, e, kChatMaxChars);
+    if (line && !line->empty() && conn_.state() == proto::ClientState::connected)
+      pending_chats_.insert(conn_.endpoint().send_chat(*line, now));
   }
 
   void handle_key(const KeyEvent& e, std::uint64_t now) {
@@ -195,7 +184,7 @@ class Game {
       case ActionKind::quit:
         quit_asked_ = true;
         note("Quit? Press q again (or y) to leave, any other key to stay. Your coins are kept " +
-             std::to_string(reconnect_window_s()) + " s.");
+             std::to_string(reconnect_window_s(conn_.endpoint().welcome())) + " s.");
         return;
       case ActionKind::move:
         if (auto d = direction_of(e)) hold_.on_key(*d, e, now);
@@ -279,7 +268,8 @@ class Game {
     const proto::Snapshot* s = buffer_.newest();
     if (s == nullptr) return {};
     const std::optional<SteerBall> ball = steer_ball(*s, view_.my_player_id);
-    const double age_s = std::max(0.0, net_.server_tick(now) - static_cast<double>(s->tick)) / clock_rate();
+    const double ticks_old = std::max(0.0, net_.server_tick(now) - static_cast<double>(s->tick));
+    const double age_s = ticks_old / tick_rate_hz(conn_.endpoint().welcome());
     const double rtt_s = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms / 1000.0 : 0.0;
     return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, age_s + rtt_s / 2);
   }
@@ -290,14 +280,9 @@ class Game {
     if (conn_.state() == S::connected && endpoint.welcome() && noted_attempt_ != conn_.attempt()) {
       noted_attempt_ = conn_.attempt();
       const proto::Welcome& w = *endpoint.welcome();
-      view_.my_player_id = w.player_id;
-      view_.arena_width_u = w.arena_width_u;
-      view_.arena_height_u = w.arena_height_u;
-      view_.shop_terms = w.shop;
-      view_.tick_rate_hz = w.tick_rate_hz;
+      show_welcome(view_, w);
       net_.on_welcome(w);
       events_.start_at(w.server_tick);  // not what happened here before we came back
-      view_.room = room_label(w.room, w.spectator);
       note(w.reconnected ? "Reconnected: welcome back." : "Connected.");
       back_until_ms_ = w.reconnected ? now + 3000 : 0;  // and in the HUD, where no event scrolls it away
       if (!w.room.empty()) {
@@ -354,8 +339,8 @@ class Game {
       idle_ = true;
       steer_.stop();
       view_.chat_open = false;
-      note("Idle for a while: you left the match. Your coins are kept " + std::to_string(reconnect_window_s()) +
-           " s.");
+      note("Idle for a while: you left the match. Your coins are kept " +
+           std::to_string(reconnect_window_s(conn_.endpoint().welcome())) + " s.");
       view_.status = "idle: press a key to play again, q to quit";
       return;
     }
@@ -401,47 +386,9 @@ class Game {
   }
 
   void draw(std::uint64_t now) {
-    const TerminalSize size = painter_.size();
-    last_size_ = size;
+    last_size_ = painter_.size();
     view_.now_ms = now;
-    Screen screen(size);
-    if (const proto::Snapshot* newest = buffer_.newest()) {
-      if (newest->phase == proto::Phase::play) {
-        // Remote balls: behind the server clock by the jitter buffer's delay.
-        const double render_tick = net_.remote_tick(now, opts_.interp_delay_ms);
-        view_.delay_ms = static_cast<int>(std::lround(net_.remote_delay_ms()));
-        net_.frame_drawn(render_tick > static_cast<double>(newest->tick) + 1e-9, now);
-        const Frame f = buffer_.sample(render_tick);
-        // The own ball: predicted, at the tick its inputs act (else the snapshots').
-        if (const auto own = net_.predicting() ? net_.own_ball(now) : std::nullopt) {
-          net_.drawn(own->vx, own->vy, now);
-          proto::Snapshot a = *f.a, b = *f.b;
-          place_own_ball(a, view_.my_player_id, *own);
-          place_own_ball(b, view_.my_player_id, *own);
-          screen = render(a, b, f.alpha, size, view_);
-        } else {
-          for (const auto& ball : f.b->balls)  // what the screen shows of our ball's motion
-            if (ball.kind == proto::BallKind::player && ball.owner == view_.my_player_id) net_.drawn(ball.vx, ball.vy, now);
-          screen = render(*f.a, *f.b, f.alpha, size, view_);
-        }
-      } else {
-        screen = render(*newest, *newest, 0, size, view_);
-      }
-    } else {
-      proto::Snapshot empty;
-      screen = render(empty, empty, 0, size, view_);
-    }
-    painter_.paint(screen, view_.color);
-  }
-
-  std::uint64_t reconnect_window_s() const {
-    const auto& w = conn_.endpoint().welcome();
-    return (w ? w->reconnect_window_ms : 60000) / 1000;
-  }
-
-  double clock_rate() const {
-    const auto& w = conn_.endpoint().welcome();
-    return w && w->tick_rate_hz > 0 ? w->tick_rate_hz : 100.0;
+    painter_.paint(game_frame(buffer_, net_, view_, last_size_, now, opts_.interp_delay_ms), view_.color);
   }
 
   asio::io_context& io_;

@@ -130,5 +130,7 @@ class Bot {
 };
 
 std::optional<Behavior> parse_behavior(const std::string& s);
+// A phase as scripts (wait_phase) and reports name it: lobby, play, shop, over.
+const char* phase_name(protocol::Phase p);
 
 }  // namespace fts::bot

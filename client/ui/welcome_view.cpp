@@ -1,0 +1,24 @@
+#include "ui/welcome_view.hpp"
+
+#include "ui/start_screen.hpp"
+
+namespace fts::client {
+
+void show_welcome(ViewState& view, const protocol::Welcome& w) {
+  view.my_player_id = w.player_id;
+  view.arena_width_u = w.arena_width_u;
+  view.arena_height_u = w.arena_height_u;
+  view.shop_terms = w.shop;
+  view.tick_rate_hz = w.tick_rate_hz;
+  view.room = room_label(w.room, w.spectator);
+}
+
+std::uint64_t reconnect_window_s(const std::optional<protocol::Welcome>& w) {
+  return (w ? w->reconnect_window_ms : 60000) / 1000;
+}
+
+double tick_rate_hz(const std::optional<protocol::Welcome>& w) {
+  return w && w->tick_rate_hz > 0 ? w->tick_rate_hz : 100.0;
+}
+
+}  // namespace fts::client

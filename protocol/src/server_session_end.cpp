@@ -1,0 +1,80 @@
+// How a server session ends or comes back: closed over a queue cap, its connection lost,
+// released, kicked by the host, all told at shutdown; restored from a journal.
+#include "fts/protocol/server.hpp"
+
+namespace fts::protocol {
+
+// A session over a queue cap: what it queued is forgotten and it is closed, as yojimbo
+// disconnects a client whose queue is full. Invalidates `s`.
+void ServerEndpoint::overflow(Session& s, const std::string& what, std::uint64_t now_ms) {
+  rejects_.add(Reject::overflow);
+  const std::uint32_t id = s.player_id;
+  std::erase_if(commands_, [&](const PlayerCommand& c) { return c.player_id == id; });
+  std::erase_if(inputs_, [&](const PlayerInput& i) { return i.player_id == id; });
+  kick(id, "overflow",
+       "too many " + what + " waiting on this connection (results are not acknowledged); it is closed",
+       now_ms);
+}
+
+void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms) {
+  s.connected = false;
+  s.disconnected_ms = now_ms;
+  by_session_id_.erase(s.session_id);
+  by_address_.erase(s.address);
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit, s.room, s.spectator});
+}
+
+void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return;
+  by_session_id_.erase(it->second.session_id);
+  by_address_.erase(it->second.address);
+  events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason, false, it->second.room,
+                     it->second.spectator});
+  sessions_.erase(it);
+}
+
+void ServerEndpoint::kick(std::uint32_t player_id, const std::string& code, const std::string& message,
+                          std::uint64_t now_ms) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return;
+  if (it->second.connected)
+    send_packet(it->second, {Error{code.substr(0, 32), message.substr(0, kMaxTextBytes)}}, false, now_ms);
+  release(player_id, code);
+}
+
+bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms, std::uint32_t room,
+                                     const std::string& room_code) {
+  const bool hex32 = r.token_verifier.size() == 32 &&
+                     std::all_of(r.token_verifier.begin(), r.token_verifier.end(),
+                                 [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  if (r.player_id == 0 || sessions_.count(r.player_id) || !hex32 || !name_problem(r.name).empty() ||
+      sessions_.size() >= config_.max_sessions())
+    return false;
+  Session& s = sessions_[r.player_id];
+  s.player_id = r.player_id;
+  s.name = r.name;
+  s.verifier = r.token_verifier;
+  s.quit = r.quit;
+  s.room = room;
+  s.room_code = room_code;
+  s.played = true;  // it held a seat: the reconnect window applies
+  s.connected = false;
+  s.disconnected_ms = now_ms;
+  s.last_active_ms = now_ms;
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit, s.room, false});
+  return true;
+}
+
+std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {
+  auto it = sessions_.find(player_id);
+  return it == sessions_.end() ? std::string() : it->second.verifier;
+}
+
+void ServerEndpoint::shutdown(std::uint64_t now_ms) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& [id, s] : sessions_) ids.push_back(id);
+  for (auto id : ids) kick(id, "shutdown", "the server is shutting down", now_ms);
+}
+
+}  // namespace fts::protocol
