@@ -166,89 +166,71 @@ constexpr std::size_t width_of(const K& kind) {
   else return 1;
 }
 
-template <class M, class Table>
-void write_object(json& j, const M& m, const Table& table);
-template <class M, class Table>
-void read_object(const json& j, M& m, const Table& table);
-template <class M, class Table>
-void write_row(json& row, const M& m, const Table& table);
-template <class M, class Table>
-void read_row(const json& row, std::size_t& at, M& m, const Table& table);
-
-template <class M, class Table>
-void write_object(json& j, const M& m, const Table& table) {
+// Calls value(f) for each field of the table written as a value, splice(f) for each
+// Splice field; Skip fields are passed over.
+template <class Table, class V, class S>
+void visit_fields(const Table& table, V&& value, S&& splice) {
   std::apply(
       [&](const auto&... f) {
         (
             [&] {
               using K = std::decay_t<decltype(f.kind)>;
-              if constexpr (is_splice<K>::value) write_object(j, m.*f.member, f.kind.table);
-              else if constexpr (!is_skip<K>) j[std::string(f.key)] = f.kind.put(m.*f.member);
+              if constexpr (is_splice<K>::value) splice(f);
+              else if constexpr (!is_skip<K>) value(f);
             }(),
             ...);
       },
       table);
+}
+
+// Runs read(); an error it throws is rethrown naming `where` first.
+template <class F>
+void reading(std::string_view where, F&& read) {
+  try {
+    read();
+  } catch (const std::exception& e) {
+    rethrow_at(where, e);
+  }
+}
+
+template <class M, class Table>
+void write_object(json& j, const M& m, const Table& table) {
+  visit_fields(
+      table, [&](const auto& f) { j[std::string(f.key)] = f.kind.put(m.*f.member); },
+      [&](const auto& f) { write_object(j, m.*f.member, f.kind.table); });
 }
 
 template <class M, class Table>
 void read_object(const json& j, M& m, const Table& table) {
-  std::apply(
-      [&](const auto&... f) {
-        (
-            [&] {
-              using K = std::decay_t<decltype(f.kind)>;
-              if constexpr (is_splice<K>::value) {
-                read_object(j, m.*f.member, f.kind.table);
-              } else if constexpr (!is_skip<K>) {
-                if (f.may_be_absent && !j.contains(f.key)) return;
-                try {
-                  f.kind.get(j.at(f.key), m.*f.member);
-                } catch (const std::exception& e) {
-                  rethrow_at(f.key, e);
-                }
-              }
-            }(),
-            ...);
+  visit_fields(
+      table,
+      [&](const auto& f) {
+        if (f.may_be_absent && !j.contains(f.key)) return;
+        reading(f.key, [&] { f.kind.get(j.at(f.key), m.*f.member); });
       },
-      table);
+      [&](const auto& f) { read_object(j, m.*f.member, f.kind.table); });
 }
 
 template <class M, class Table>
 void write_row(json& row, const M& m, const Table& table) {
-  std::apply(
-      [&](const auto&... f) {
-        (
-            [&] {
-              using K = std::decay_t<decltype(f.kind)>;
-              if constexpr (is_splice<K>::value) write_row(row, m.*f.member, f.kind.table);
-              else if constexpr (!is_skip<K>) row.push_back(f.kind.put(m.*f.member));
-            }(),
-            ...);
-      },
-      table);
+  visit_fields(
+      table, [&](const auto& f) { row.push_back(f.kind.put(m.*f.member)); },
+      [&](const auto& f) { write_row(row, m.*f.member, f.kind.table); });
 }
 
 // Reads the table's values from row[at...], advancing `at`.
 template <class M, class Table>
 void read_row(const json& row, std::size_t& at, M& m, const Table& table) {
-  std::apply(
-      [&](const auto&... f) {
-        (
-            [&] {
-              using K = std::decay_t<decltype(f.kind)>;
-              if constexpr (is_splice<K>::value) {
-                read_row(row, at, m.*f.member, f.kind.table);
-              } else if constexpr (!is_skip<K>) {
-                try {
-                  f.kind.get(row[at++], m.*f.member);
-                } catch (const std::exception& e) {
-                  rethrow_at(f.key, e);
-                }
-              }
-            }(),
-            ...);
-      },
-      table);
+  visit_fields(
+      table, [&](const auto& f) { reading(f.key, [&] { f.kind.get(row[at++], m.*f.member); }); },
+      [&](const auto& f) { read_row(row, at, m.*f.member, f.kind.table); });
+}
+
+// Calls read(element) for each element of the array j, naming its index in errors.
+template <class F>
+void read_elements(const json& j, F&& read) {
+  if (!j.is_array()) throw std::invalid_argument("must be an array");
+  for (std::size_t i = 0; i < j.size(); ++i) reading(std::to_string(i), [&] { read(j[i]); });
 }
 
 // ---- record kinds: a struct inside a value ------------------------------------------------
@@ -301,18 +283,13 @@ struct Ascending {
   }
   template <class T>
   void get(const json& j, std::vector<T>& v) const {
-    if (!j.is_array()) throw std::invalid_argument("must be an array");
     v.clear();
-    for (std::size_t i = 0; i < j.size(); ++i) {
+    read_elements(j, [&](const json& e) {
       T x{};
-      try {
-        record.get(j[i], x);
-      } catch (const std::exception& e) {
-        rethrow_at(std::to_string(i), e);
-      }
+      record.get(e, x);
       if (!v.empty() && !(v.back().id < x.id)) throw std::invalid_argument("ids not ascending");
       v.push_back(std::move(x));
-    }
+    });
   }
 };
 
@@ -329,17 +306,12 @@ struct ById {
   }
   template <class Id, class V>
   void get(const json& j, std::map<Id, V>& m) const {
-    if (!j.is_array()) throw std::invalid_argument("must be an array");
     m.clear();
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      Entry e{};
-      try {
-        entry.get(j[i], e);
-      } catch (const std::exception& ex) {
-        rethrow_at(std::to_string(i), ex);
-      }
-      if (!m.emplace(e.id, std::move(e.value)).second) throw std::invalid_argument("an id twice");
-    }
+    read_elements(j, [&](const json& e) {
+      Entry x{};
+      entry.get(e, x);
+      if (!m.emplace(x.id, std::move(x.value)).second) throw std::invalid_argument("an id twice");
+    });
   }
 };
 
