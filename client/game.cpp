@@ -422,7 +422,8 @@ class Game {
   std::uint64_t shop_opened_ms_ = 0;
   static constexpr std::uint64_t kShopGraceMs = 700;
   bool fire_ = false, done_ = false;
-  int exit_code_ = 0; std::string exit_message_;
+  int exit_code_ = 0;
+  std::string exit_message_;
 };
 
 }  // namespace
