@@ -99,7 +99,8 @@ class GameHost {
   host::JournalWriter* journal(std::uint32_t room_id);
   // Writers of closed rooms still finishing (removed each tick once stopped).
   std::size_t closing_journals() const { return closing_journals_.size(); }
-  // The wire events of one step (for read_journal's event numbering).
+  // The wire events of one step, as the room stepper numbers them (benchmarks that write
+  // journals by hand).
   static std::uint32_t wire_event_count(std::int64_t tick, const sim::TickOutput& out);
 
   // The first room's match (an empty lobby when there is no room): single-room tests.

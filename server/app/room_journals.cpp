@@ -60,7 +60,7 @@ std::vector<RoomJournalRead> read_room_journals(const fs::path& dir, const std::
     for (std::size_t i; (i = next.fetch_add(1)) < codes.size();) {
       const auto t0 = std::chrono::steady_clock::now();
       reads[i].code = codes[i];
-      reads[i].result = host::read_journal(dir / codes[i], &GameHost::wire_event_count);
+      reads[i].result = host::read_journal(dir / codes[i]);
       reads[i].ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
   };

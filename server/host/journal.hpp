@@ -192,15 +192,12 @@ struct ResumedRoom {
   std::vector<std::string> skipped;   // newer segments that could not be used, and why
 };
 
-// The wire events a step made (the server numbers them): called for every replayed tick
-// so that the resumed event_seq equals the crashed server's.
-using WireEventCount = std::function<std::uint32_t(std::int64_t tick, const sim::TickOutput&)>;
-
 // Rebuilds a room from the newest segment whose header and checkpoint are good: the
 // checkpoint (its hash checked), then every later line, each hash line checked. A torn or
 // unreadable line ends the replay there; a hash that differs rolls back to the last hash
 // that matched. Either way `damage` says so. Only when no segment is usable: a message.
-std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir,
-                                                    const WireEventCount& wire_events = {});
+// The ticks are stepped by the room stepper (fts_room), as the server's rooms step them,
+// so the resumed event numbering is the crashed server's (checked at each hash line).
+std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir);
 
 }  // namespace fts::host

@@ -8,6 +8,7 @@
 #include "fts/room/json_fields.hpp"
 #include "fts/room/match_config_json.hpp"
 #include "host/match_state_json.hpp"
+#include "fts/room/stepper.hpp"
 #include "fts/room/text.hpp"
 
 namespace fts::host {
@@ -27,10 +28,13 @@ JournalSession session_from(const json& j) {
   return s;
 }
 
+// The match being rebuilt goes through the room stepper, as the crashed server's room
+// did: the same step, the same event numbering (so the resumed event_seq equals the
+// crashed server's, checked at every hash line).
 struct Replay {
-  sim::MatchState state;
-  std::uint32_t event_seq = 0;
+  room::RoomStepper stepper;
   std::map<std::uint32_t, JournalSession> sessions;
+  const sim::MatchState& state() const { return stepper.match(); }
 };
 
 struct SegmentStart {
@@ -65,12 +69,12 @@ std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
   try {
     auto state = match_state_from_json(cp->at("checkpoint"), sim::make_match(s.room.config, s.room.seed));
     if (auto* err = std::get_if<std::string>(&state)) return "line 2: " + *err;
-    s.now.state = std::move(std::get<sim::MatchState>(state));
+    auto& read = std::get<sim::MatchState>(state);
     const std::string want = cp->at("hash").get<std::string>();
-    const std::string got = hex16(sim::match_hash(s.now.state));
+    const std::string got = hex16(sim::match_hash(read));
     if (want != got) return "line 2: checkpoint hash " + want + ", read back " + got;
-    if (cp->at("tick").get<std::int64_t>() != s.now.state.tick) return std::string("line 2: tick differs from the state's");
-    s.now.event_seq = cp->at("event_seq").get<std::uint32_t>();
+    if (cp->at("tick").get<std::int64_t>() != read.tick) return std::string("line 2: tick differs from the state's");
+    s.now.stepper = room::RoomStepper(std::move(read), cp->at("event_seq").get<std::uint32_t>());
     for (const json& js : cp->at("sessions")) {
       JournalSession js2 = session_from(js);
       s.now.sessions[js2.player] = std::move(js2);
@@ -78,7 +82,7 @@ std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
   } catch (const std::exception& e) {
     return std::string("line 2: ") + e.what();
   }
-  s.room.checkpoint_tick = s.now.state.tick;
+  s.room.checkpoint_tick = s.now.state().tick;
   return s;
 }
 
@@ -86,18 +90,16 @@ std::variant<SegmentStart, std::string> open_segment_file(std::istream& in) {
 constexpr std::int64_t kMaxGapTicks = 10'000'000;
 
 // Replays the lines after the checkpoint into `r`; returns "" or the damage.
-std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r, const WireEventCount& wire_events) {
+std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r) {
   Replay good = now;  // the state at the last hash that matched (or the checkpoint)
   auto step_one = [&](const sim::TickInputs& inputs) {
-    const std::int64_t tick = now.state.tick;
-    const sim::TickOutput out = sim::step(now.state, inputs);
-    if (wire_events) now.event_seq += wire_events(tick, out);
+    now.stepper.step(inputs);
     ++r.ticks_replayed;
   };
   auto reach = [&](std::int64_t tick, const std::string& where) -> std::string {
-    if (tick < now.state.tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-    if (tick - now.state.tick > kMaxGapTicks) return where + "tick " + std::to_string(tick) + " is too far ahead";
-    while (now.state.tick < tick) step_one({});
+    if (tick < now.state().tick) return where + "tick " + std::to_string(tick) + " goes back in time";
+    if (tick - now.state().tick > kMaxGapTicks) return where + "tick " + std::to_string(tick) + " is too far ahead";
+    while (now.state().tick < tick) step_one({});
     return {};
   };
   std::string line, why;
@@ -111,16 +113,17 @@ std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r, const Wi
       if (j.contains("hash")) {
         const std::int64_t tick = j.at("tick").get<std::int64_t>();
         if (auto err = reach(tick, where); !err.empty()) return err;
-        const std::string got = hex16(sim::match_hash(now.state));
+        const std::string got = hex16(sim::match_hash(now.state()));
         const std::string want = j.at("hash").get<std::string>();
         const auto seq = j.at("event_seq").get<std::uint32_t>();
-        if (got != want || (wire_events && seq != now.event_seq)) {
+        if (got != want || seq != now.stepper.event_seq()) {
           const std::string damage = where + "hash mismatch at tick " + std::to_string(tick) + " (journal " + want +
-                                     ", replay " + got + "); resumed at tick " + std::to_string(good.state.tick);
+                                     ", replay " + got + "; events " + std::to_string(seq) + ", replay " +
+                                     std::to_string(now.stepper.event_seq()) + "); resumed at tick " +
+                                     std::to_string(good.state().tick);
           now = std::move(good);
           return damage;
         }
-        now.event_seq = seq;
         ++r.hashes_checked;
         good = now;
       } else if (j.contains("session")) {
@@ -144,8 +147,7 @@ std::string replay_lines(std::istream& in, Replay& now, ResumedRoom& r, const Wi
 
 }  // namespace
 
-std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir,
-                                                    const WireEventCount& wire_events) {
+std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir) {
   const auto segments = list_segments(room_dir);
   if (segments.empty()) return "no journal segments in " + room_dir.string();
   std::vector<std::string> skipped;
@@ -164,10 +166,10 @@ std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path&
     auto& s = std::get<SegmentStart>(start);
     ResumedRoom r = std::move(s.room);
     Replay now = std::move(s.now);
-    r.damage = replay_lines(in, now, r, wire_events);
+    r.damage = replay_lines(in, now, r);
     if (!r.damage.empty()) r.damage = name + ": " + r.damage;
-    r.state = std::move(now.state);
-    r.event_seq = now.event_seq;
+    r.state = now.stepper.match();
+    r.event_seq = now.stepper.event_seq();
     for (auto& [id, js] : now.sessions) r.sessions.push_back(std::move(js));
     r.skipped = std::move(skipped);
     return r;

@@ -111,7 +111,7 @@ std::pair<sim::MatchState, host::JournalStats> play(const host::JournalConfig& j
 
 double read_ms(const fs::path& dir, std::int64_t& replayed, bool& ok, std::uint64_t want_hash) {
   const auto t0 = Clock::now();
-  auto r = host::read_journal(dir, &server::GameHost::wire_event_count);
+  auto r = host::read_journal(dir);
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   ok = std::holds_alternative<host::ResumedRoom>(r) &&
        sim::match_hash(std::get<host::ResumedRoom>(r).state) == want_hash;

@@ -13,6 +13,7 @@
 
 #include "host/journal.hpp"
 #include "host/match_state_json.hpp"
+#include "fts/room/snapshot_build.hpp"
 #include "fts/room/text.hpp"
 
 using namespace fts;
@@ -35,8 +36,11 @@ struct TempDir {
   }
 };
 
-std::uint32_t count_events(std::int64_t, const sim::TickOutput& out) {
-  return static_cast<std::uint32_t>(out.events.size());
+// The wire events of a step, numbered as the server's rooms number them (fts_room).
+std::uint32_t count_events(std::int64_t tick, const sim::TickOutput& out) {
+  std::vector<protocol::Event> wire;
+  room::append_wire_events(tick + 1, out.events, wire);
+  return static_cast<std::uint32_t>(wire.size());
 }
 
 // Two players join, get ready and play with a fixed pattern of keys and purchases.
@@ -93,7 +97,7 @@ host::JournalConfig config_in(const fs::path& dir, std::int64_t checkpoint_every
 }
 
 host::ResumedRoom read_ok(const fs::path& dir) {
-  auto r = host::read_journal(dir, count_events);
+  auto r = host::read_journal(dir);
   if (auto* err = std::get_if<std::string>(&r)) FAIL(*err);
   return std::get<host::ResumedRoom>(std::move(r));
 }
