@@ -187,6 +187,13 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
   return out;
 }
 
+void ServerEndpoint::connected_by_room(std::map<std::uint32_t, std::vector<std::uint32_t>>& out) const {
+  for (auto& [room, ids] : out) ids.clear();
+  for (const auto& [id, s] : sessions_)
+    if (s.connected) out[s.room].push_back(id);
+  std::erase_if(out, [](const auto& kv) { return kv.second.empty(); });
+}
+
 void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t now_ms) {
   // Validate every message before any state changes.
   for (const auto& m : d.messages) {

@@ -241,7 +241,14 @@ void GameHost::tick(std::uint64_t now_ms) {
   pool_.run(order_.size(), [&](std::size_t i) { order_[i]->step(now_ms); });
   for (Room* r : order_) r->publish(endpoint_, now_ms);
   if (lanes_.size() < order_.size()) lanes_.resize(order_.size());
-  pool_.run(order_.size(), [&](std::size_t i) { order_[i]->send_snapshots(endpoint_, now_ms, lanes_[i]); });
+  endpoint_.connected_by_room(connected_);  // one pass over the sessions, not one per room
+  static const std::vector<std::uint32_t> kNobody;
+  auto members = [&](std::uint32_t id) -> const std::vector<std::uint32_t>& {
+    auto it = connected_.find(id);
+    return it == connected_.end() ? kNobody : it->second;
+  };
+  pool_.run(order_.size(),
+            [&](std::size_t i) { order_[i]->send_snapshots(endpoint_, members(order_[i]->id()), now_ms, lanes_[i]); });
   for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
 
   // A room nobody is connected to for room_idle_ms is closed; while draining, at once (the
@@ -249,7 +256,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   std::vector<std::uint32_t> idle;
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
-    const bool connected = !endpoint_.connected_in_room(id).empty();
+    const bool connected = !members(id).empty();
     if (!draining_ && (r->last_occupied_ms == 0 || connected))
       r->last_occupied_ms = now_ms;
     else if (!connected && now_ms - r->last_occupied_ms >= idle_ms) idle.push_back(id);

@@ -156,6 +156,7 @@ class GameHost {
   WorkerPool pool_;
   std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_
+  std::map<std::uint32_t, std::vector<std::uint32_t>> connected_;  // this tick's, by room
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,

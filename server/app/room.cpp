@@ -223,7 +223,7 @@ void Room::tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   step(now_ms);
   publish(endpoint, now_ms);
   protocol::SendLane lane;
-  send_snapshots(endpoint, now_ms, lane);
+  send_snapshots(endpoint, endpoint.connected_in_room(id_), now_ms, lane);
   endpoint.adopt(lane);
 }
 
@@ -243,10 +243,9 @@ void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
 }
 
-void Room::send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms, protocol::SendLane& lane) {
-  if (stepper_.match().tick % ticks_per_snapshot_ != 0) return;
-  const auto members = endpoint.connected_in_room(id_);
-  if (members.empty()) return;
+void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<std::uint32_t>& members,
+                          std::uint64_t now_ms, protocol::SendLane& lane) {
+  if (stepper_.match().tick % ticks_per_snapshot_ != 0 || members.empty()) return;
   // Quantized once per tick; each client gets only its delta against that.
   const auto snap = std::make_shared<const protocol::Snapshot>(protocol::quantize(stepper_.snapshot()));
   for (auto id : members) endpoint.send_snapshot(id, snap, now_ms, lane);

@@ -61,10 +61,12 @@ class Room {
   // thread while other rooms step; publish() answers the step's commands, logs its
   // events and tells the endpoint the tick, on the thread that owns the endpoint, in
   // room order; send_snapshots() seals this room's snapshots into `lane` (it changes
-  // only this room's sessions) and may run beside other rooms' again.
+  // only this room's sessions: `members`, its connected players) and may run beside other
+  // rooms' again.
   void step(std::uint64_t now_ms);
   void publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  void send_snapshots(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms, protocol::SendLane& lane);
+  void send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<std::uint32_t>& members,
+                      std::uint64_t now_ms, protocol::SendLane& lane);
   void flush();
   // Ends the record with the hash of the state now (the room closes).
   void seal();

@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <chrono>
 #include <utility>
 
 namespace fts::server {
@@ -54,12 +55,21 @@ std::uint64_t WorkerPool::claim() {
 // waits for a worker that was not scheduled in time, only for those inside claim().
 void WorkerPool::work(std::size_t slot) {
   std::uint64_t seen = 0;
-  std::unique_lock lock(mu_);
+  std::unique_lock lock(mu_, std::defer_lock);
   for (;;) {
+    // The next phase of a tick follows within microseconds: spin that long before sleeping,
+    // since waking a sleeping thread costs more than a phase's work on a busy host.
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    while (published_.load(std::memory_order_acquire) == seen && std::chrono::steady_clock::now() < until)
+      std::this_thread::yield();
+    lock.lock();
     start_cv_.wait(lock, [&] { return stop_ || generation_ != seen; });
     if (stop_) return;
     seen = generation_;
-    if (job_ == nullptr) continue;  // that run is over already
+    if (job_ == nullptr) {  // that run is over already
+      lock.unlock();
+      continue;
+    }
     ++active_;
     lock.unlock();
     const std::uint64_t ran = claim();
@@ -68,6 +78,7 @@ void WorkerPool::work(std::size_t slot) {
     finished_ += ran;
     --active_;
     if (finished_ == n_ && active_ == 0) done_cv_.notify_one();
+    lock.unlock();
   }
 }
 
@@ -86,7 +97,7 @@ void WorkerPool::run(std::size_t n, const Job& job) {
     next_.store(0, std::memory_order_relaxed);
     finished_ = 0;
     error_ = nullptr;
-    ++generation_;
+    published_.store(++generation_, std::memory_order_release);
   }
   start_cv_.notify_all();
   const std::uint64_t ran = claim();

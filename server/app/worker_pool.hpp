@@ -14,6 +14,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -52,6 +53,11 @@ class WorkerPool {
   std::size_t n_ = 0;
   std::atomic<std::size_t> next_{0};
   std::uint64_t generation_ = 0;  // one per run(): a worker joins each run at most once
+  std::atomic<std::uint64_t> published_{0};  // generation_, read without the lock while spinning
+  // How long a worker that finished a run spins for the next before it sleeps (a tick's
+  // phases follow each other closely; between ticks it sleeps): at most 3 x this per tick
+  // of one core per worker.
+  static constexpr std::chrono::microseconds kSpin{100};
   std::size_t finished_ = 0;      // jobs of the current run done
   unsigned active_ = 0;           // workers inside the current run's claim()
   bool stop_ = false;

@@ -4,11 +4,11 @@
 // per tick, the clients' datagrams are gathered first, then only the host's calls
 // (receive of every datagram, tick, take_datagrams) are timed: wall time (what the 10 ms
 // budget at 100 Hz is about) and process CPU time (every pool thread's, the clients do
-// not run meanwhile). Heap: the net bytes the host's calls kept (mallinfo2), per room and
-// per client. Prints a table and, with --csv, writes it. Reports figures, never judges.
+// not run meanwhile). Memory is the socket run's (server_load.py: the server's RSS), as
+// the clients here share the host's heap. Prints a table and, with --csv, writes it.
+// Reports figures, never judges.
 //
 //   build/tests/bench/fts-host-bench --clients 8,64,512,1024 --threads 1,2 --ticks 1000
-#include <malloc.h>
 #include <time.h>
 
 #include <algorithm>
@@ -39,13 +39,11 @@ double cpu_us() {
 double wall_us() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-long long heap_bytes() { return static_cast<long long>(mallinfo2().uordblks); }
 
 struct Row {
   int clients = 0, rooms = 0, threads = 0, ticks = 0;
   double wall_p50 = 0, wall_p99 = 0, wall_max = 0, wall_mean = 0, cpu_mean = 0;
   double bytes_in = 0, bytes_out = 0;  // per client per second
-  double heap_per_client = 0;
   int playing = 0;
 };
 
@@ -55,10 +53,7 @@ Row measure(int clients_n, int seats, unsigned threads, int ticks) {
   options.max_rooms = static_cast<std::uint32_t>((clients_n + seats - 1) / seats);
   options.threads = threads;
   sim::MatchConfig config;
-  const long long heap0 = heap_bytes();
-  long long host_heap = 0;  // net bytes kept by the host's own calls
   server::GameHost host(options, config, protocol::ServerKey{});
-  host_heap += heap_bytes() - heap0;
   std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
   std::vector<std::string> addresses;
   std::map<std::string, std::size_t> index;
@@ -91,13 +86,11 @@ Row measure(int clients_n, int seats, unsigned threads, int ticks) {
       c.update(now);
       for (auto& d : c.take_datagrams()) inbox.emplace_back(i, std::move(d));
     }
-    const long long h0 = heap_bytes();
     const double w0 = wall_us(), c0 = cpu_us();
     for (const auto& [i, d] : inbox) host.receive(addresses[i], d, now);
     host.tick(now);
     host.take_datagrams(batch);
     const double w1 = wall_us(), c1 = cpu_us();
-    host_heap += heap_bytes() - h0;
     if (timed) {
       wall.push_back(w1 - w0);
       cpu_sum += c1 - c0;
@@ -128,7 +121,6 @@ Row measure(int clients_n, int seats, unsigned threads, int ticks) {
   const double seconds = ticks / 100.0;
   r.bytes_in = bytes_in / clients_n / seconds;
   r.bytes_out = bytes_out / clients_n / seconds;
-  r.heap_per_client = static_cast<double>(host_heap) / clients_n;
   return r;
 }
 
@@ -153,7 +145,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   const std::string header =
       "clients,rooms,threads,rooms_playing,wall_p50_us,wall_p99_us,wall_max_us,wall_mean_us,cpu_mean_us,"
-      "core_pct_at_100hz,cpu_us_per_client_s,bytes_in_client_s,bytes_out_client_s,heap_bytes_per_client";
+      "core_pct_at_100hz,cpu_us_per_client_s,bytes_in_client_s,bytes_out_client_s";
   std::ostringstream table;
   table << header << "\n";
   std::cout << header << std::endl;
@@ -161,10 +153,9 @@ int main(int argc, char** argv) {
     for (int t : ints(threads_list)) {
       const Row r = measure(n, seats, static_cast<unsigned>(t), ticks);
       char line[512];
-      std::snprintf(line, sizeof line, "%d,%d,%d,%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.2f,%.1f,%.0f,%.0f,%.0f", r.clients,
+      std::snprintf(line, sizeof line, "%d,%d,%d,%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.2f,%.1f,%.0f,%.0f", r.clients,
                     r.rooms, r.threads, r.playing, r.wall_p50, r.wall_p99, r.wall_max, r.wall_mean, r.cpu_mean,
-                    r.cpu_mean / 10000 * 100, r.cpu_mean * 100 / r.clients, r.bytes_in, r.bytes_out,
-                    r.heap_per_client);
+                    r.cpu_mean / 10000 * 100, r.cpu_mean * 100 / r.clients, r.bytes_in, r.bytes_out);
       table << line << "\n";
       std::cout << line << std::endl;
     }

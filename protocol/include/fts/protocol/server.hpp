@@ -268,6 +268,9 @@ class ServerEndpoint {
   std::vector<std::uint32_t> connected_players() const;
   // Rooms: connected sessions of a room (players and spectators), seats taken (players
   // not quit, connected or held for a reconnect), connected spectators, every session.
+  // Every room's connected players in one pass (player id order within a room): `out`
+  // is cleared and refilled, keeping its vectors' capacity.
+  void connected_by_room(std::map<std::uint32_t, std::vector<std::uint32_t>>& out) const;
   std::vector<std::uint32_t> connected_in_room(std::uint32_t room) const;
   std::size_t seats_in_room(std::uint32_t room) const;
   std::size_t spectators_in_room(std::uint32_t room) const;
