@@ -25,6 +25,15 @@ def cpu_s(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+def rss_kib(pid):
+    """The resident set of a process now, KiB (/proc/PID/status VmRSS)."""
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rooms", type=int, default=1)
@@ -48,11 +57,17 @@ def main():
                 "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8)), "--threads", str(a.threads)) as srv:
         if a.pin:
             os.sched_setaffinity(srv.proc.pid, {cpus[0]})
+        rss0 = rss_kib(srv.proc.pid)  # bound, no room yet
         room = ["--room", "create"] if a.rooms > 1 else []
         groups = [start_bots("--connect", srv.address, "--name", f"r{r}b", "--count", str(a.bots), "--behavior",
                              a.behavior, "--duration", str(a.seconds), "--seed", str(1 + r * a.bots), *room)
                   for r in range(a.rooms)]
         t0, c0 = time.monotonic(), cpu_s(srv.proc.pid)
+        # The server's memory with every bot playing: sampled halfway, the largest kept.
+        rss_full = 0
+        while time.monotonic() < t0 + a.seconds / 2:
+            time.sleep(min(1.0, max(0.0, t0 + a.seconds / 2 - time.monotonic())))
+            rss_full = max(rss_full, rss_kib(srv.proc.pid))
         results = [finish_bots(g, a.seconds + 120) for g in groups]
         t1, c1 = time.monotonic(), cpu_s(srv.proc.pid)
         srv.stop()
@@ -75,6 +90,8 @@ def main():
     print(f"\nserver CPU {c1 - c0:.1f} s over {wall:.1f} s wall = {100 * (c1 - c0) / wall:.1f}% of a core; "
           f"per client {1e6 * (c1 - c0) / wall / clients:.0f} µs CPU per second ({100 * (c1 - c0) / wall / clients:.2f}% of a core)")
     skipped = stats[-1]['ticks_skipped_total'] if stats else None
+    print(f"server RSS {rss0} KiB with no room, {rss_full} KiB with {clients} clients in {a.rooms} rooms: "
+          f"{(rss_full - rss0) / clients:.0f} KiB per client ({(rss_full - rss0) / max(1, a.rooms):.0f} KiB per room of {a.bots})")
     print(f"bots exit {rcs}; snapshots received {got}, lost {lost}; highest level {levels}; "
           f"skipped ticks {skipped if skipped is not None else '?'}")
     print(f"load average before {load0[0]:.1f}, after {os.getloadavg()[0]:.1f} (1 min; {os.cpu_count()} cores)")
