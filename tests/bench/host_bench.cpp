@@ -26,6 +26,7 @@
 
 #include "app/game_host.hpp"
 #include "fts/protocol/client.hpp"
+#include "../support/load_player.hpp"
 
 using namespace fts;
 
@@ -73,16 +74,7 @@ Row measure(int clients_n, int seats, unsigned threads, int ticks) {
     inbox.clear();
     for (std::size_t i = 0; i < clients.size(); ++i) {
       auto& c = *clients[i];
-      if (play && c.state() == protocol::ClientState::connected) {
-        const auto phase = c.latest_snapshot() ? c.latest_snapshot()->phase : protocol::Phase::lobby;
-        if (phase == protocol::Phase::lobby || phase == protocol::Phase::shop) {
-          if (now % 500 == 0) c.send_command(protocol::CommandOp::ready, 0, now);
-        } else {
-          c.hold_input({0, static_cast<std::int8_t>((now / 400 + i) % 3 - 1),
-                        static_cast<std::int8_t>((now / 300 + i) % 3 - 1), false},
-                       now);
-        }
-      }
+      if (play) test::play_load_tick(c, i, now);
       c.update(now);
       for (auto& d : c.take_datagrams()) inbox.emplace_back(i, std::move(d));
     }

@@ -41,9 +41,12 @@ struct HostRig {
       for (auto& d : clients[i]->take_datagrams()) host->receive(address(i), d, now);
     }
   }
+  // When set, deliver() notes each datagram as "address size", in the order sent.
+  std::vector<std::string>* sent_log = nullptr;
   // The host's datagrams to their clients.
   void deliver() {
     for (auto& out : host->take_datagrams()) {
+      if (sent_log) sent_log->push_back(out.to + " " + std::to_string(out.bytes.size()));
       const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
       clients[idx]->receive(out.bytes, now);
     }

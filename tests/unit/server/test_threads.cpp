@@ -26,27 +26,13 @@ struct Played {
   std::vector<std::uint64_t> jobs;                    // per thread
 };
 
-struct Rig : test::HostRig {
-  std::vector<std::string> order;
-  void tick_logged() {
-    send();
-    host->tick(now);
-    for (auto& out : host->take_datagrams()) {
-      order.push_back(out.to + " " + std::to_string(out.bytes.size()));
-      const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
-      clients[idx]->receive(out.bytes, now);
-    }
-    now += 10;
-  }
-};
-
 Played play(unsigned threads) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() /
                        ("fts-threads-" + std::to_string(::getpid()) + "-" + std::to_string(threads));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  Rig rig;
+  test::HostRig rig;
   rig.options.seed = 29;
   rig.options.max_players = 2;
   rig.options.max_per_address = 16;
@@ -56,6 +42,7 @@ Played play(unsigned threads) {
   for (int i = 0; i < 12; ++i) rig.add("p" + std::to_string(i));
   REQUIRE(rig.connect_all());
   Played p;
+  rig.sent_log = &p.datagrams;
   for (int t = 0; t < 1500; ++t) {
     for (std::size_t i = 0; i < rig.clients.size(); ++i) {
       auto& c = *rig.clients[i];
@@ -66,13 +53,13 @@ Played play(unsigned threads) {
                      rig.now);
       if (t % 211 == static_cast<int>(i)) c.send_command(protocol::CommandOp::buy, 'm', rig.now);
     }
-    rig.tick_logged();
+    rig.tick();
     for (auto& c : rig.clients)
       for (auto& s : c->take_snapshots())
         p.snapshots.push_back(
             protocol::encode_payload(protocol::Encoding::msgpack, {protocol::make_snapshot_msg(s, nullptr)}));
   }
-  p.datagrams = std::move(rig.order);
+  rig.sent_log = nullptr;
   p.jobs = rig.host->workers().jobs_per_thread();
   rig.host.reset();  // the records are flushed and closed
   for (const auto& e : fs::directory_iterator(dir)) {
