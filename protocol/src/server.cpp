@@ -11,7 +11,7 @@ ServerEndpoint::ServerEndpoint(ServerConfig config)
 
 void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > kMaxDatagramBytes) return;  // never sent; the limits make it unreachable
-  out_.push_back({to, std::move(bytes)});
+  lane_.out.push_back({to, std::move(bytes)});
 }
 
 void ServerEndpoint::seal_into(Session& s, const Header& h, const std::vector<std::uint8_t>& payload,
@@ -32,7 +32,7 @@ void ServerEndpoint::seal_into(Session& s, const Header& h, const std::vector<st
   }
 }
 
-void ServerEndpoint::emit_sealed(Session& s, const Header& h) { seal_into(s, h, payload_, out_, spare_); }
+void ServerEndpoint::emit_sealed(Session& s, const Header& h) { seal_into(s, h, lane_.payload, lane_.out, lane_.spare); }
 
 Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) {
   Header h;
@@ -266,8 +266,8 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
     for (auto& c : s.chats.collect(h.sequence, now_ms, config_.resend_ms, 2)) messages.push_back(std::move(c));
   }
   if (messages.empty()) messages.push_back(Ping{});
-  payload_.clear();
-  append_payload(h.encoding, messages, payload_);
+  lane_.payload.clear();
+  append_payload(h.encoding, messages, lane_.payload);
   emit_sealed(s, h);
 }
 
@@ -276,14 +276,7 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snap
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
-  SendLane lane;
-  std::swap(lane.out, out_);
-  std::swap(lane.spare, spare_);
-  std::swap(lane.payload, payload_);
-  send_snapshot(player_id, quantized, now_ms, lane);
-  std::swap(lane.out, out_);
-  std::swap(lane.spare, spare_);
-  std::swap(lane.payload, payload_);
+  send_snapshot(player_id, quantized, now_ms, lane_);
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms,
@@ -303,13 +296,13 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
 }
 
 void ServerEndpoint::adopt(SendLane& lane) {
-  for (Outgoing& o : lane.out) out_.push_back(std::move(o));
+  for (Outgoing& o : lane.out) lane_.out.push_back(std::move(o));
   const std::size_t used = lane.out.size();
   lane.out.clear();
   // The lane gets back as many sent buffers as it used, when the endpoint has them.
-  while (lane.spare.size() < used && !spare_.empty()) {
-    lane.spare.push_back(std::move(spare_.back()));
-    spare_.pop_back();
+  while (lane.spare.size() < used && !lane_.spare.empty()) {
+    lane.spare.push_back(std::move(lane_.spare.back()));
+    lane_.spare.pop_back();
   }
 }
 
@@ -389,14 +382,14 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
   }
 }
 
-std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(out_, {}); }
+std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(lane_.out, {}); }
 void ServerEndpoint::take_datagrams(std::vector<Outgoing>& batch) {
   for (Outgoing& o : batch) {
-    if (spare_.size() >= kSpareDatagrams) break;
-    spare_.push_back(std::move(o));
+    if (lane_.spare.size() >= kSpareDatagrams) break;
+    lane_.spare.push_back(std::move(o));
   }
   batch.clear();
-  std::swap(batch, out_);
+  std::swap(batch, lane_.out);
 }
 std::vector<ServerEvent> ServerEndpoint::take_events() { return std::exchange(events_, {}); }
 std::vector<PlayerInput> ServerEndpoint::take_inputs() { return std::exchange(inputs_, {}); }

@@ -219,14 +219,6 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
   refused_log_.flush(now_ms);
 }
 
-void Room::tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
-  step(now_ms);
-  publish(endpoint, now_ms);
-  protocol::SendLane lane;
-  send_snapshots(endpoint, endpoint.connected_in_room(id_), now_ms, lane);
-  endpoint.adopt(lane);
-}
-
 void Room::step(std::uint64_t now_ms) {
   const sim::TickInputs in = gather(now_ms);
   if (recorder_) recorder_->inputs(stepper_.match().tick, in);

@@ -53,10 +53,7 @@ class Room {
   void on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
   void on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms);
   void on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  // One tick: step the match with what was gathered, answer commands, send snapshots;
-  // the three parts below in order, on the caller's thread.
-  void tick(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  // The tick in three parts, for stepping rooms on several threads (issue 29): step()
+  // A tick in three parts, so that rooms step on several threads (issue 29): step()
   // touches only this room (its match, record and journal queue) and may run on any
   // thread while other rooms step; publish() answers the step's commands, logs its
   // events and tells the endpoint the tick, on the thread that owns the endpoint, in

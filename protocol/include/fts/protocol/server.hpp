@@ -343,7 +343,7 @@ class ServerEndpoint {
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   // A session's next header (its sequence and acks stamped).
   Header session_header(Session& s, std::uint64_t now_ms);
-  // Seals payload_ for `s` under `h` and queues it.
+  // Seals lane_.payload for `s` under `h` and queues it.
   void emit_sealed(Session& s, const Header& h);
   // Seals `payload` for `s` under `h` into the next datagram of `out` (the buffers of one
   // from `spare` when there is one).
@@ -367,11 +367,11 @@ class ServerEndpoint {
   std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;
-  std::vector<Outgoing> out_;
-  // Sent datagrams kept for their buffers (at most kSpareDatagrams: beyond, freed).
+  // The endpoint's own lane: the queue every datagram goes out by (rooms' lanes are
+  // adopted into it), sent datagrams kept for their buffers (at most kSpareDatagrams:
+  // beyond, freed) and the scratch of the payload being sealed.
   static constexpr std::size_t kSpareDatagrams = 4096;
-  std::vector<Outgoing> spare_;
-  std::vector<std::uint8_t> payload_;  // scratch: the payload being sealed
+  SendLane lane_;
   struct Queued {  // a datagram waiting in the inbox
     std::uint32_t player_id = 0, session_id = 0;
     std::uint64_t now_ms = 0;
