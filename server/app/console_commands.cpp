@@ -170,6 +170,9 @@ Reply stats(GameHost& host, const nlohmann::json&, std::uint64_t) {
   out["banned_datagrams"] = host.bans().dropped_datagrams();
   out["rejected_datagrams"] = host.endpoint().rejects().total();
   out["skipped_ticks"] = host.stats().skipped_ticks;
+  const auto journal = host.journal_health();
+  out["journal"] = {{"rooms", journal.rooms}, {"failing", journal.failing}, {"failures", journal.failures},
+                    {"error", journal.error}};
   return out;
 }
 
@@ -243,7 +246,7 @@ constexpr ConsoleCommand kCommands[] = {
     {"announce", "announce TEXT", "a chat line from the host to every connected client", announce, announce_words},
     {"close", "close ROOM", "closes the room (its clients are told room_closed)", close, room_required},
     {"drain", "drain", "no new rooms; the server exits 0 when the last room has closed", drain, no_words},
-    {"stats", "stats", "rooms, players, spectators, sessions, bans, dropped datagrams, skipped ticks", stats, no_words},
+    {"stats", "stats", "rooms, players, spectators, sessions, bans, dropped datagrams, skipped ticks, the journal (failing rooms)", stats, no_words},
     {"help", "help", "these commands", help, no_words},
 };
 

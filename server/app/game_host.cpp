@@ -272,6 +272,7 @@ void GameHost::close_room(std::uint32_t id, const std::string& code, const std::
   for (const auto& s : endpoint_.sessions())
     if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
   Room& r = *it->second;
+  closed_journal_failures_ += r.journal_failures();
   finish_journal(r);  // first: the seal must not wait for the journal's disk
   r.seal();
   log_record(spdlog::level::info, "room_closed",

@@ -111,6 +111,14 @@ class GameHost {
   const Room* room_by_code(const std::string& code) const;
   std::vector<std::uint32_t> room_ids() const;
   std::uint64_t rooms_made() const { return rooms_made_; }
+  // The rooms' journals as last seen (each room looks once a second).
+  struct JournalHealth {
+    std::size_t rooms = 0;       // journaled rooms
+    std::size_t failing = 0;     // of them, not journaling for an I/O error (retrying)
+    std::uint64_t failures = 0;  // times a journal stopped (closed rooms too)
+    std::string error;           // the first failing room's code and error
+  };
+  JournalHealth journal_health() const;
   const protocol::ServerEndpoint& endpoint() const { return endpoint_; }
   const WorkerPool& workers() const { return pool_; }
   Stats& stats() { return stats_; }
@@ -137,6 +145,7 @@ class GameHost {
   sim::MatchConfig config_;
   protocol::ServerEndpoint endpoint_;
   std::map<std::uint32_t, std::unique_ptr<Room>> rooms_;  // by id: the stepping order
+  std::uint64_t closed_journal_failures_ = 0;
   std::map<std::uint32_t, Member> members_;               // by player id
   RoomCodes codes_;
   std::uint32_t next_room_id_ = 1;

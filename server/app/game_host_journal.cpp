@@ -34,9 +34,20 @@ void GameHost::start_journal(Room& r) {
   c.is_private = r.is_private();
   c.seed = r.seed();
   r.journal_to(std::move(c), endpoint_);
-  // The room plays on without a journal (a full disk must not stop the matches); said once.
-  if (const auto err = r.journal()->stats().error; !err.empty())
-    log_record(spdlog::level::err, "journal_failed", {{"room", r.id()}, {"code", r.code()}, {"error", err}});
+}
+
+GameHost::JournalHealth GameHost::journal_health() const {
+  JournalHealth h;
+  h.failures = closed_journal_failures_;
+  for (const auto& [id, r] : rooms_) {
+    if (!r->journal()) continue;
+    ++h.rooms;
+    h.failures += r->journal_failures();
+    if (!r->journal_failing()) continue;
+    ++h.failing;
+    if (h.error.empty()) h.error = r->code() + ": " + r->journal_error();
+  }
+  return h;
 }
 
 void GameHost::finish_journal(Room& r) {

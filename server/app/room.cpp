@@ -231,7 +231,7 @@ void Room::step(std::uint64_t now_ms) {
 void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   answer(stepped_.results, endpoint, now_ms);
   log_events(stepped_.events, endpoint, now_ms);
-  if (journal_ && stepper_.match().tick % 1000 == 0) watch_journal();
+  if (journal_ && stepper_.match().tick % 100 == 0) watch_journal();
   endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
 }
 
@@ -266,6 +266,7 @@ void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint
       sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected});
   journal_ = std::make_unique<host::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),
                                                    std::move(sessions));
+  watch_journal();  // a directory locked by another server: the room plays on without a journal, said once
 }
 
 std::unique_ptr<host::JournalWriter> Room::finish_journal() {
@@ -281,7 +282,8 @@ void Room::journal_session(const protocol::ServerEvent& e, const protocol::Serve
   journal_->session(stepper_.match().tick, {e.player_id, e.name, endpoint.session_verifier(e.player_id), quit});
 }
 
-// Every 1000 ticks: a journal that dropped records or failed says so (once per change).
+// Every second: a journal that dropped records says so (once per change); one that
+// failed says so once when it stops and once when it goes on again.
 void Room::watch_journal() {
   const auto st = journal_->stats();
   if (st.dropped != journal_dropped_logged_) {
@@ -290,10 +292,17 @@ void Room::watch_journal() {
                 {"room", id_}});
     journal_dropped_logged_ = st.dropped;
   }
-  if (!st.error.empty() && !journal_error_logged_) {
-    log_record(spdlog::level::err, "journal_failed", {{"error", st.error}, {"durable_tick", st.durable_tick}, {"room", id_}});
-    journal_error_logged_ = true;
+  if (st.failures != journal_failures_) {
+    log_record(spdlog::level::err, "journal_failed",
+               {{"error", st.error}, {"durable_tick", st.durable_tick}, {"failures", st.failures}, {"room", id_},
+                {"code", code_}, {"retry_ms", host::JournalWriter::kRetryEvery.count()}});
+    journal_failures_ = st.failures;
   }
+  if (journal_failing_ && !st.failing)
+    log_record(spdlog::level::info, "journal_recovered",
+               {{"durable_tick", st.durable_tick}, {"discarded", st.discarded}, {"room", id_}, {"code", code_}});
+  journal_failing_ = st.failing;
+  journal_error_ = st.error;
 }
 
 }  // namespace fts::server

@@ -76,6 +76,10 @@ class Room {
   std::unique_ptr<host::JournalWriter> finish_journal();
   const host::JournalWriter* journal() const { return journal_.get(); }
   host::JournalWriter* journal() { return journal_.get(); }
+  // The journal as last seen (once a second): failing (an I/O error), times it failed, why.
+  bool journal_failing() const { return journal_failing_; }
+  std::uint64_t journal_failures() const { return journal_failures_; }
+  const std::string& journal_error() const { return journal_error_; }
   // Purchases counted for the fleet's metrics (Stats::Totals), when set.
   void count_into(Stats::Totals* totals) { totals_ = totals; }
 
@@ -127,7 +131,9 @@ class Room {
   RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
   std::unique_ptr<host::JournalWriter> journal_;
   std::uint64_t journal_dropped_logged_ = 0;
-  bool journal_error_logged_ = false;
+  std::uint64_t journal_failures_ = 0;  // as last seen (logged)
+  bool journal_failing_ = false;        // as last seen, once a second
+  std::string journal_error_;
   Stats::Totals* totals_ = nullptr;
 };
 

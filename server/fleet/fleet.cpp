@@ -52,6 +52,9 @@ void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std
     s.totals = host.stats().totals;
     s.drops = host.endpoint().rejects();
     for (const auto& session : host.endpoint().sessions()) ++(session.connected ? s.sessions_connected : s.sessions_away);
+    const auto journal = host.journal_health();
+    s.journal_failing = journal.failing;
+    s.journal_failures = journal.failures;
     metrics_->update(s);
   }
   if (agones_) {

@@ -96,6 +96,8 @@ JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_co
   lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
   if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     stats_.error = "journal: " + cfg_.dir.string() + " is in use by another process (or cannot be locked)";
+    stats_.failing = true;  // for good: this writer never writes
+    stats_.failures = 1;
     stop_ = exited_ = true;
     return;
   }
@@ -120,6 +122,11 @@ void JournalWriter::push(Record r) {
   {
     std::lock_guard lock(mu_);
     if (stop_) return;  // no journal (see the constructor)
+    // Failing: records before the retry's checkpoint are covered by it.
+    if (stats_.failing && !retry_queued_) {
+      ++stats_.discarded;
+      return;
+    }
     if (dropping_ || queue_.size() >= cfg_.max_queued) {
       dropping_ = true;
       ++stats_.dropped;
@@ -135,15 +142,23 @@ void JournalWriter::push(Record r) {
 }
 
 void JournalWriter::checkpoint(const sim::MatchState& state, std::uint32_t event_seq) {
-  std::vector<JournalSession> sessions;
-  for (const auto& [id, s] : sessions_) sessions.push_back(s);
   {
     std::lock_guard lock(mu_);
     if (stop_) return;  // no journal (see the constructor)
     // After a drop, the new segment waits until the writer has caught up by half.
     if (dropping_ && queue_.size() > cfg_.max_queued / 2) return;
+    // Failing: one try at a time, at most one a second.
+    if (stats_.failing && (retry_queued_ || Clock::now() < retry_at_)) return;
+  }
+  std::vector<JournalSession> sessions;
+  for (const auto& [id, s] : sessions_) sessions.push_back(s);
+  auto record = std::make_unique<Checkpoint>(Checkpoint{state, event_seq, std::move(sessions)});
+  {
+    std::lock_guard lock(mu_);
+    if (stop_) return;
     dropping_ = false;
-    queue_.push_back(std::make_unique<Checkpoint>(Checkpoint{state, event_seq, std::move(sessions)}));
+    if (stats_.failing) retry_queued_ = true;
+    queue_.push_back(std::move(record));
     ++pushed_;
   }
   next_checkpoint_tick_ = state.tick + cfg_.checkpoint_every_ticks;
@@ -168,12 +183,12 @@ void JournalWriter::released(std::int64_t tick, std::uint32_t player) {
 }
 
 void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_seq) {
-  bool dropping = false;
+  bool again = false;  // dropped records or an I/O error: a new segment as soon as it may start
   {
     std::lock_guard lock(mu_);
-    dropping = dropping_;
+    again = dropping_ || stats_.failing;
   }
-  if (state.tick >= next_checkpoint_tick_ || dropping) return checkpoint(state, event_seq);
+  if (state.tick >= next_checkpoint_tick_ || again) return checkpoint(state, event_seq);
   if (state.tick % cfg_.hash_every_ticks == 0) push(Hash{state.tick, sim::match_hash(state), event_seq});
 }
 
@@ -205,9 +220,18 @@ JournalStats JournalWriter::stats() const {
   return stats_;
 }
 
+// The writer thread: an I/O error stops journaling (the segment is closed; a segment this
+// batch began is removed, so a resume reads the one before) until a retry succeeds.
 void JournalWriter::fail(const std::string& what) {
+  const int err = errno;
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
   std::lock_guard lock(mu_);
-  if (stats_.error.empty()) stats_.error = what + ": " + std::strerror(errno);
+  stats_.error = what + ": " + std::strerror(err);
+  if (!stats_.failing) ++stats_.failures;
+  stats_.failing = true;
+  retry_queued_ = false;
+  retry_at_ = Clock::now() + kRetryEvery;
 }
 
 bool JournalWriter::open_segment() {
@@ -220,6 +244,7 @@ bool JournalWriter::open_segment() {
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0600);
   if (fd_ < 0) {
     fail("journal: cannot create " + path.string());
+    --segment_;  // the next try takes the number again
     return false;
   }
   std::lock_guard lock(mu_);
@@ -260,20 +285,37 @@ void JournalWriter::remove_old_segments() {
 
 std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
   std::string text;
+  std::uint64_t in_text = 0;  // records in `text`
   std::int64_t newest = -1;
-  bool new_segment = false;
+  bool new_segment = false, failed = false;
+  std::uint64_t discarded = 0;
   auto put = [&](std::int64_t tick, std::string line) {
     text += line;
     text += '\n';
+    ++in_text;
     newest = std::max(newest, tick);
   };
   auto write_out = [&] {
-    if (fd_ >= 0 && !text.empty() && !write_all(fd_, text)) fail("journal: write");
-    std::lock_guard lock(mu_);
-    stats_.bytes += text.size();
+    if (fd_ >= 0 && !text.empty() && !write_all(fd_, text)) {
+      fail("journal: write");
+      failed = true;
+      discarded += in_text;
+    } else {
+      std::lock_guard lock(mu_);
+      stats_.bytes += text.size();
+    }
     text.clear();
+    in_text = 0;
   };
   for (Record& r : batch) {
+    if (failed) {  // the rest of a failed batch: a retry's checkpoint covers it
+      ++discarded;
+      continue;
+    }
+    if (fd_ < 0 && !std::holds_alternative<std::unique_ptr<Checkpoint>>(r)) {  // no segment (failing)
+      ++discarded;
+      continue;
+    }
     std::visit(sim::Overloaded{
                    [&](Inputs& x) { put(x.tick, to_input_line(x.tick, x.in)); },
                    [&](Hash& x) {
@@ -293,7 +335,12 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                    [&](std::unique_ptr<Checkpoint>& cp_record) {
                      const Checkpoint& x = *cp_record;
                      write_out();
-                     if (!open_segment()) return;
+                     if (failed) return;
+                     if (!open_segment()) {
+                       failed = true;
+                       ++discarded;
+                       return;
+                     }
                      new_segment = true;
                      ojson head;
                      head["fts_journal"] = kJournalFormat;
@@ -316,12 +363,33 @@ std::int64_t JournalWriter::write_batch(std::deque<Record>& batch) {
                },
                r);
   }
-  write_out();
-  if (fd_ >= 0 && ::fdatasync(fd_) != 0) fail("journal: fdatasync");
+  if (!failed) write_out();
+  if (!failed && fd_ >= 0 && ::fdatasync(fd_) != 0) {
+    fail("journal: fdatasync");
+    failed = true;
+  }
+  if (failed) {
+    if (new_segment) {  // its checkpoint is not durable: a resume must not pick it
+      std::error_code ec;
+      std::filesystem::remove(cfg_.dir / segment_name(segment_), ec);
+      --segment_;
+    }
+    std::lock_guard lock(mu_);
+    stats_.discarded += discarded;
+    return -1;
+  }
   if (new_segment) {
     sync_dir(cfg_.dir);
     remove_old_segments();
+    std::lock_guard lock(mu_);
+    if (stats_.failing) {  // a retry's checkpoint is durable: journaling goes on from it
+      stats_.failing = false;
+      stats_.error.clear();
+      ++stats_.recoveries;
+    }
   }
+  std::lock_guard lock(mu_);
+  stats_.discarded += discarded;
   return newest;
 }
 
@@ -358,7 +426,7 @@ void JournalWriter::run() {
         stats_.records += n;
         synced_ += n;
         if (synced_ >= pushed_) flush_requested_ = false;
-        if (newest >= 0 && stats_.error.empty()) stats_.durable_tick = std::max(stats_.durable_tick, newest);
+        if (newest >= 0 && !stats_.failing) stats_.durable_tick = std::max(stats_.durable_tick, newest);
       }
       if (stopping && queue_.empty()) break;
     }

@@ -26,6 +26,7 @@
 // and removed.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -75,7 +76,14 @@ struct JournalStats {
   std::uint64_t removed_segments = 0;
   std::uint64_t dropped = 0;           // records dropped for a full queue
   std::int64_t durable_tick = -1;      // the newest tick whose records are durable
-  std::string error;                   // the first I/O error; the journal stopped there
+  // An I/O error (disk full, read-only, gone) stops the journal, not the room: records are
+  // discarded while it fails, and once a second a new segment starting with a checkpoint
+  // is tried; when that one is durable, journaling goes on from it (recoveries).
+  std::string error;                   // while failing: the I/O error; or the directory's lock error (for good)
+  bool failing = false;                // journaling stopped on an I/O error; retrying
+  std::uint64_t failures = 0;          // times it stopped on an I/O error
+  std::uint64_t recoveries = 0;        // times a retry's checkpoint was durable again
+  std::uint64_t discarded = 0;         // records not written because it was failing
   bool finished = false;               // finish(): the room's directory is removed
 };
 
@@ -105,6 +113,8 @@ class JournalWriter {
   void finish();
   bool stopped() const;
   JournalStats stats() const;
+
+  static constexpr std::chrono::milliseconds kRetryEvery{1000};  // a failed journal's next try
 
  private:
   struct Inputs {
@@ -140,6 +150,7 @@ class JournalWriter {
   void remove_old_segments();
   void remove_journal();
   void fail(const std::string& what);
+  void stop_failing(std::deque<Record>& rest);  // the writer: discards a failed batch's rest
 
   JournalConfig cfg_;
   std::string header_config_;  // the MatchConfig as JSON, written in every header
@@ -157,6 +168,8 @@ class JournalWriter {
   bool finish_ = false;   // finish() was called
   bool exited_ = false;   // the writer thread is done (or never ran)
   bool writer_idle_ = false;      // the writer waits for a first record (push wakes it)  // flush() waits: sync without waiting for sync_ms
+  bool retry_queued_ = false;     // failing: a checkpoint to start again is queued
+  std::chrono::steady_clock::time_point retry_at_{};  // failing: no new try before this
   std::uint64_t pushed_ = 0;    // records queued so far
   std::uint64_t synced_ = 0;    // records durable so far
   JournalStats stats_;
