@@ -2,6 +2,8 @@
 
 #include <functional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <prometheus/counter.h>
 #include <prometheus/exposer.h>
@@ -39,6 +41,8 @@ std::vector<CounterRow> counter_table() {
       {"fts_purchases_total", "Shop purchases by result", {{"result", "ok"}}, [](S s) { return s.totals.purchases; }},
       {"fts_purchases_total", "Shop purchases by result", {{"result", "refused"}},
        [](S s) { return s.totals.purchases_refused; }},
+      {"fts_journal_failures_total", "Times a room's journal stopped on an I/O error (disk full, read-only)", {},
+       [](S s) { return s.journal_failures; }},
   };
   for (std::size_t i = 0; i < protocol::kRejectCount; ++i) {
     const auto r = static_cast<protocol::Reject>(i);
@@ -57,7 +61,14 @@ prometheus::Gauge* gauge(prometheus::Registry& reg, const char* name, const char
 
 Metrics::Metrics(const std::string& address) : registry_(std::make_shared<prometheus::Registry>()) {
   try {
-    exposer_ = std::make_unique<prometheus::Exposer>(address, 1);
+    // civetweb's options (prometheus-cpp passes them through). A scrape is one small GET:
+    // a client that has not sent its request within 3 s is cut off (a slowloris holds a
+    // worker for at most that long), a request's head may be 8 KiB, and four workers
+    // serve while one is held. Keep-alive is off: a worker is never held by an idle
+    // connection between scrapes. The tick loop never waits for any of it.
+    exposer_ = std::make_unique<prometheus::Exposer>(std::vector<std::string>{
+        "listening_ports", address, "num_threads", std::to_string(kHttpThreads), "request_timeout_ms",
+        std::to_string(kRequestTimeoutMs), "max_request_size", "8192", "enable_keep_alive", "no"});
   } catch (const std::exception& e) {
     throw std::runtime_error("--metrics: cannot listen on " + address + ": " + e.what());
   }
@@ -67,6 +78,7 @@ Metrics::Metrics(const std::string& address) : registry_(std::make_shared<promet
   draining_ = gauge(reg, "fts_draining", "1 while draining (no new players or rooms)");
   sessions_connected_ = gauge(reg, "fts_sessions", "Sessions by state", {{"state", "connected"}});
   sessions_away_ = gauge(reg, "fts_sessions", "Sessions by state", {{"state", "away"}});
+  journal_failing_ = gauge(reg, "fts_journal_failing_rooms", "Rooms whose journal is not writing (an I/O error; retried every second)");
   // 0.1 ms .. 100 ms: a 100 Hz tick has 10 ms.
   tick_seconds_ = &prometheus::BuildHistogram()
                        .Name("fts_tick_duration_seconds")
@@ -74,7 +86,7 @@ Metrics::Metrics(const std::string& address) : registry_(std::make_shared<promet
                        .Register(reg)
                        .Add({}, prometheus::Histogram::BucketBoundaries{0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005,
                                                                          0.01, 0.025, 0.05, 0.1});
-  counters_ = std::make_unique<std::array<Cumulative, 8 + protocol::kRejectCount>>();
+  counters_ = std::make_unique<std::array<Cumulative, 9 + protocol::kRejectCount>>();
   const auto rows = counter_table();
   for (std::size_t i = 0; i < rows.size() && i < counters_->size(); ++i) {
     auto& family = prometheus::BuildCounter().Name(rows[i].name).Help(rows[i].help).Register(reg);
@@ -92,6 +104,7 @@ void Metrics::update(const MetricsSample& s) {
   draining_->Set(s.fleet.draining ? 1 : 0);
   sessions_connected_->Set(s.sessions_connected);
   sessions_away_->Set(s.sessions_away);
+  journal_failing_->Set(static_cast<double>(s.journal_failing));
   for (auto& c : *counters_) {
     const std::uint64_t v = c.value(s);
     if (v > c.seen) c.counter->Increment(static_cast<double>(v - c.seen));

@@ -26,6 +26,7 @@ struct MetricsSample {
   Stats::Totals totals;
   protocol::RejectCounters drops;
   std::uint32_t sessions_connected = 0, sessions_away = 0;
+  std::uint64_t journal_failing = 0, journal_failures = 0;  // rooms not journaling now; times one stopped
 };
 
 class Metrics {
@@ -41,6 +42,9 @@ class Metrics {
   // Journal fsync latency (issue 15's journal calls this when journaling).
   void observe_journal_sync(double seconds);
 
+  static constexpr int kHttpThreads = 4;          // civetweb workers
+  static constexpr int kRequestTimeoutMs = 3000;  // a request not received by then is dropped
+
  private:
   struct Cumulative;  // a counter and the value it was last brought to
   std::shared_ptr<prometheus::Registry> registry_;
@@ -50,9 +54,10 @@ class Metrics {
   prometheus::Gauge* draining_ = nullptr;
   prometheus::Gauge* sessions_connected_ = nullptr;
   prometheus::Gauge* sessions_away_ = nullptr;
+  prometheus::Gauge* journal_failing_ = nullptr;
   prometheus::Histogram* tick_seconds_ = nullptr;
   prometheus::Histogram* journal_sync_seconds_ = nullptr;
-  std::unique_ptr<std::array<Cumulative, 8 + protocol::kRejectCount>> counters_;
+  std::unique_ptr<std::array<Cumulative, 9 + protocol::kRejectCount>> counters_;
 };
 
 }  // namespace fts::server

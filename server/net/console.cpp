@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/console_commands.hpp"
+#include "app/log.hpp"
 
 namespace fts::server {
 
@@ -17,32 +19,55 @@ namespace asio = boost::asio;
 using local = asio::local::stream_protocol;
 
 struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::Connection> {
-  Connection(local::socket s, std::function<std::string(const std::string&)>& h, std::shared_ptr<std::size_t> open)
-      : socket(std::move(s)), buffer(kMaxLineBytes), handle(h), open_count(std::move(open)) {
+  Connection(local::socket s, std::function<std::string(const std::string&)>& h, std::shared_ptr<std::size_t> open,
+             std::shared_ptr<Counters> c)
+      : socket(std::move(s)), timer(socket.get_executor()), buffer(kMaxLineBytes), handle(h),
+        open_count(std::move(open)), counters(std::move(c)) {
     ++*open_count;
   }
   ~Connection() { --*open_count; }
 
+  // The next step (a line to come, or the reply to be taken) has kIdleMs; then the
+  // connection is closed, which ends the pending read or write with an error.
+  void arm() {
+    timer.expires_after(std::chrono::milliseconds(kIdleMs));
+    timer.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+      if (ec) return;  // re-armed or cancelled
+      ++self->counters->timed_out;
+      boost::system::error_code ignored;
+      self->socket.close(ignored);
+    });
+  }
+
   void read() {
+    arm();
     auto self = shared_from_this();
     asio::async_read_until(socket, buffer, '\n', [self](const boost::system::error_code& ec, std::size_t n) {
-      if (ec) return;  // closed, or a line over kMaxLineBytes: the connection ends
+      if (ec) {  // closed, timed out, or a line over kMaxLineBytes: the connection ends
+        if (ec == asio::error::not_found) ++self->counters->too_long;
+        self->timer.cancel();
+        return;
+      }
       std::string line(asio::buffers_begin(self->buffer.data()), asio::buffers_begin(self->buffer.data()) + n);
       self->buffer.consume(n);
       while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
       if (line.empty()) return self->read();
       self->reply = self->handle(line) + "\n";
+      self->arm();
       asio::async_write(self->socket, asio::buffer(self->reply), [self](const boost::system::error_code& e, std::size_t) {
-        if (!e) self->read();
+        if (!e) return self->read();
+        self->timer.cancel();
       });
     });
   }
 
   local::socket socket;
+  asio::steady_timer timer;
   asio::streambuf buffer;
   std::string reply;
   std::function<std::string(const std::string&)>& handle;
   std::shared_ptr<std::size_t> open_count;
+  std::shared_ptr<Counters> counters;
 };
 
 ConsoleServer::ConsoleServer(asio::io_context& io, std::string path, std::function<std::string(const std::string&)> handle)
@@ -81,7 +106,22 @@ std::string ConsoleServer::start() {
 void ConsoleServer::accept() {
   acceptor_.async_accept([this](const boost::system::error_code& ec, local::socket s) {
     if (ec == asio::error::operation_aborted) return;
-    if (!ec && *open_ < kMaxConnections) std::make_shared<Connection>(std::move(s), handle_, open_)->read();
+    if (!ec && *open_ < kMaxConnections) {
+      ++counters_->accepted;
+      busy_logged_ = false;
+      std::make_shared<Connection>(std::move(s), handle_, open_, counters_)->read();
+    } else if (!ec) {
+      ++counters_->refused_busy;
+      if (!busy_logged_)
+        log_record(spdlog::level::warn, "console_busy", {{"open", *open_}, {"refused", counters_->refused_busy}});
+      busy_logged_ = true;
+      // A fresh socket's send buffer takes this line at once; the socket closes after it.
+      static const std::string busy = R"({"ok":false,"error":"console busy: )" + std::to_string(kMaxConnections) +
+                                      R"( connections open; try again"})" "\n";
+      boost::system::error_code ignored;
+      s.non_blocking(true, ignored);
+      s.write_some(asio::buffer(busy), ignored);
+    }
     accept();
   });
 }

@@ -3,6 +3,7 @@
 // `fts-server --console SOCKET CMD [ARGS]` that sends one command and prints the answer.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -21,8 +22,18 @@ class ConsoleServer {
   // any other file at the path is left alone and is an error.
   std::string start();
 
-  static constexpr std::size_t kMaxConnections = 8;    // more are closed at once
-  static constexpr std::size_t kMaxLineBytes = 65536;  // a longer request closes its connection
+  // Every bound has a consequence. Beyond kMaxConnections a new connection is told
+  // {"ok":false,"error":"console busy..."} and closed; a request line longer than
+  // kMaxLineBytes closes its connection; a connection that sends no complete line, or
+  // does not read its reply, within kIdleMs is closed (so a stuck or hostile client
+  // never holds a slot for long). The tick loop never waits for a console client.
+  static constexpr std::size_t kMaxConnections = 8;
+  static constexpr std::size_t kMaxLineBytes = 65536;
+  static constexpr int kIdleMs = 5000;
+  struct Counters {
+    std::uint64_t accepted = 0, refused_busy = 0, timed_out = 0, too_long = 0;
+  };
+  const Counters& counters() const { return *counters_; }
 
  private:
   struct Connection;
@@ -33,6 +44,8 @@ class ConsoleServer {
   std::function<std::string(const std::string&)> handle_;
   boost::asio::local::stream_protocol::acceptor acceptor_;
   std::shared_ptr<std::size_t> open_ = std::make_shared<std::size_t>(0);
+  std::shared_ptr<Counters> counters_ = std::make_shared<Counters>();
+  bool busy_logged_ = false;  // "console_busy" is logged once per busy spell
   bool bound_ = false;
 };
 
