@@ -5,27 +5,33 @@
 namespace fts::protocol {
 
 TokenBucket::TokenBucket(std::uint32_t rate_per_s, std::uint32_t burst, std::uint64_t now_ms)
-    : rate_per_s_(rate_per_s),
-      capacity_milli_(std::uint64_t{burst} * 1000),
-      level_milli_(capacity_milli_),
+    : gain_per_ms_(std::uint64_t{rate_per_s} * kUnit / 1000),
+      capacity_(std::uint64_t{burst} * kUnit),
+      level_(capacity_),
       last_ms_(now_ms) {}
 
+TokenBucket TokenBucket::per_minute(std::uint32_t rate_per_min, std::uint32_t burst, std::uint64_t now_ms) {
+  TokenBucket b(0, burst, now_ms);
+  b.gain_per_ms_ = std::uint64_t{rate_per_min} * kUnit / 60000;
+  return b;
+}
+
 std::uint64_t TokenBucket::level_at(std::uint64_t now_ms) const {
-  if (now_ms <= last_ms_) return level_milli_;
-  // rate_per_s tokens a second = rate_per_s thousandths a millisecond.
-  const std::uint64_t gained = (now_ms - last_ms_) * rate_per_s_;
-  return std::min(capacity_milli_, level_milli_ + gained);
+  if (now_ms <= last_ms_) return level_;
+  return std::min(capacity_, level_ + (now_ms - last_ms_) * gain_per_ms_);
 }
 
 bool TokenBucket::take(std::uint64_t now_ms) {
-  level_milli_ = level_at(now_ms);
+  level_ = level_at(now_ms);
   last_ms_ = std::max(last_ms_, now_ms);
-  if (level_milli_ < 1000) return false;
-  level_milli_ -= 1000;
+  if (level_ < kUnit) return false;
+  level_ -= kUnit;
   return true;
 }
 
-bool TokenBucket::full(std::uint64_t now_ms) const { return level_at(now_ms) >= capacity_milli_; }
+bool TokenBucket::has(std::uint64_t now_ms) const { return level_at(now_ms) >= kUnit; }
+
+bool TokenBucket::full(std::uint64_t now_ms) const { return level_at(now_ms) >= capacity_; }
 
 std::string_view host_of(std::string_view address) {
   if (!address.empty() && address.front() == '[') {

@@ -31,6 +31,8 @@ std::string_view to_string(Reject reason) {
     case Reject::bad_key: return "bad_key";
     case Reject::takeover_limited: return "takeover_limited";
     case Reject::bad_field: return "bad_field";
+    case Reject::unknown_room: return "unknown_room";
+    case Reject::code_limited: return "code_limited";
     case Reject::count_: break;
   }
   return "unknown";

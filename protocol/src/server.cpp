@@ -68,14 +68,16 @@ ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view hos
                  TokenBucket(config_.takeovers_per_s,
                              config_.takeover_burst != 0 ? config_.takeover_burst
                                                          : static_cast<std::uint32_t>(config_.max_sessions_per_address),
-                             now_ms)};
+                             now_ms),
+                 TokenBucket::per_minute(config_.room_code_misses_per_min, config_.room_code_miss_burst, now_ms)};
   return &addresses_.emplace(std::string(host), a).first->second;
 }
 
 // A host whose buckets are full again has been quiet for a while: nothing to remember.
 void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
   std::erase_if(addresses_, [&](const auto& kv) {
-    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms) && kv.second.takeovers.full(now_ms);
+    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms) && kv.second.takeovers.full(now_ms) &&
+           kv.second.code_misses.full(now_ms);
   });
 }
 

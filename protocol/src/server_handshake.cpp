@@ -169,9 +169,21 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   // The host picks the room last: a refused hello above creates no room.
   Admission admission;
   if (config_.admit) {
+    // A host that named too many rooms that do not exist is guessing codes (10.1).
+    const bool by_code = hello.join == "join" || watching;
+    AddressState* host = by_code ? address_state(host_of(from), now_ms) : nullptr;
+    if (host && !host->code_misses.has(now_ms)) {
+      rejects_.add(Reject::code_limited);
+      reply_unconnected(from, enc, 0,
+                        Error{"rate_limited", "too many unknown room codes from this address; try again in a minute"},
+                        request_bytes);
+      return;
+    }
     admission = config_.admit(JoinAsk{hello.join, hello.room, from});
     if (!admission.error.empty() || admission.room == 0) {
-      rejects_.add(Reject::join_refused);
+      const bool unknown = admission.error == "no_such_room";
+      if (unknown && host) (void)host->code_misses.take(now_ms);
+      rejects_.add(unknown ? Reject::unknown_room : Reject::join_refused);
       reply_unconnected(from, enc, 0,
                         Error{admission.error.empty() ? "refused" : admission.error.substr(0, 32),
                               admission.message.substr(0, kMaxTextBytes)},

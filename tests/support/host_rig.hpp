@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "app/console_commands.hpp"
@@ -23,8 +24,14 @@ struct HostRig {
 
   void start() { host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{}); }
   static std::string address(std::size_t i) { return "10.0.0." + std::to_string(i + 1) + ":5000"; }
+  // When set, the next clients connect from this host (a household, an attacker), each
+  // from its own port (5000 + its index); else client i is alone on host 10.0.0.(i+1).
+  std::string next_host;
   // A client that starts its handshake now (it is welcomed over the next ticks).
   protocol::ClientEndpoint& connect(const protocol::ClientConfig& c) {
+    const std::size_t i = clients.size();
+    addresses.push_back(next_host.empty() ? address(i) : next_host + ":" + std::to_string(5000 + i));
+    index_of[addresses.back()] = i;
     clients.push_back(std::make_unique<protocol::ClientEndpoint>(c));
     clients.back()->connect(now);
     return *clients.back();
@@ -38,7 +45,7 @@ struct HostRig {
   void send() {
     for (std::size_t i = 0; i < clients.size(); ++i) {
       clients[i]->update(now);
-      for (auto& d : clients[i]->take_datagrams()) host->receive(address(i), d, now);
+      for (auto& d : clients[i]->take_datagrams()) host->receive(addresses[i], d, now);
     }
   }
   // When set, deliver() notes each datagram as "address size", in the order sent.
@@ -47,8 +54,7 @@ struct HostRig {
   void deliver() {
     for (auto& out : host->take_datagrams()) {
       if (sent_log) sent_log->push_back(out.to + " " + std::to_string(out.bytes.size()));
-      const auto idx = std::stoul(out.to.substr(7, out.to.find(':') - 7)) - 1;
-      clients[idx]->receive(out.bytes, now);
+      clients[index_of.at(out.to)]->receive(out.bytes, now);
     }
   }
   // A console request (JSON text) and its reply; the datagrams it caused are delivered.
@@ -57,6 +63,8 @@ struct HostRig {
     deliver();
     return reply;
   }
+  std::vector<std::string> addresses;                     // client i's address
+  std::unordered_map<std::string, std::size_t> index_of;  // address -> client
   void tick() {
     send();
     host->tick(now);

@@ -106,7 +106,8 @@ TEST_CASE("Rooms: join by code, and the refusals room_full, no_such_room, server
   CHECK(rig.host->room_ids().size() == 2);
   CHECK(rig.host->endpoint().seats_in_room(1) == 2);
   CHECK(rig.host->endpoint().seats_in_room(2) == 1);
-  CHECK(rig.host->endpoint().rejects()[protocol::Reject::join_refused] == 5);
+  CHECK(rig.host->endpoint().rejects()[protocol::Reject::join_refused] == 3);  // room_full, bad_join, server_full
+  CHECK(rig.host->endpoint().rejects()[protocol::Reject::unknown_room] == 2);
 }
 
 TEST_CASE("Rooms: a spectator has no ball and no seat, sees the room's snapshots, and is capped", "[server][rooms]") {
@@ -300,4 +301,50 @@ TEST_CASE("Rooms: a token takes the player back into its own room", "[server][ro
   CHECK(sim::find_player(rig.host->room(2)->match(), id) != nullptr);
   CHECK(sim::find_player(rig.host->room(1)->match(), id) == nullptr);
   CHECK(a.state() == ClientState::connected);
+}
+
+TEST_CASE("Rooms: a host guessing room codes is refused after 10 misses, then gets 6 a minute", "[server][rooms]") {
+  Rig rig(8);
+  auto& owner = rig.add("create");
+  REQUIRE(owner.state() == ClientState::connected);
+  const std::string code = Rig::room_of(owner);
+  const auto& rejects = rig.host->endpoint().rejects();
+  // Every guess is a new hello from the same host (its own port): 10 wrong codes are
+  // answered no_such_room, then even the right code is refused before it is looked at.
+  rig.next_host = "10.9.9.9";
+  const std::string wrong = code == "QQQQQ" ? "ZZZZZ" : "QQQQQ";
+  for (int i = 0; i < 10; ++i) {
+    auto& guess = rig.add(i % 2 ? "join" : "spectate", wrong);
+    REQUIRE(guess.state() == ClientState::refused);
+    CHECK(guess.error()->code == "no_such_room");
+  }
+  CHECK(rejects[protocol::Reject::unknown_room] == 10);
+  auto& right = rig.add("join", code);
+  REQUIRE(right.state() == ClientState::refused);
+  CHECK(right.error()->code == "rate_limited");
+  auto& watch = rig.add("spectate", code);
+  REQUIRE(watch.state() == ClientState::refused);
+  CHECK(rejects[protocol::Reject::code_limited] == 2);
+  CHECK(rejects[protocol::Reject::unknown_room] == 10);  // the code was not looked at
+  // Quick play and create ask for no code: the host still plays.
+  auto& quick = rig.add("quick");
+  CHECK(quick.state() == ClientState::connected);
+  // Another host joins by the code as before.
+  rig.next_host = "10.8.8.8";
+  auto& friend_ = rig.add("join", code);
+  REQUIRE(friend_.state() == ClientState::connected);
+  CHECK(Rig::room_of(friend_) == code);
+  // 10 s later the guesser has one more miss (6 a minute): the right code gets in, and
+  // a right code costs nothing.
+  rig.next_host = "10.9.9.9";
+  for (int t = 0; t < 1000; ++t) rig.tick();
+  auto& back = rig.add("join", code);
+  REQUIRE(back.state() == ClientState::connected);
+  auto& miss = rig.add("join", wrong);
+  REQUIRE(miss.state() == ClientState::refused);
+  CHECK(miss.error()->code == "no_such_room");
+  auto& over = rig.add("join", code);
+  REQUIRE(over.state() == ClientState::refused);
+  CHECK(over.error()->code == "rate_limited");
+  CHECK(rejects[protocol::Reject::code_limited] == 3);
 }

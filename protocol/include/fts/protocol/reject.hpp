@@ -30,12 +30,14 @@ enum class Reject : std::uint8_t {
   overflow,           // a session over a queue cap: the session is dropped (error "overflow")
   address_full,       // a new session from a host that has max_sessions_per_address already
   idle,               // a session without real input for idle_timeout_ms: dropped (error "idle")
-  join_refused,       // a new player's room choice refused (room_full, no_such_room, server_full, bad_join)
+  join_refused,       // a new player's room choice refused (room_full, server_full, bad_join, draining)
   forged,             // a sealed datagram whose tag does not verify (forged, tampered, wrong key)
   replayed,           // a sealed datagram whose sequence was seen already or is older than the window
   bad_key,            // a handshake key exchange public key missing or refused
   takeover_limited,   // over the address's rate of token take-overs
   bad_field,          // a cmd field that did not read: the cmd is answered, not applied; the datagram goes on
+  unknown_room,       // a join or spectate naming no open room (refused no_such_room)
+  code_limited,       // a join or spectate over its host's rate of unknown room codes (refused rate_limited)
   count_
 };
 

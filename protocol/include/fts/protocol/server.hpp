@@ -109,6 +109,13 @@ struct ServerConfig {
   // max_sessions_per_address).
   std::uint32_t takeovers_per_s = 1;
   std::uint32_t takeover_burst = 0;
+  // Room codes that name no open room (the host's admit answers no_such_room, counted
+  // as unknown_room), per host and minute; past the burst, a join or spectate hello is
+  // refused with error "rate_limited" before the code is looked at (counted as
+  // code_limited). A code is 5 of 23 letters (6.4 million): at 6 a minute, one host
+  // guesses one of 64 open rooms in 12 days on average. Quick play and create are free.
+  std::uint32_t room_code_misses_per_min = 6;
+  std::uint32_t room_code_miss_burst = 10;
   // A connected session that sends no real input (a frame with a key down, or a
   // command) for this long is dropped with error "idle"; never while the host says the
   // players cannot act (set_idle_paused: lobby, shop, game over). 0: never.
@@ -315,6 +322,7 @@ class ServerEndpoint {
     TokenBucket datagrams;
     TokenBucket hellos;
     TokenBucket takeovers;
+    TokenBucket code_misses;  // room codes that named no open room
   };
 
   AddressState* address_state(std::string_view host, std::uint64_t now_ms);
