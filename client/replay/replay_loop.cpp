@@ -31,12 +31,14 @@ void note(ViewState& view, std::string text, std::uint64_t now) {
 int run_replay(const std::string& path, bool kitty, std::string& message) {
   std::ifstream in(path);
   if (!in) {
-    message = "cannot open the record " + path;
+    message = "cannot open the record " + sanitize(path, 200);
     return 1;
   }
   auto loaded = load_tape(in);
   if (auto* err = std::get_if<std::string>(&loaded)) {
-    message = path + ": " + *err;
+    // The reason quotes the file (its version string, the bytes JSON stopped at): a
+    // record from elsewhere must not reach the terminal raw (issue 30).
+    message = sanitize(path, 200) + ": " + sanitize(*err, 300);
     return 1;
   }
   Replay replay(std::move(std::get<Tape>(loaded)));

@@ -1,5 +1,6 @@
 #include "ui/welcome_view.hpp"
 
+#include "ui/sanitize.hpp"
 #include "ui/start_screen.hpp"
 
 namespace fts::client {
@@ -10,7 +11,7 @@ void show_welcome(ViewState& view, const protocol::Welcome& w) {
   view.arena_height_u = w.arena_height_u;
   view.shop_terms = w.shop;
   view.tick_rate_hz = w.tick_rate_hz;
-  view.room = room_label(w.room, w.spectator);
+  view.room = room_label(sanitize(w.room, 8), w.spectator);  // as the log shows the code
 }
 
 std::uint64_t reconnect_window_s(const std::optional<protocol::Welcome>& w) {
