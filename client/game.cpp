@@ -322,11 +322,7 @@ class Game {
                                : "Cannot buy: " + refusal_text(r.code, r.message, it->second, me) + ".";
       pending_buys_.erase(it);
     }
-    for (const auto& c : endpoint.take_chats()) {
-      const std::string name = c.from == 0 ? std::string("host") : sanitize(c.name, 16);
-      LogLine line{name + ": " + sanitize(c.text, kChatMaxChars), now, c.from, name.size() + 1, c.from == 0};
-      push_log(std::move(line));
-    }
+    for (const auto& c : endpoint.take_chats()) push_log(chat_log_line(c, now, kChatMaxChars));
     // Connection trouble: show it after 2 s of silence; the connection resumes with the
     // token by itself (ClientConnection) until the reconnect window has passed.
     const S st = conn_.state();

@@ -22,4 +22,9 @@ std::optional<std::string> edit_chat_line(ViewState& view, const KeyEvent& e, st
   return std::nullopt;
 }
 
+LogLine chat_log_line(const protocol::Chat& c, std::uint64_t now_ms, std::size_t max_chars) {
+  const std::string name = c.from == 0 ? std::string("host") : sanitize(c.name, 16);
+  return LogLine{name + ": " + sanitize(c.text, max_chars), now_ms, c.from, name.size() + 1, c.from == 0};
+}
+
 }  // namespace fts::client
