@@ -299,7 +299,12 @@ std::string console_request(const std::vector<std::string>& words, std::string& 
     error = c->from_words(Words(words).subspan(1), j);
     if (!error.empty()) return "";
   }
-  return j.dump();
+  try {
+    return j.dump();
+  } catch (const nlohmann::json::type_error&) {  // found by fts_fuzz_console
+    error = "the command and its words must be UTF-8 text";
+    return "";
+  }
 }
 
 }  // namespace fts::server

@@ -164,7 +164,8 @@ sim::TickInputs Room::gather(std::uint64_t now_ms) {
     t.input.fire = h.fire;
     h.fire = false;
   }
-  for (auto& [id, t] : ticks) {
+  for (auto& [player, t] : ticks) {
+    const std::uint32_t id = player;  // a lambda cannot capture a binding before clang 16
     // Inputs of players that have not joined the match (yet) have nothing to apply; their
     // commands still go to the step, which answers them.
     const bool joining = std::any_of(in.joins.begin(), in.joins.end(), [&](const auto& j) { return j.player == id; });

@@ -110,6 +110,8 @@ struct Enum {
     v = static_cast<E>(n);
   }
 };
+template <class E>
+Enum(E) -> Enum<E>;  // clang before 17 deduces no aggregate's arguments
 
 // Exactly N values of one type.
 template <class T, std::size_t N>
@@ -158,6 +160,8 @@ template <class Table>
 struct Splice {
   Table table;
 };
+template <class Table>
+Splice(Table) -> Splice<Table>;
 
 template <class K>
 constexpr std::size_t width_of(const K& kind) {
@@ -251,6 +255,8 @@ struct Object {
     read_object(j, v, table);
   }
 };
+template <class Table>
+Object(Table) -> Object<Table>;
 
 // A struct as an array of its table's values, by position.
 template <class Table>
@@ -270,6 +276,8 @@ struct Row {
     read_row(j, at, v, table);
   }
 };
+template <class Table>
+Row(Table) -> Row<Table>;
 
 // A vector of records whose ids ascend strictly (the match keeps players and balls so).
 template <class K>
@@ -292,6 +300,8 @@ struct Ascending {
     });
   }
 };
+template <class K>
+Ascending(K) -> Ascending<K>;
 
 // A map of records by id, each written as an Entry {id, value} (a row whose first value
 // is the id); an id twice is refused.

@@ -64,7 +64,10 @@ std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string
   try {
     Fields f(j, "");
     MatchConfig cfg = base;
-    for (const auto& [key, value] : j.items()) {
+    for (const auto& item : j.items()) {
+      // Named, not bound: clang before 16 cannot capture a structured binding.
+      const std::string& key = item.key();
+      const nlohmann::json& value = item.value();
       const FieldDef* def = find_field(key);
       if (!def) f.fail(key, "unknown key (value " + value.dump() + ")");
       std::visit(

@@ -47,4 +47,8 @@ TEST_CASE("Console: the front end's words make the request", "[server][console]"
   CHECK(request({}).empty());
   CHECK(error.find("kick PLAYER [REASON], ban ADDRESS [MINUTES]") != std::string::npos);
   CHECK(request({R"({"cmd":"rooms"})"}) == R"({"cmd":"rooms"})");
+  // Words that are not UTF-8 are refused, not thrown (fts_fuzz_console found it).
+  CHECK(request({"dra\xa1\x91"}).empty());
+  CHECK(request({"announce", "caf\xe9"}).empty());
+  CHECK(error == "the command and its words must be UTF-8 text");
 }
