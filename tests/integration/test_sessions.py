@@ -64,6 +64,42 @@ def test_server_stall():
         check(re.search(r"stall ms=\d+", text), "the server did not log its stall")
 
 
+def test_host_suspend():
+    """The whole machine suspended for 12 s (a laptop's lid: server and clients stop
+    together, SIGSTOP to all): nobody is dropped from the match, every bot plays on as its
+    own player to the end of its run, its coins what the server's log says it earned
+    and spent."""
+    with Server("--log-level", "debug") as srv:
+        (bots, report) = start_bots("--connect", srv.address, "--name", "lid", "--count", "4", "--behavior",
+                                    "shopper", "--duration", "28")
+        wait_for(lambda: len(re.findall(r"connect player=\d+ name=lid", srv.text())) >= 4, 20, "4 bots")
+        wait_for(lambda: "level_start level=1" in srv.text(), 30, "level 1 to start")
+        for p in (srv.proc, bots):
+            p.send_signal(signal.SIGSTOP)
+        time.sleep(12)  # the suspend under test
+        for p in (bots, srv.proc):
+            p.send_signal(signal.SIGCONT)
+        rc, report, err = finish_bots((bots, report), 90)
+        text = srv.text()
+        timeouts = re.findall(r"disconnect player=\d+ reason=timeout", text)
+        check(not timeouts, f"{len(timeouts)} players timed out for a suspend of the whole host")
+        check(not re.findall(r"leave player=\d+", text), "players released after the suspend")
+        check(rc == 0, f"bots failed after the suspend (exit {rc}): {err.strip()}")
+        check(len({b["player_id"] for b in report}) == 4, "bots came back as other players")
+        # A client that stood still past its time-out cannot know the server did too: it
+        # comes back at once with its token, as the same player (waiting on a session a
+        # server that ran on may have dropped would cost another time-out).
+        first = set(re.findall(r"\bconnect player=(\d+) name=lid", text))
+        back = set(re.findall(r"reconnect player=(\d+) name=lid", text))
+        check(back <= first, f"came back as new players: {back - first}")
+        earned, spent = ledger(text)
+        for b in report:
+            pid = str(b["player_id"])
+            check(b["coins"] == earned.get(pid, 0) - spent.get(pid, 0),
+                  f"{b['name']}: {b['coins']} coins, the log says {earned.get(pid, 0)} - {spent.get(pid, 0)}")
+        check(re.search(r"stall ms=\d+", text), "the server did not log its stall")
+
+
 def ledger(text):
     """Per player: coins from enemies and interest, and coins spent, from the server log."""
     earned, spent = {}, {}
@@ -129,5 +165,5 @@ def test_soak_churn():
 
 
 if __name__ == "__main__":
-    sys.exit(main({"killed_mid_keypress": test_killed_mid_keypress, "server_stall": test_server_stall,
+    sys.exit(main({"killed_mid_keypress": test_killed_mid_keypress, "server_stall": test_server_stall, "host_suspend": test_host_suspend,
                    "soak_churn": test_soak_churn}))

@@ -3,6 +3,7 @@
 // closing empty rooms, and the host's console.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <set>
 
 #include "app/game_host.hpp"
@@ -347,4 +348,61 @@ TEST_CASE("Rooms: a host guessing room codes is refused after 10 misses, then ge
   REQUIRE(over.state() == ClientState::refused);
   CHECK(over.error()->code == "rate_limited");
   CHECK(rejects[protocol::Reject::code_limited] == 3);
+}
+
+TEST_CASE("Rooms: a spectator flood fills the room's spectator cap and no more; the players play on", "[server][rooms]") {
+  test::HostRig rig;
+  rig.options.seed = 5;
+  rig.options.max_players = 2;
+  rig.options.max_spectators = 8;
+  rig.options.max_per_address = 64;
+  rig.start();
+  protocol::ClientConfig a, b;
+  a.name = "ann";
+  a.join = "create";
+  auto& ann = rig.connect(a);
+  REQUIRE(rig.connect_all());
+  b.name = "bob";
+  b.join = "join";
+  b.room = Rig::room_of(ann);
+  auto& bob = rig.connect(b);
+  REQUIRE(rig.connect_all());
+  // 400 spectators from 400 hosts and 40 from one host ask at once.
+  std::vector<protocol::ClientEndpoint*> flood;
+  for (int i = 0; i < 440; ++i) {
+    rig.next_host = i < 400 ? "10.7." + std::to_string(i / 200) + "." + std::to_string(i % 200 + 1) : "10.6.6.6";
+    protocol::ClientConfig c;
+    c.name = "w" + std::to_string(i);
+    c.join = "spectate";
+    c.room = b.room;
+    flood.push_back(&rig.connect(c));
+  }
+  const auto snapshot_tick = [](const protocol::ClientEndpoint& c) {
+    return c.latest_snapshot() ? c.latest_snapshot()->tick : 0;
+  };
+  std::uint64_t last = snapshot_tick(ann);
+  int waiting = 440;
+  for (int t = 0; t < 600 && waiting > 0; ++t) {
+    rig.tick();
+    if (t % 20 == 19) {  // the players' snapshots keep coming through the flood
+      CHECK(snapshot_tick(ann) > last);
+      CHECK(snapshot_tick(bob) == snapshot_tick(ann));
+      last = snapshot_tick(ann);
+    }
+    waiting = static_cast<int>(std::count_if(flood.begin(), flood.end(), [](const auto* c) {
+      return c->state() == ClientState::connecting;
+    }));
+  }
+  REQUIRE(waiting == 0);
+  const auto watching = std::count_if(flood.begin(), flood.end(), [](const auto* c) {
+    return c->state() == ClientState::connected;
+  });
+  CHECK(watching == 8);
+  for (const auto* c : flood)
+    if (c->state() != ClientState::connected) CHECK(c->error()->code == "room_full");
+  CHECK(rig.host->endpoint().spectators_in_room(1) == 8);
+  CHECK(rig.host->room_ids().size() == 1);
+  CHECK(rig.host->room(1)->match().players.size() == 2);
+  CHECK(ann.state() == ClientState::connected);
+  CHECK(bob.state() == ClientState::connected);
 }
