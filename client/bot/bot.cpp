@@ -159,6 +159,7 @@ void Bot::on_snapshot(const protocol::Snapshot& s) {
 
 void Bot::send_command(protocol::CommandOp op, char item, std::uint64_t now_ms) {
   pending_rid_ = conn_.endpoint().send_command(op, item, now_ms);
+  if (pending_rid_ != 0) ++commands_sent_;
   pending_op_ = op;
   pending_item_ = item;
 }
@@ -244,6 +245,7 @@ void Bot::update(std::uint64_t now_ms) {
   for (auto& r : conn_.endpoint().take_results()) {
     if (r.command_rid == pending_rid_) {
       pending_rid_ = 0;
+      ++commands_answered_;
       if (pending_op_ == protocol::CommandOp::buy) tally_.on_purchase_result(r.ok, pending_item_);
     }
     last_result_ = r;
@@ -331,6 +333,9 @@ nlohmann::ordered_json Bot::report() const {
   r["prices"] = p ? nlohmann::ordered_json(p->prices) : nlohmann::ordered_json::array();
   r["purchases_refused"] = tally_.purchases_refused();
   r["bought"] = tally_.bought();
+  r["commands_sent"] = commands_sent_;
+  r["commands_answered"] = commands_answered_;
+  r["command_pending"] = pending_rid_ != 0;
   r["room"] = room();
   if (const auto& w = conn_.endpoint().welcome()) r["spectator"] = w->spectator;
   if (!refused_as_expected_.empty()) r["refused"] = refused_as_expected_;

@@ -111,6 +111,8 @@ class Bot {
   std::uint32_t pending_rid_ = 0;
   protocol::CommandOp pending_op_ = protocol::CommandOp::ready;
   char pending_item_ = 0;
+  std::uint64_t commands_sent_ = 0;      // commands given a rid (each to be applied exactly once)
+  std::uint64_t commands_answered_ = 0;  // results received for them
   std::optional<protocol::Result> last_result_;
   bool sent_ready_for_phase_ = false;
   protocol::Phase last_phase_ = protocol::Phase::lobby;
