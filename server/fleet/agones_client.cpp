@@ -34,10 +34,30 @@ const char* op_name(SdkOp op) {
   return "?";
 }
 
+// One request; the answer's body is kept up to AgonesClient::kMaxBodyBytes, a longer
+// one ends the call (error Canceled).
+httplib::Result request(httplib::Client& http, const std::string& method, const std::string& path,
+                        const std::string& body) {
+  httplib::Request req;
+  req.method = method;
+  req.path = path;
+  if (method != "GET") {
+    req.body = body;
+    req.set_header("Content-Type", "application/json");
+  }
+  auto answer = std::make_shared<std::string>();
+  req.content_receiver = [answer](const char* data, std::size_t n, std::uint64_t, std::uint64_t) {
+    if (answer->size() + n > AgonesClient::kMaxBodyBytes) return false;
+    answer->append(data, n);
+    return true;
+  };
+  httplib::Result r = http.send(req);
+  if (r) r.value().body = std::move(*answer);
+  return r;
+}
+
 Outcome send(httplib::Client& http, const SdkCall& c) {
-  httplib::Result r = c.method == "PATCH" ? http.Patch(c.path, c.body, "application/json")
-                      : c.method == "PUT" ? http.Put(c.path, c.body, "application/json")
-                                          : http.Post(c.path, c.body, "application/json");
+  const httplib::Result r = request(http, c.method, c.path, c.body);
   Outcome o;
   if (!r) {
     o.error = httplib::to_string(r.error());
@@ -51,7 +71,8 @@ Outcome send(httplib::Client& http, const SdkCall& c) {
 
 }  // namespace
 
-AgonesClient::AgonesClient(AgonesClientConfig config) : config_(std::move(config)), thread_([this] { run(); }) {}
+AgonesClient::AgonesClient(AgonesClientConfig config)
+    : config_(std::move(config)), thread_([this] { run(); }), watchdog_([this] { watch(); }) {}
 
 AgonesClient::~AgonesClient() {
   {
@@ -59,7 +80,47 @@ AgonesClient::~AgonesClient() {
     stop_ = true;
   }
   changed_cv_.notify_all();
+  {
+    std::lock_guard lock(watch_mutex_);
+    abort_ = true;  // a call in flight is cut off now
+  }
+  watch_cv_.notify_all();
   thread_.join();
+  {
+    std::lock_guard lock(watch_mutex_);
+    watch_stop_ = true;
+  }
+  watch_cv_.notify_all();
+  watchdog_.join();
+}
+
+// Called with mutex_ held to register (after stop_ was checked: the destructor then
+// aborts it), without to clear.
+void AgonesClient::in_flight(httplib::Client* http) {
+  {
+    std::lock_guard lock(watch_mutex_);
+    in_flight_ = http;
+    deadline_ = Clock::now() + std::chrono::milliseconds(config_.timeout_ms);
+  }
+  if (http) watch_cv_.notify_all();
+}
+
+// httplib's timeouts bound each read and write, not a call: a sidecar that sends a byte
+// of its answer now and then never trips them. Past its deadline (or when stopping) a
+// call's socket is shut down, which Client::stop() may do from another thread; again
+// every 50 ms until the call has ended (a shutdown before its socket opened misses it).
+void AgonesClient::watch() {
+  std::unique_lock lock(watch_mutex_);
+  while (!watch_stop_) {
+    if (in_flight_ && (abort_ || Clock::now() >= deadline_)) {
+      in_flight_->stop();
+      watch_cv_.wait_for(lock, std::chrono::milliseconds(50));
+    } else if (in_flight_) {
+      watch_cv_.wait_until(lock, deadline_);
+    } else {
+      watch_cv_.wait(lock);
+    }
+  }
 }
 
 void AgonesClient::want(const AgonesWanted& wanted) {
@@ -86,14 +147,24 @@ void AgonesClient::run() {
   http.set_write_timeout(t, t_us);
 
   std::uint32_t backoff_ms = config_.retry_min_ms;
+  std::uint64_t spell = 0;  // failures in a row
+  Clock::time_point spell_start;
   auto next_poll = Clock::now();
   std::unique_lock lock(mutex_);
   while (!stop_) {
     const AgonesWanted wanted = wanted_;
     if (const auto call = sync_.next(wanted)) {
+      in_flight(&http);
       lock.unlock();
       const Outcome o = send(http, *call);
+      in_flight(nullptr);
       if (o.done) {
+        if (spell > 0) {
+          const auto after = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - spell_start);
+          log_record(spdlog::level::info, "agones_recovered",
+                     {{"call", op_name(call->op)}, {"failures", spell}, {"after_ms", after.count()}});
+          spell = 0;
+        }
         if (o.status >= 300)  // a 4xx: the sidecar will not take it, retrying cannot help
           log_record(spdlog::level::warn, "agones_refused",
                      {{"call", op_name(call->op)}, {"status", o.status}, {"error", o.error}});
@@ -107,11 +178,14 @@ void AgonesClient::run() {
         continue;
       }
       // Not answered, or a 5xx: the sidecar may still be starting. The call stays owed.
+      // A spell of failures is logged at its first and every 20th (at most one line per
+      // 40 s at the 2 s backoff), its end as agones_recovered.
       const auto n = ++failures_;
-      if (n == 1 || n % 20 == 0)
+      if (spell++ == 0) spell_start = Clock::now();
+      if (spell == 1 || spell % 20 == 0)
         log_record(spdlog::level::warn, "agones_retry",
-                   {{"call", op_name(call->op)}, {"status", o.status}, {"error", o.error}, {"failures", n},
-                    {"retry_ms", backoff_ms}});
+                   {{"call", op_name(call->op)}, {"status", o.status}, {"error", o.error}, {"failures", spell},
+                    {"failures_total", n}, {"retry_ms", backoff_ms}});
       lock.lock();
       changed_cv_.wait_for(lock, ms(backoff_ms), [this] { return stop_; });
       backoff_ms = std::min(config_.retry_max_ms, backoff_ms * 2);
@@ -135,11 +209,21 @@ void AgonesClient::poll_gameserver() {
   httplib::Client http(config_.host, config_.port);
   http.set_connection_timeout(0, 500000);
   http.set_read_timeout(1, 0);
-  const auto r = http.Get("/gameserver");
+  {
+    std::lock_guard lock(mutex_);
+    if (stop_) return;
+    in_flight(&http);
+  }
+  const auto r = request(http, "GET", "/gameserver", "");
+  in_flight(nullptr);
   if (!r || r->status != 200) return;
+  // Whatever the answer holds: value() would throw on a state that is not a string, and
+  // an exception here ends the process.
   const auto j = nlohmann::json::parse(r->body, nullptr, false);
-  if (j.is_discarded() || !j.contains("status") || !j["status"].is_object()) return;
-  const auto state = j["status"].value("state", std::string());
+  if (!j.is_object() || !j.contains("status") || !j["status"].is_object()) return;
+  const auto& status = j["status"];
+  if (!status.contains("state") || !status["state"].is_string()) return;
+  const auto state = status["state"].get<std::string>();
   std::lock_guard lock(mutex_);
   if (state == gs_state_) return;
   gs_state_ = state;

@@ -2,9 +2,14 @@
 // (want(), never blocks beyond a mutex), the thread makes the calls AgonesSync says are
 // owed, retrying with backoff while the sidecar starts late or answers 5xx (never fatal),
 // and polls GET /gameserver to learn the server's Agones state (Allocated, ...).
+// Every call is bounded whatever the sidecar does: a watchdog thread cuts off a call
+// still running after timeout_ms (a sidecar that answers a byte at a time would
+// otherwise hold the thread, and the process's exit, for ever), and an answer's body
+// beyond kMaxBodyBytes ends the call (a garbage Content-Length is not buffered).
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -12,6 +17,10 @@
 #include <thread>
 
 #include "fleet/agones_sync.hpp"
+
+namespace httplib {
+class Client;
+}
 
 namespace fts::server {
 
@@ -21,13 +30,13 @@ struct AgonesClientConfig {
   std::uint32_t retry_min_ms = 100;   // first wait after a failed call; doubles per failure
   std::uint32_t retry_max_ms = 2000;  // cap of that wait
   std::uint32_t poll_ms = 1000;       // GET /gameserver period
-  std::uint32_t timeout_ms = 2000;    // connect/read/write limit of one call
+  std::uint32_t timeout_ms = 2000;    // the longest one call may take, all told
 };
 
 class AgonesClient {
  public:
   explicit AgonesClient(AgonesClientConfig config);
-  ~AgonesClient();  // stops the thread (an in-flight call ends within timeout_ms)
+  ~AgonesClient();  // stops the thread (an in-flight call is cut off at once)
   AgonesClient(const AgonesClient&) = delete;
   AgonesClient& operator=(const AgonesClient&) = delete;
 
@@ -36,12 +45,16 @@ class AgonesClient {
   bool shutdown_sent() const { return shutdown_sent_.load(); }
   bool ready_sent() const { return ready_sent_.load(); }
   std::uint64_t failures() const { return failures_.load(); }
+  static constexpr std::size_t kMaxBodyBytes = 1 << 20;  // a GameServer object is a few KiB
   // status.state of the last GET /gameserver ("" before the first answer).
   std::string gameserver_state() const;
 
  private:
   void run();
   void poll_gameserver();
+  void watch();  // the watchdog thread
+  // Registers (nullptr: clears) the call being made on `http`.
+  void in_flight(httplib::Client* http);
 
   AgonesClientConfig config_;
   mutable std::mutex mutex_;
@@ -50,11 +63,20 @@ class AgonesClient {
   bool changed_ = false;      // guarded by mutex_
   bool stop_ = false;         // guarded by mutex_
   std::string gs_state_;      // guarded by mutex_
+  // The watchdog's, apart from mutex_ (which want() takes): it may wait in
+  // Client::stop() while a connect is under way.
+  std::mutex watch_mutex_;
+  std::condition_variable watch_cv_;
+  httplib::Client* in_flight_ = nullptr;            // guarded by watch_mutex_: the call being made
+  std::chrono::steady_clock::time_point deadline_;  // guarded by watch_mutex_: when it is cut off
+  bool abort_ = false;                              // guarded by watch_mutex_: stopping, cut it off now
+  bool watch_stop_ = false;                         // guarded by watch_mutex_
   AgonesSync sync_;           // the thread's own
   std::atomic<bool> shutdown_sent_{false};
   std::atomic<bool> ready_sent_{false};
   std::atomic<std::uint64_t> failures_{0};
   std::thread thread_;
+  std::thread watchdog_;
 };
 
 }  // namespace fts::server
