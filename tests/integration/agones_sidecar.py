@@ -13,9 +13,19 @@ endpoints fts-server uses as agones.dev documents them ("REST Game Server Client
   POST /v1beta1/lists/NAME:addValue / :removeValue   body {"value": V}; a full List: 400, a
                                                      value already there: 409, one not there: 404
 Every call is recorded (time, method, path, parsed body, status). It can start late
-(start(delay_s)) and fail: the first `fail_first` calls get 500.
-Run alone: python3 agones_sidecar.py PORT [--fail-first N] (prints each call)."""
-import json, re, sys, threading, time
+(start(delay_s)), stop and start again (a sidecar that goes away mid-run), and fail: the
+first `fail_first` calls get 500. set_fault(kind) makes every call from then on fail so
+(recorded with status = the kind, not applied), until set_fault(None):
+  "error"     HTTP 500 with a JSON error body
+  "slow"      the answer after `delay_s` (default 3 s: past the server's 2 s read timeout)
+  "garbage"   bytes that are not HTTP (NUL, invalid UTF-8), then the connection closes
+  "bad_json"  200 with a body that is not JSON (NUL, invalid UTF-8)
+  "wrong_types" 200 with JSON of the wrong shape ({"status": {"state": 5}, ...})
+  "lying"     200 with a Content-Length longer than the body, then the connection closes
+  "trickle"   a status line, then a header byte every `delay_s` (default 0.5 s), never done
+  "huge"      200 with a Content-Length of 1 TB, the body streamed as fast as it is read
+Run alone: python3 agones_sidecar.py PORT [--fail-first N] [--fault KIND] (prints each call)."""
+import json, os, re, sys, threading, time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
 COUNTER = re.compile(r"^/v1beta1/counters/([a-z0-9-]+)$")
@@ -41,6 +51,9 @@ class Sidecar:
         self.lists = lists or {"rooms": {"capacity": 3, "values": []}, "players": {"capacity": 100, "values": []}}
         self.server = None
         self.thread = None
+        self.fault = None     # see set_fault
+        self.delay_s = 0.0
+        self.faulted = 0      # calls answered with a fault so far
 
     # ---- control ------------------------------------------------------------------------
     def start(self, delay_s=0.0):
@@ -57,9 +70,25 @@ class Sidecar:
         self.thread.start()
 
     def stop(self):
+        """Stops listening (a connection refused from now on); start() again serves on."""
         if self.server:
             self.server.shutdown()
             self.server.server_close()
+            self.server = None
+
+    FAULTS = {"error": 0, "slow": 3.0, "garbage": 0, "bad_json": 0, "wrong_types": 0, "lying": 0, "trickle": 0.5,
+              "huge": 0}
+
+    def set_fault(self, kind, delay_s=None):
+        """Every call from now on fails as `kind` (FAULTS); None: answers as the gateway does."""
+        assert kind is None or kind in self.FAULTS, kind
+        with self.lock:
+            self.fault = kind
+            self.delay_s = self.FAULTS.get(kind, 0) if delay_s is None else delay_s
+
+    def faulted_calls(self):
+        with self.lock:
+            return self.faulted
 
     def set_state(self, state):
         with self.lock:
@@ -168,6 +197,14 @@ class Sidecar:
                 except ValueError:
                     body = "<not json>"
                 with sidecar.lock:
+                    fault, delay = sidecar.fault, sidecar.delay_s
+                    if fault:
+                        sidecar.faulted += 1
+                        sidecar.calls.append({"t": time.monotonic(), "method": self.command, "path": self.path,
+                                              "body": body, "status": fault})
+                if fault:
+                    return self._fault(fault, delay)
+                with sidecar.lock:
                     status, reply = sidecar.handle(self.command, self.path, body if body is not None else {})
                     sidecar.calls.append({"t": time.monotonic(), "method": self.command, "path": self.path,
                                           "body": body, "status": status})
@@ -177,6 +214,37 @@ class Sidecar:
                 self.send_header("Content-Length", str(len(data)))
                 self.end_headers()
                 self.wfile.write(data)
+
+            def _fault(self, fault, delay):
+                self.close_connection = True
+                if fault == "slow":
+                    time.sleep(delay)  # the fault itself: an answer this late
+                    fault = "error"
+                if fault == "garbage":
+                    self.wfile.write(b"\x00\xff\xfe garbage \xc3\x28 not http\r\n\r\n" + os.urandom(64))
+                elif fault == "error":
+                    data = b'{"error": "injected failure"}'
+                    self.wfile.write(b"HTTP/1.1 500 Internal Server Error\r\nContent-Type: application/json\r\n"
+                                     b"Content-Length: %d\r\n\r\n%s" % (len(data), data))
+                elif fault in ("bad_json", "wrong_types", "lying"):
+                    data = {"bad_json": b'{"status": {"state": [\x00\xff',
+                            "wrong_types": b'{"status": {"state": 5, "ports": "x"}, "object_meta": [], "count": {}}',
+                            "lying": b'{"status": {"sta'}[fault]
+                    length = len(data) + (1000 if fault == "lying" else 0)
+                    self.wfile.write(b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\n"
+                                     b"Content-Length: %d\r\n\r\n%s" % (length, data))
+                elif fault == "trickle":
+                    self.wfile.write(b"HTTP/1.1 200 OK\r\n")
+                    while sidecar.fault == "trickle":  # one byte of an endless header at a time
+                        self.wfile.write(b"X")
+                        self.wfile.flush()
+                        time.sleep(delay)
+                elif fault == "huge":
+                    self.wfile.write(b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\n"
+                                     b"Content-Length: 1000000000000\r\n\r\n")
+                    chunk = b"[" * 65536
+                    while sidecar.fault == "huge":
+                        self.wfile.write(chunk)
 
             do_GET = do_POST = do_PUT = do_PATCH = _serve
 
@@ -190,6 +258,8 @@ if __name__ == "__main__":
     port = int(sys.argv[1]) if len(sys.argv) > 1 else 9358
     fail = int(sys.argv[sys.argv.index("--fail-first") + 1]) if "--fail-first" in sys.argv else 0
     s = Sidecar(port, fail_first=fail)
+    if "--fault" in sys.argv:
+        s.set_fault(sys.argv[sys.argv.index("--fault") + 1])
     s.start()
     seen = 0
     try:

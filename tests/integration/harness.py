@@ -1,6 +1,7 @@
 """Helpers for the integration tests: real processes on loopback, free ports, and
 waits with deadlines (poll for an event, never sleep and hope)."""
-import json, os, re, signal, subprocess, sys, tempfile, time
+import json, os, re, signal, socket, subprocess, sys, tempfile, time
+from datetime import datetime, timezone
 
 BIN = os.environ.get("FTS_BIN_DIR", "build")
 SERVER = os.path.join(BIN, "server", "fts-server")
@@ -67,6 +68,28 @@ class Server:
         if exc_type is not None:  # a failing test shows what the server saw
             print("--- server log (tail) ---")
             print("\n".join(self.text().splitlines()[-25:]))
+
+
+def free_port():
+    """A TCP port that is free on 127.0.0.1 now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def records(srv, event):
+    """The server's records of one event (--log-format json), each with "t": its "ts" in
+    seconds since the epoch (time.time()'s clock)."""
+    out = []
+    for line in srv.text().splitlines():
+        try:
+            r = json.loads(line)
+        except ValueError:  # not a record, or the one being written
+            continue
+        if isinstance(r, dict) and r.get("event") == event:
+            r["t"] = datetime.strptime(r["ts"], "%Y-%m-%dT%H:%M:%S.%fZ").replace(tzinfo=timezone.utc).timestamp()
+            out.append(r)
+    return out
 
 
 def start_bots(*args):
