@@ -173,10 +173,11 @@ def audit_bot(b, book, applied):
 
 
 def session_drops(text, players, end_wall):
-    """Drops while the bots played: a disconnect other than the bot's goodbye, a reconnect
-    or a release before the bots' end; a time-out line after it whose silence began
-    before the end (the line comes TIMEOUT_MS after the last datagram). A time-out of a
-    silence that began at the end is a lost goodbye (three datagrams, all lost)."""
+    """Drops while the bots played, as (player, log line): a disconnect other than the
+    bot's goodbye, a reconnect or a release before the bots' end; a time-out line after
+    it whose silence began before the end (the line comes TIMEOUT_MS after the last
+    datagram). A time-out of a silence that began at the end is a lost goodbye (its
+    three datagrams all lost), counted apart."""
     drops, byes_lost = [], 0
     for line in text.splitlines():
         m = re.search(r"\] \[\w+\] (disconnect|reconnect|leave) player=(\d+)(?: reason=(\w+))?", line)
@@ -185,7 +186,7 @@ def session_drops(text, players, end_wall):
         t = log_time(line)
         began = t - TIMEOUT_MS / 1000 if m[3] == "timeout" else t
         if began < end_wall - 1.0:
-            drops.append(line.strip())
+            drops.append((m[2], line.strip()))
         elif m[1] == "disconnect" and m[3] == "timeout":
             byes_lost += 1
     return drops, byes_lost
@@ -265,7 +266,9 @@ def run_cell(name, minutes, seed):
     if len(rooms) != ROOMS or any(len(v) != 1 for v in rooms.values()):
         problems.append(f"rooms: {rooms}")
     drops, byes_lost = session_drops(text, players, end_wall)
-    problems += [f"session dropped: {d}" for d in drops[:10]]
+    problems += [f"session dropped: {line}" for _, line in drops[:10]]
+    if len(drops) > 10:
+        problems.append(f"... {len(drops)} drop lines in all")
     book, applied = server_book(text), applied_commands(record_dir)
     mismatched = 0
     for b in bots:
@@ -280,7 +283,7 @@ def run_cell(name, minutes, seed):
     if purchases == 0 or earned == 0:
         problems.append(f"nothing to check: {purchases} purchases, {earned} coins earned")
     p50, p99, tmax, skipped = tick_stats(text)
-    row.update({"sessions_dropped": len(drops), "byes_lost": byes_lost, "ledger_mismatches": mismatched,
+    row.update({"sessions_dropped": len({p for p, _ in drops}), "byes_lost": byes_lost, "ledger_mismatches": mismatched,
                 "purchases": purchases, "commands_applied": sum(len(applied.get(p, [])) for p in players),
                 "commands_sent": sum(b["commands_sent"] for b in bots), "coins_earned": earned,
                 "tick_p50_us": p50, "tick_p99_us": p99, "tick_max_us": tmax, "skipped_ticks": skipped,
