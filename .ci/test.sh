@@ -29,7 +29,7 @@ bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
 # tests at the lowest priority: it takes the cycles the one-at-a-time process tests leave
 # idle, and almost none from a test that wants them (nice 19 weighs 1/70 of a test).
 mkdir -p build-fuzz
-nice -n 19 env FUZZ_BUILD_ONLY=1 FUZZ_JOBS=1 bash .ci/fuzz.sh >build-fuzz/build.log 2>&1 &
+nice -n 19 env FUZZ_BUILD_ONLY=1 FUZZ_JOBS="$jobs" bash .ci/fuzz.sh >build-fuzz/build.log 2>&1 &
 fuzz_build=$!
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan -LE 'soak|container' -j "$jobs" --output-on-failure --timeout 900 ||
