@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <stdexcept>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -84,11 +85,39 @@ struct Skip {};
 
 // ---- value kinds ------------------------------------------------------------------------
 
+// A JSON value as T, refused unless it is one: an integer field takes only an integer in
+// T's range (a float like 6e19 converted to an integer is undefined behaviour; found by
+// fts_fuzz_journal), a floating field any number, the rest as nlohmann reads them.
+template <class T>
+T read_as(const json& j) {
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    const auto out_of_range = [&] { return std::invalid_argument("out of range, got " + j.dump()); };
+    if (j.is_number_unsigned()) {
+      const auto u = j.get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) throw out_of_range();
+      return static_cast<T>(u);
+    }
+    if (j.is_number_integer()) {
+      const auto i = j.get<std::int64_t>();
+      if (i < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+          (i > 0 && static_cast<std::uint64_t>(i) > static_cast<std::uint64_t>(std::numeric_limits<T>::max())))
+        throw out_of_range();
+      return static_cast<T>(i);
+    }
+    throw std::invalid_argument("must be an integer, got " + j.dump());
+  } else if constexpr (std::is_floating_point_v<T>) {
+    if (!j.is_number()) throw std::invalid_argument("must be a number, got " + j.dump());
+    return j.get<T>();
+  } else {
+    return j.get<T>();
+  }
+}
+
 // A number, boolean or string as itself.
 template <class T>
 struct Value {
   json put(const T& v) const { return v; }
-  void get(const json& j, T& v) const { v = j.get<T>(); }
+  void get(const json& j, T& v) const { v = read_as<T>(j); }
 };
 
 // A typed id as its number.
@@ -96,7 +125,7 @@ struct IdValue {
   template <class Tag>
   json put(sim::Id<Tag> v) const { return v.value; }
   template <class Tag>
-  void get(const json& j, sim::Id<Tag>& v) const { v = j.get<std::uint32_t>(); }
+  void get(const json& j, sim::Id<Tag>& v) const { v = read_as<std::uint32_t>(j); }
 };
 
 // An enum as its number, 0..last.
@@ -105,7 +134,7 @@ struct Enum {
   E last;
   json put(E v) const { return static_cast<int>(v); }
   void get(const json& j, E& v) const {
-    const auto n = j.get<std::uint64_t>();
+    const auto n = read_as<std::uint64_t>(j);
     if (n > static_cast<std::uint64_t>(last)) throw std::invalid_argument("out of range, got " + j.dump());
     v = static_cast<E>(n);
   }
@@ -119,7 +148,7 @@ struct Array {
   json put(const std::array<T, N>& v) const { return v; }
   void get(const json& j, std::array<T, N>& v) const {
     if (!j.is_array() || j.size() != N) throw std::invalid_argument("must be an array of " + std::to_string(N) + " values");
-    for (std::size_t i = 0; i < N; ++i) v[i] = j[i].get<T>();
+    for (std::size_t i = 0; i < N; ++i) v[i] = read_as<T>(j[i]);
   }
 };
 
