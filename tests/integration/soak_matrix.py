@@ -10,7 +10,8 @@ server's RSS, its tick times and skipped ticks (its stats lines), and what the r
 lost, duplicated and reordered (its counters).
 
 usage: FTS_BIN_DIR=build python3 tests/integration/soak_matrix.py [CELL ...|all] [--out CSV] [--minutes M]
-                                                                 [--seed S] [--timeout-ms MS]
+                                                                 [--seed S] [--timeout-ms MS] [--rss-log F]
+       python3 tests/integration/soak_matrix.py --table CSV...   (the markdown table of CSV rows)
   CELL: clean loss5 loss20 reorder30 dup jitter link_down (default: FTS_SOAK_CELLS, a comma
   list, or all). --out appends one row per cell to CSV. Exit 1 if any cell lost anything.
 """
@@ -45,9 +46,9 @@ CELLS = {
                   lambda r: r["lost_down"] > 0 and r["lost"] == r["lost_down"]),
 }
 COLUMNS = ["cell", "impairment", "build", "bots", "minutes", "sessions_dropped", "byes_lost", "ledger_mismatches",
-           "purchases", "commands_applied", "commands_sent", "coins_earned", "rss_start_kib", "rss_end_kib",
-           "rss_max_kib", "tick_p50_us", "tick_p99_us", "tick_max_us", "skipped_ticks", "relay_in", "relay_out",
-           "relay_lost", "relay_dup", "relay_reordered", "lost_share", "dup_share", "reorder_share",
+           "purchases", "commands_applied", "commands_sent", "coins_earned", "rss_start_kib", "rss_mid_kib",
+           "rss_end_kib", "rss_max_kib", "tick_p50_us", "tick_p99_us", "tick_max_us", "skipped_ticks", "relay_in",
+           "relay_out", "relay_lost", "relay_dup", "relay_reordered", "lost_share", "dup_share", "reorder_share",
            "snapshots_lost", "relay_cpu_s", "server_cpu_s", "result"]
 
 
@@ -80,6 +81,19 @@ def start_relay(server_address, flags, seed):
         relay.kill()
         raise Failure(f"the relay did not start: {line!r}")
     return relay, f"127.0.0.1:{m.group(1)}"
+
+
+def drain_uplink(relay, timeout_s=10):
+    """Waits until the relay holds no client datagram (the bots' goodbyes are delivered,
+    not cut off by the relay's end): SIGUSR1 makes it print its counters and go on."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        relay.send_signal(signal.SIGUSR1)
+        ready, _, _ = select.select([relay.stdout], [], [], 1.0)
+        line = relay.stdout.readline() if ready else ""
+        if line.startswith("{") and json.loads(line)["up"]["pending"] == 0:
+            return
+    raise Failure(f"the relay still held client datagrams after {timeout_s} s")
 
 
 def stop_relay(relay):
@@ -164,7 +178,8 @@ def audit_bot(b, book, applied):
     buy_cmds = sum(1 for c in cmds if c.startswith("buy"))
     if buy_cmds != ok_all + refused_all:
         problems.append(f"{buy_cmds} buy commands applied, the log has {ok_all} purchases + {refused_all} refusals")
-    if not ok_all - slack <= b["purchases"] <= ok_all or not refused_all - slack <= b["purchases_refused"] <= refused_all:
+    if not (ok_all - slack <= b["purchases"] <= ok_all and
+            refused_all - slack <= b["purchases_refused"] <= refused_all):
         problems.append(f"results: {b['purchases']} ok, {b['purchases_refused']} refused; the server: {ok_all} ok, "
                         f"{refused_all} refused")
     if len(b["bought"]) != b["purchases"]:
@@ -207,7 +222,7 @@ def tick_stats(text):
             round(max(float(r["max"]) for r in full)), int(recs[-1]["skipped"]))
 
 
-def run_cell(name, minutes, seed):
+def run_cell(name, minutes, seed, rss_log=None):
     what, flags, rig_ok = CELLS[name]
     seconds = max(30.0, minutes * 60)
     flags = [str(round(seconds / 2, 1)) if f == "MID" else f for f in CLEAN + flags]
@@ -239,8 +254,13 @@ def run_cell(name, minutes, seed):
                 rss.append(rss_kib(srv.proc.pid))
                 time.sleep(1)
             end_wall = time.time()
-            row["rss_end_kib"], row["rss_max_kib"] = rss[-1], max(rss)
+            # (one sample a second: the middle one splits warm-up growth from a steady rise)
+            row["rss_mid_kib"], row["rss_end_kib"], row["rss_max_kib"] = rss[len(rss) // 2], rss[-1], max(rss)
+            if rss_log:
+                with open(rss_log, "a") as f:
+                    f.writelines(f"{name},{i},{k}\n" for i, k in enumerate(rss))
             reports = [finish_bots(g, 120) for g in groups]
+            drain_uplink(relay)
             row["relay_cpu_s"] = round(cpu_s(relay.pid), 1)
         finally:
             counters = stop_relay(relay) if relay.poll() is None else None
@@ -301,17 +321,19 @@ def run_cell(name, minutes, seed):
 
 def table(rows):
     head = ("| cell | impairment | bots | min | sessions dropped | ledger mismatches | purchases | commands "
-            "(applied/sent) | RSS start→end (max) MiB | tick p50/p99 µs | skipped ticks | relay lost / dup / "
+            "(applied/sent) | RSS start→mid→end (max) MiB | tick p50/p99 µs | skipped ticks | relay lost / dup / "
             "reordered (share) | result |")
     out = [head, "|" + "---|" * head.count(" | ") + "---|"]
-    mib = lambda k: f"{k / 1024:.1f}"
+    mib = lambda k: f"{int(k) / 1024:.1f}" if k not in (None, "") else "–"
     for r in rows:
-        out.append(f"| {r['cell']} | {r['impairment']} | {r['bots']} | {r['minutes']:g} | {r['sessions_dropped']} | "
-                   f"{r['ledger_mismatches']} | {r['purchases']} | {r['commands_applied']}/{r['commands_sent']} | "
-                   f"{mib(r['rss_start_kib'])}→{mib(r['rss_end_kib'])} ({mib(r['rss_max_kib'])}) | "
+        out.append(f"| {r['cell']} | {r['impairment']} | {r['bots']} | {float(r['minutes']):g} | "
+                   f"{r['sessions_dropped']} | {r['ledger_mismatches']} | {r['purchases']} | "
+                   f"{r['commands_applied']}/{r['commands_sent']} | "
+                   f"{mib(r['rss_start_kib'])}→{mib(r.get('rss_mid_kib'))}→{mib(r['rss_end_kib'])} "
+                   f"({mib(r['rss_max_kib'])}) | "
                    f"{r['tick_p50_us']}/{r['tick_p99_us']} | {r['skipped_ticks']} | {r['relay_lost']} / "
-                   f"{r['relay_dup']} / {r['relay_reordered']} ({100 * r['lost_share']:.1f} % / "
-                   f"{100 * r['dup_share']:.1f} % / {100 * r['reorder_share']:.1f} %) | {r['result']} |")
+                   f"{r['relay_dup']} / {r['relay_reordered']} ({100 * float(r['lost_share']):.1f} % / "
+                   f"{100 * float(r['dup_share']):.1f} % / {100 * float(r['reorder_share']):.1f} %) | {r['result']} |")
     return "\n".join(out)
 
 
@@ -323,7 +345,12 @@ def main():
     ap.add_argument("--minutes", type=float, default=float(os.environ.get("FTS_SOAK_MINUTES", "10")))
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS, help="the server's --timeout-ms")
+    ap.add_argument("--rss-log", help="append the server's RSS each second (cell,second,KiB) to this file")
+    ap.add_argument("--table", nargs="+", metavar="CSV", help="print the table of these CSV files' rows, run nothing")
     a = ap.parse_args()
+    if a.table:
+        print(table([r for path in a.table for r in csv.DictReader(open(path))]))
+        return 0
     TIMEOUT_MS = a.timeout_ms
     cells = a.cells or [c for c in os.environ.get("FTS_SOAK_CELLS", "all").split(",") if c]
     if cells == ["all"]:
@@ -336,7 +363,7 @@ def main():
     for name in cells:
         t0 = time.monotonic()
         try:
-            row, problems = run_cell(name, a.minutes, a.seed)
+            row, problems = run_cell(name, a.minutes, a.seed, a.rss_log)
         except Failure as e:
             print(f"FAIL {name}: {e}", flush=True)
             failed.append(name)
