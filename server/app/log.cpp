@@ -1,5 +1,6 @@
 #include "app/log.hpp"
 
+#include <spdlog/spdlog.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace fts::server {

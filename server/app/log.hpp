@@ -10,7 +10,9 @@
 #include <variant>
 
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
+// Only the level enum: the logger itself is log.cpp's (spdlog.h costs ~3 s of compile
+// per translation unit, and most of the server includes this header).
+#include <spdlog/common.h>
 
 namespace fts::server {
 

@@ -2,8 +2,8 @@
 // console socket (--console-socket). The connection (server/net/console.cpp) cuts it
 // into lines at '\n' (here the end of the input ends a line too), drops the line's
 // trailing "\r\n", skips empty lines and closes on a line over kMaxLineBytes; the
-// server's handler (console_line in server/net/udp_server.cpp) parses each line as JSON
-// and answers it with console_command on the GameHost. The host here is in memory (as in
+// server's handler (console_line of app/console_commands.hpp) parses each line as strict
+// JSON and answers it with console_command on the GameHost. The host here is in memory (as in
 // tests/unit/server): two rooms, three connected clients; it is rebuilt when a request
 // changed it (a kick, ban, close or drain). Each line is also split at spaces as the
 // front end's words (`fts-server --console SOCKET CMD ARGS`, console_request) and that
@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include <spdlog/spdlog.h>
 #include <spdlog/sinks/null_sink.h>
 
 #include "../support/host_rig.hpp"
@@ -67,15 +68,9 @@ struct Host {
   }
 };
 
-// console_line of server/net/udp_server.cpp: one request line -> its reply line.
+// One request line -> its reply line, as server/net/udp_server.cpp answers it.
 std::string console_line(Host& h, const std::string& line) {
-  const auto request = nlohmann::json::parse(line, nullptr, false);
-  nlohmann::ordered_json reply;
-  if (request.is_discarded()) {
-    reply = {{"ok", false}, {"error", "not a JSON line"}};
-  } else {
-    reply = server::console_command(*h.rig.host, request, h.rig.now);
-  }
+  const nlohmann::ordered_json reply = server::console_line(*h.rig.host, line, h.rig.now);
   check(reply.is_object() && reply.contains("ok") && reply["ok"].is_boolean(), "a reply is an object with \"ok\"");
   if (!reply["ok"].get<bool>())
     check(reply.contains("error") && reply["error"].is_string() && !reply["error"].get<std::string>().empty(),

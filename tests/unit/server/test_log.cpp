@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <vector>
 
+#include <spdlog/spdlog.h>
 #include <spdlog/sinks/ostream_sink.h>
 
 #include "app/log.hpp"
