@@ -2,7 +2,8 @@
 # The Dockerfile, README and CI must build with the same scripts, so they cannot drift:
 # docker/Dockerfile RUNs .ci/deps.sh and .ci/build.sh (and no cmake of its own), README's
 # two commands are `bash .ci/play.sh` and `bash .ci/test.sh`, .ci/run runs `bash .ci/test.sh`,
-# and those scripts in turn call .ci/deps.sh and .ci/build.sh.
+# and those scripts in turn call .ci/deps.sh and .ci/build.sh. The README stays short and
+# links every page of docs/.
 #   test_build_commands.sh SOURCE_DIR
 set -uo pipefail
 root=${1:?usage: test_build_commands.sh SOURCE_DIR}
@@ -39,6 +40,11 @@ check "compose bots count comes from FTS_BOTS" has_line "$root/docker/compose.ya
 readme=$root/README.md
 check "README's main command is bash .ci/play.sh" has_line "$readme" '^    bash \.ci/play\.sh$'
 check "README's test command is bash .ci/test.sh" has_line "$readme" '^    bash \.ci/test\.sh$'
+# The README is the two-minute page: at most 150 lines, and it links every page of docs/.
+check "README has at most 150 lines ($(wc -l <"$readme"))" test "$(wc -l <"$readme")" -le 150
+for page in "$root"/docs/*.md; do
+  check "README links docs/${page##*/}" grep -Fq "](docs/${page##*/})" "$readme"
+done
 check ".ci/run (CI) runs bash .ci/test.sh" has_line "$root/.ci/run" '^bash \.ci/test\.sh$'
 for s in test play; do
   check ".ci/$s.sh installs with bash .ci/deps.sh" has_line "$root/.ci/$s.sh" '^bash \.ci/deps\.sh'

@@ -1,6 +1,7 @@
 // Hosting documents that cannot rot: the example server config is loaded through the
 // server's own parser and must equal the built-in defaults, the config table names every
-// key, and README's hosting section lists every server flag with its variable and default.
+// key, and the hosting page's settings table (docs/hosting.md) lists every server flag with
+// its variable and default.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -21,10 +22,10 @@ std::string read_repo_file(const std::string& relative) {
   return text.str();
 }
 
-// The lines of README's "## Hosting" section (up to the next level-2 heading).
-std::string readme_hosting_section() {
-  const std::string readme = read_repo_file("README.md");
-  const auto start = readme.find("\n## Hosting");
+// The lines of docs/hosting.md's settings section (up to the next level-2 heading).
+std::string hosting_settings_section() {
+  const std::string readme = read_repo_file("docs/hosting.md");
+  const auto start = readme.find("\n## Ports, settings and the container");
   if (start == std::string::npos) return "";
   const auto end = readme.find("\n## ", start + 1);
   return readme.substr(start, end == std::string::npos ? std::string::npos : end - start);
@@ -72,8 +73,8 @@ TEST_CASE("Hosting: a config with an unknown key is refused, naming the key", "[
   CHECK_THAT(std::get<std::string>(parsed), Catch::Contains("unknown key"));
 }
 
-TEST_CASE("Hosting: README's hosting section lists every server option", "[hosting]") {
-  const std::string section = readme_hosting_section();
+TEST_CASE("Hosting: docs/hosting.md's settings table lists every server option", "[hosting]") {
+  const std::string section = hosting_settings_section();
   REQUIRE_FALSE(section.empty());
   for (const auto& d : fts::server::option_docs()) {
     INFO("option " << d.flag << " / " << d.env);
