@@ -24,9 +24,9 @@ directions, --up-X and --down-X override it for one direction:
                      at a full queue is dropped (drop-tail, counted as lost.queue)
 
 A datagram in the order it meets them: the link-down window, the burst state, random
-loss, duplication, the rate queue, then delay + jitter. The defaults are the original
-relay's (--loss 0.2 --dup 0.2 --delay-ms 20 --jitter-ms 60): give --loss 0 --dup 0
---delay-ms 0 --jitter-ms 0 for a clean link.
+loss, duplication, the rate queue, then delay + jitter. Without flags the link is clean
+(no loss, duplicates, delay or jitter): each flag adds its impairment. (Until issue 37
+the defaults were the original relay's --loss 0.2 --dup 0.2 --delay-ms 20 --jitter-ms 60.)
 
   --down-at S --down-for S   link down: from S seconds after "relay ready" on, for S
                              seconds, every datagram arriving in either direction is
@@ -48,14 +48,15 @@ import argparse, heapq, json, os, random, select, signal, socket, statistics, sy
 from collections import deque
 
 DIRECTIONS = ("up", "down")
-# name, type, default (both directions), help
+# name, type, default (both directions), help. Every default is a clean link: a flag
+# adds one impairment.
 PER_DIRECTION = [
-    ("loss", float, 0.2, "random loss fraction"),
+    ("loss", float, 0.0, "random loss fraction"),
     ("burst-loss", float, 0.0, "chance per datagram of entering the bad (all lost) state"),
     ("burst-len", float, 1.0, "mean bad-state length (datagrams)"),
-    ("dup", float, 0.2, "duplicate fraction"),
-    ("delay-ms", float, 20.0, "fixed one-way delay (ms)"),
-    ("jitter-ms", float, 60.0, "extra random delay (ms)"),
+    ("dup", float, 0.0, "duplicate fraction"),
+    ("delay-ms", float, 0.0, "fixed one-way delay (ms)"),
+    ("jitter-ms", float, 0.0, "extra random delay (ms)"),
     ("jitter-dist", str, "uniform", "uniform or normal"),
     ("rate-kbps", float, 0.0, "bandwidth cap (kbit/s, 0: none)"),
     ("queue", int, 64, "rate cap queue (datagrams)"),

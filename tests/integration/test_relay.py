@@ -271,6 +271,28 @@ def test_dup():
     print(f"{extra} duplicates of {n}")
 
 
+def test_defaults_clean():
+    """No impairment flag: a clean link (issue 37: the defaults were 20 % loss and 20 %
+    duplicates, 20 ms delay and 60 ms jitter). Every datagram arrives once, in order, in
+    both directions, with no added delay: the fastest within 5 ms (the old defaults' fastest
+    took 20 ms; a loaded machine delays many datagrams of a Python relay, never all)."""
+    n = 500
+    with Link() as link:
+        up = link.pump(n, "up")
+        down = link.pump(n, "down")
+        s = link.relay.stop()
+    for name, got in (("up", up), ("down", down)):
+        seqs = [q for q, _, _ in got]
+        check(seqs == list(range(n)), f"{name}: {len(seqs)} of {n} arrived, {inversions(seqs)} out of order, "
+                                      f"{len(seqs) - len(set(seqs))} twice")
+        check(sum(s[name]["lost"].values()) == s[name]["duplicated"] == s[name]["reordered"] == 0,
+              f"{name}: counted {s[name]}")
+        fastest = min(d for _, d, _ in got)
+        check(fastest < 0.005, f"{name}: the fastest datagram took {fastest * 1000:.1f} ms")
+    print(f"{n} datagrams each way, all once and in order, median "
+          f"{statistics.median(d for _, d, _ in up + down) * 1000:.2f} ms")
+
+
 def test_rate():
     """A 400 kbit/s cap with a 20-datagram queue: a burst comes out at 400 kbit/s and the
     rest is dropped at the tail, counted."""
@@ -331,7 +353,7 @@ def test_same_seed():
 
 TESTS = {"loss": test_loss, "burst": test_burst, "delay": test_delay, "reorder": test_reorder,
          "no_reorder": test_no_reorder, "dup": test_dup, "rate": test_rate, "link_down": test_link_down,
-         "same_seed": test_same_seed}
+         "same_seed": test_same_seed, "defaults_clean": test_defaults_clean}
 
 if __name__ == "__main__":
     if sys.argv[1:] == ["all"]:
