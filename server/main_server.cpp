@@ -16,6 +16,7 @@
 #include "app/match_settings.hpp"
 #include "app/options.hpp"
 #include "app/room_journals.hpp"
+#include "fleet/fleet_names.hpp"
 #include "host/journal.hpp"
 #include "fts/room/record.hpp"
 #include "fts/room/text.hpp"
@@ -64,6 +65,10 @@ int main(int argc, char** argv) {
   }
   if (options.version) {
     std::cout << "fts-server " << FTS_VERSION << "\n";
+    return 0;
+  }
+  if (options.print_fleet_names) {
+    std::cout << server::fleet_names_json_lines(options.max_rooms, options.max_players);
     return 0;
   }
 

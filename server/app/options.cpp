@@ -203,6 +203,9 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   auto* help = app.add_flag("-h,--help");
   auto* version = app.add_flag("--version");
   auto* resume = app.add_flag("--resume");
+  // Hidden (not in --help): the fleet's Counters and Lists for the given limits, for the
+  // test that holds docker/agones/ to them (server/fleet/fleet_names.hpp).
+  auto* print_fleet_names = app.add_flag("--print-fleet-names");
   try {
     app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
   } catch (const CLI::ArgumentMismatch&) {
@@ -220,6 +223,7 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   Options o;
   o.help = help->count() > 0;
   o.version = version->count() > 0;
+  o.print_fleet_names = print_fleet_names->count() > 0;
   if (auto v = env("FTS_RESUME")) o.resume = *v == "1";
   if (resume->count() > 0) o.resume = true;
   // Agones sets AGONES_SDK_HTTP_PORT for the game server: its presence turns the SDK on

@@ -53,6 +53,7 @@ struct Options {
   std::string console_path;  // "" : no console; else the host's UNIX socket (mode 0600)
   bool help = false;
   bool version = false;
+  bool print_fleet_names = false;  // print the fleet's Counters and Lists (JSON lines), exit
   // The settings given by a flag or an FTS_* variable, by flag name without dashes
   // ("tick-rate"); only these override the --config file (see resolve_match_config).
   std::set<std::string> given;

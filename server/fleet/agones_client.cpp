@@ -72,7 +72,9 @@ Outcome send(httplib::Client& http, const SdkCall& c) {
 }  // namespace
 
 AgonesClient::AgonesClient(AgonesClientConfig config)
-    : config_(std::move(config)), thread_([this] { run(); }), watchdog_([this] { watch(); }) {}
+    : config_(std::move(config)),
+      sync_(config_.update_retry_min_ms, config_.update_retry_max_ms),
+      thread_([this] { run(); }), watchdog_([this] { watch(); }) {}
 
 AgonesClient::~AgonesClient() {
   {
@@ -147,13 +149,17 @@ void AgonesClient::run() {
   http.set_write_timeout(t, t_us);
 
   std::uint32_t backoff_ms = config_.retry_min_ms;
-  std::uint64_t spell = 0;  // failures in a row
+  std::uint64_t spell = 0;  // failures of the sidecar in a row (see sidecar_failed)
   Clock::time_point spell_start;
+  const Clock::time_point start = Clock::now();
+  const auto now_ms = [start] {
+    return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count());
+  };
   auto next_poll = Clock::now();
   std::unique_lock lock(mutex_);
   while (!stop_) {
     const AgonesWanted wanted = wanted_;
-    if (const auto call = sync_.next(wanted)) {
+    if (const auto call = sync_.next(wanted, now_ms())) {
       in_flight(&http);
       lock.unlock();
       const Outcome o = send(http, *call);
@@ -164,6 +170,13 @@ void AgonesClient::run() {
           log_record(spdlog::level::info, "agones_recovered",
                      {{"call", op_name(call->op)}, {"failures", spell}, {"after_ms", after.count()}});
           spell = 0;
+        }
+        if (call->row && sync_.retry(*call->row).failing()) {
+          const auto& r = sync_.retry(*call->row);
+          const auto& row = kFleetNames[*call->row];
+          log_record(spdlog::level::info, "agones_update_recovered",
+                     {{"kind", to_string(row.kind)}, {"name", row.name}, {"call", op_name(call->op)},
+                      {"failures", r.spell()}, {"after_ms", now_ms() - r.spell_start_ms()}});
         }
         if (o.status >= 300)  // a 4xx: the sidecar will not take it, retrying cannot help
           log_record(spdlog::level::warn, "agones_refused",
@@ -177,15 +190,36 @@ void AgonesClient::run() {
         lock.lock();
         continue;
       }
-      // Not answered, or a 5xx: the sidecar may still be starting. The call stays owed.
-      // A spell of failures is logged at its first and every 20th (at most one line per
-      // 40 s at the 2 s backoff), its end as agones_recovered.
-      const auto n = ++failures_;
-      if (spell++ == 0) spell_start = Clock::now();
-      if (spell == 1 || spell % 20 == 0)
-        log_record(spdlog::level::warn, "agones_retry",
-                   {{"call", op_name(call->op)}, {"status", o.status}, {"error", o.error}, {"failures", spell},
-                    {"failures_total", n}, {"retry_ms", backoff_ms}});
+      // Not answered, or a 5xx. A spell of failures of the sidecar (no answer at all, or a
+      // failing Ready, Health, label or Shutdown) is logged at its first and every 20th (at
+      // most one line per 40 s at the 2 s backoff), its end as agones_recovered.
+      const auto sidecar_failed = [&] {
+        const auto n = ++failures_;
+        if (spell++ == 0) spell_start = Clock::now();
+        if (spell == 1 || spell % 20 == 0)
+          log_record(spdlog::level::warn, "agones_retry",
+                     {{"call", op_name(call->op)}, {"status", o.status}, {"error", o.error}, {"failures", spell},
+                      {"failures_total", n}, {"retry_ms", backoff_ms}});
+      };
+      if (call->row) {
+        // A Counter or List the sidecar does not take (Agones answers 500 for one the
+        // GameServer does not declare) waits its own backoff while every other call goes
+        // on; logged at the first failure of its spell, its end as agones_update_recovered.
+        ++update_failures_[*call->row];
+        if (sync_.failed(*call, now_ms())) {
+          const auto& row = kFleetNames[*call->row];
+          log_record(spdlog::level::warn, "agones_update_failing",
+                     {{"kind", to_string(row.kind)}, {"name", row.name}, {"call", op_name(call->op)},
+                      {"status", o.status}, {"error", o.error}, {"retry_ms", sync_.retry(*call->row).backoff_ms()},
+                      {"note", "retried with backoff; Ready and Health do not wait for it (is it declared in the "
+                               "GameServer's spec?)"}});
+        }
+        if (o.status == 0) sidecar_failed();  // no answer at all: the sidecar is away, for every call
+        lock.lock();
+        continue;
+      }
+      // The call stays owed: the sidecar may still be starting.
+      sidecar_failed();
       lock.lock();
       changed_cv_.wait_for(lock, ms(backoff_ms), [this] { return stop_; });
       backoff_ms = std::min(config_.retry_max_ms, backoff_ms * 2);
@@ -198,7 +232,11 @@ void AgonesClient::run() {
       lock.lock();
       continue;
     }
-    changed_cv_.wait_until(lock, next_poll, [this] { return stop_ || changed_; });
+    // Wake for a change, the next poll, or a failing Counter's or List's next try.
+    auto until = next_poll;
+    if (const auto retry = sync_.next_retry_ms(now_ms()))
+      until = std::min(until, start + std::chrono::milliseconds(*retry));
+    changed_cv_.wait_until(lock, until, [this] { return stop_ || changed_; });
     changed_ = false;
   }
 }

@@ -1,6 +1,7 @@
 // The Agones SDK REST client on its own thread: the tick loop hands it the wanted state
 // (want(), never blocks beyond a mutex), the thread makes the calls AgonesSync says are
-// owed, retrying with backoff while the sidecar starts late or answers 5xx (never fatal),
+// owed, retrying with backoff while the sidecar starts late or answers 5xx (never fatal;
+// a Counter or List it does not take is retried on its own, beside the other calls),
 // and polls GET /gameserver to learn the server's Agones state (Allocated, ...).
 // Every call is bounded whatever the sidecar does: a watchdog thread cuts off a call
 // still running after timeout_ms (a sidecar that answers a byte at a time would
@@ -8,6 +9,7 @@
 // beyond kMaxBodyBytes ends the call (a garbage Content-Length is not buffered).
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -31,6 +33,10 @@ struct AgonesClientConfig {
   std::uint32_t retry_max_ms = 2000;  // cap of that wait
   std::uint32_t poll_ms = 1000;       // GET /gameserver period
   std::uint32_t timeout_ms = 2000;    // the longest one call may take, all told
+  // A Counter's or List's update the sidecar does not take (an undeclared one: 500) is
+  // retried on its own backoff beside the other calls (UpdateRetry), never ahead of them.
+  std::uint32_t update_retry_min_ms = UpdateRetry::kDefaultMinMs;
+  std::uint32_t update_retry_max_ms = UpdateRetry::kDefaultMaxMs;
 };
 
 class AgonesClient {
@@ -44,7 +50,10 @@ class AgonesClient {
   void want(const AgonesWanted& wanted);
   bool shutdown_sent() const { return shutdown_sent_.load(); }
   bool ready_sent() const { return ready_sent_.load(); }
+  // Calls not answered at all, and Ready, Health, labels or Shutdown answered 5xx, so far.
   std::uint64_t failures() const { return failures_.load(); }
+  // Updates of kFleetNames[row] the sidecar did not take, so far (each retried).
+  std::uint64_t update_failures(std::size_t row) const { return update_failures_.at(row).load(); }
   static constexpr std::size_t kMaxBodyBytes = 1 << 20;  // a GameServer object is a few KiB
   // status.state of the last GET /gameserver ("" before the first answer).
   std::string gameserver_state() const;
@@ -75,6 +84,7 @@ class AgonesClient {
   std::atomic<bool> shutdown_sent_{false};
   std::atomic<bool> ready_sent_{false};
   std::atomic<std::uint64_t> failures_{0};
+  std::array<std::atomic<std::uint64_t>, kFleetNameCount> update_failures_{};
   std::thread thread_;
   std::thread watchdog_;
 };

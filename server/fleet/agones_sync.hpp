@@ -1,36 +1,28 @@
 // The Agones SDK's REST calls, without a socket (sans-I/O): the server says what it wants
 // the sidecar to know (AgonesWanted), next() names the first call that is still owed, and
 // done() records that the sidecar took it. The HTTP thread (agones_client) loops over
-// next()/done(), so a failed call is simply owed again (retry), and a burst of changes
+// next()/done(), so a failed call is simply owed again (retry; a Counter's or List's on
+// its own backoff, failed(), while the other calls go on), and a burst of changes
 // costs one call per difference, not one per change (the wanted state is one value, so
 // this "queue" is bounded by construction). Paths and bodies as Agones documents them
 // (agones.dev, "REST Game Server Client API").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 
+#include "fleet/fleet_names.hpp"
 #include "fleet/fleet_state.hpp"
+#include "fleet/update_retry.hpp"
 
 namespace fts::server {
 
-// The names used in the manifests (docker/agones/): Counter "seats", Lists "rooms" and
-// "players", labels agones.dev/sdk-version and agones.dev/sdk-phase. A GameServerAllocation
-// selects by them: seats minAvailable (free seats) for quick play, rooms containsValue
-// for "join code X".
-inline constexpr const char* kSeatsCounter = "seats";
-inline constexpr const char* kRoomsList = "rooms";
-inline constexpr const char* kPlayersList = "players";
-// Agones holds at most this many values in one List.
-inline constexpr std::uint32_t kAgonesListMax = 1000;
-
-// The capacities the server sets at start, from its own limits, so that the allocator's
-// arithmetic holds whatever the manifest declared: seats = max_rooms x max_players (count =
-// seats taken, so minAvailable = free seats), rooms = max_rooms, players = the seats; each
-// List at most kAgonesListMax.
+// The capacities the server sets at start, from its own limits (the rows' capacity()
+// in fleet_names), so that the allocator's arithmetic holds whatever the manifest declared.
 struct AgonesCapacity {
   std::uint64_t seats = 64 * 8;
   std::uint32_t rooms = 64;
@@ -54,19 +46,34 @@ struct SdkCall {
   std::string method, path, body;
   std::string key, value;      // label key and value; list name and value
   std::uint64_t number = 0;    // counter count or capacity; list capacity; health seq
+  std::optional<std::size_t> row;  // a Counter's or List's update: its row of kFleetNames
 };
 
 class AgonesSync {
  public:
-  // The first call still owed to bring the sidecar to `wanted`, in the order: capacities
-  // (seats Counter, rooms and players Lists), ready, health, labels, the seats count, the
-  // rooms List, the players List (each List: removals first, so it never holds more than
-  // its capacity), shutdown. A List publishes the first `capacity` values of the wanted
-  // ones (rooms in id order: an older room keeps its place, a newer one waits for a free
-  // place); the others are not published until one leaves.
-  std::optional<SdkCall> next(const AgonesWanted& wanted) const;
-  // The sidecar took the call (2xx), or refused it for good (4xx: not retried).
+  explicit AgonesSync(std::uint32_t update_retry_min_ms = UpdateRetry::kDefaultMinMs,
+                      std::uint32_t update_retry_max_ms = UpdateRetry::kDefaultMaxMs);
+
+  // The first call still owed to bring the sidecar to `wanted` at now_ms (the caller's
+  // clock), in the order: capacities (seats Counter, rooms and players Lists), ready,
+  // health, labels, the seats count, the rooms List, the players List (each List: removals
+  // first, so it never holds more than its capacity), shutdown. A Counter or List whose
+  // update failed is skipped until its retry is due (UpdateRetry), so Ready, Health and
+  // Shutdown never wait on one the sidecar does not take. A List publishes the first
+  // `capacity` values of the wanted ones (rooms in id order: an older room keeps its
+  // place, a newer one waits for a free place); the others wait until one leaves.
+  std::optional<SdkCall> next(const AgonesWanted& wanted, std::uint64_t now_ms = 0) const;
+  // The sidecar took the call (2xx), or refused it for good (4xx: not retried); ends the
+  // spell of its Counter or List.
   void done(const SdkCall& call);
+  // The sidecar did not take a Counter's or List's update (a 5xx, which is what Agones
+  // answers for one the GameServer does not declare, or no answer): tried again after
+  // the row's backoff. True when the failure starts a spell. Only for calls with a row.
+  bool failed(const SdkCall& call, std::uint64_t now_ms);
+  const UpdateRetry& retry(std::size_t row) const { return retry_.at(row); }
+  // The first time after now_ms when a failing Counter or List is due again (nullopt:
+  // none is failing, or every failing one is due already).
+  std::optional<std::uint64_t> next_retry_ms(std::uint64_t now_ms) const;
 
   bool shutdown_sent() const { return shutdown_; }
   bool ready_sent() const { return ready_; }
@@ -80,6 +87,7 @@ class AgonesSync {
   std::optional<std::uint64_t> seats_;
   std::map<std::string, std::uint64_t> list_capacity_;  // by list name
   std::map<std::string, std::set<std::string>> lists_;  // by list name: the values the sidecar holds
+  std::array<UpdateRetry, kFleetNameCount> retry_;      // by row of kFleetNames
 };
 
 }  // namespace fts::server

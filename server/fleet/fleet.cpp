@@ -55,6 +55,8 @@ void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std
     const auto journal = host.journal_health();
     s.journal_failing = journal.failing;
     s.journal_failures = journal.failures;
+    if (agones_)
+      for (std::size_t i = 0; i < kFleetNameCount; ++i) s.agones_update_failures[i] = agones_->update_failures(i);
     metrics_->update(s);
   }
   if (agones_) {

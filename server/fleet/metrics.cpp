@@ -44,6 +44,12 @@ std::vector<CounterRow> counter_table() {
       {"fts_journal_failures_total", "Times a room's journal stopped on an I/O error (disk full, read-only)", {},
        [](S s) { return s.journal_failures; }},
   };
+  for (std::size_t i = 0; i < kFleetNames.size(); ++i)
+    rows.push_back({"fts_agones_update_failures_total",
+                    "Counter and List updates the Agones sidecar did not take (each retried with backoff; Ready "
+                    "and Health do not wait for them)",
+                    {{"kind", to_string(kFleetNames[i].kind)}, {"name", kFleetNames[i].name}},
+                    [i](S s) { return s.agones_update_failures[i]; }});
   for (std::size_t i = 0; i < protocol::kRejectCount; ++i) {
     const auto r = static_cast<protocol::Reject>(i);
     rows.push_back({"fts_drops_total", "Datagrams or messages dropped, by reason", {{"reason", std::string(protocol::to_string(r))}},
@@ -86,9 +92,10 @@ Metrics::Metrics(const std::string& address) : registry_(std::make_shared<promet
                        .Register(reg)
                        .Add({}, prometheus::Histogram::BucketBoundaries{0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005,
                                                                          0.01, 0.025, 0.05, 0.1});
-  counters_ = std::make_unique<std::array<Cumulative, 9 + protocol::kRejectCount>>();
+  counters_ = std::make_unique<std::array<Cumulative, kCounterRows>>();
   const auto rows = counter_table();
-  for (std::size_t i = 0; i < rows.size() && i < counters_->size(); ++i) {
+  if (rows.size() != counters_->size()) throw std::logic_error("Metrics: counter_table() and kCounterRows differ");
+  for (std::size_t i = 0; i < rows.size(); ++i) {
     auto& family = prometheus::BuildCounter().Name(rows[i].name).Help(rows[i].help).Register(reg);
     (*counters_)[i].counter = &family.Add(rows[i].labels);
     (*counters_)[i].value = rows[i].value;

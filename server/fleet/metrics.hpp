@@ -15,6 +15,7 @@
 #include <prometheus/registry.h>
 
 #include "app/stats.hpp"
+#include "fleet/fleet_names.hpp"
 #include "fleet/fleet_state.hpp"
 #include "fts/protocol/reject.hpp"
 
@@ -27,6 +28,7 @@ struct MetricsSample {
   protocol::RejectCounters drops;
   std::uint32_t sessions_connected = 0, sessions_away = 0;
   std::uint64_t journal_failing = 0, journal_failures = 0;  // rooms not journaling now; times one stopped
+  std::array<std::uint64_t, kFleetNameCount> agones_update_failures{};  // by row of kFleetNames
 };
 
 class Metrics {
@@ -57,7 +59,10 @@ class Metrics {
   prometheus::Gauge* journal_failing_ = nullptr;
   prometheus::Histogram* tick_seconds_ = nullptr;
   prometheus::Histogram* journal_sync_seconds_ = nullptr;
-  std::unique_ptr<std::array<Cumulative, 9 + protocol::kRejectCount>> counters_;
+  // The rows of counter_table() (metrics.cpp): 9 of their own, one per Counter or List of
+  // the fleet and one per drop reason.
+  static constexpr std::size_t kCounterRows = 9 + kFleetNameCount + protocol::kRejectCount;
+  std::unique_ptr<std::array<Cumulative, kCounterRows>> counters_;
 };
 
 }  // namespace fts::server
