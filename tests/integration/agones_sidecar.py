@@ -12,6 +12,11 @@ endpoints fts-server uses as agones.dev documents them ("REST Game Server Client
                                                      capacity are cut off, as Agones does
   POST /v1beta1/lists/NAME:addValue / :removeValue   body {"value": V}; a full List: 400, a
                                                      value already there: 409, one not there: 404
+A Counter or List the GameServer does not declare (Sidecar(undeclared={"seats"}), or
+--undeclared NAME alone) is answered as Agones' SDK server answers it: its handler returns a
+plain error ("counter not found: seats", "list not found: rooms"; pkg/sdkserver/
+sdkserver.go), which gRPC reports as code 2 (Unknown) and the REST gateway as HTTP 500
+with {"code": 2, "message": ..., "details": []}. declare(name) adds it later (recovery).
 Every call is recorded (time, method, path, parsed body, status). It can start late
 (start(delay_s)), stop and start again (a sidecar that goes away mid-run), and fail: the
 first `fail_first` calls get 500. set_fault(kind) makes every call from then on fail so
@@ -24,7 +29,8 @@ first `fail_first` calls get 500. set_fault(kind) makes every call from then on 
   "lying"     200 with a Content-Length longer than the body, then the connection closes
   "trickle"   a status line, then a header byte every `delay_s` (default 0.5 s), never done
   "huge"      200 with a Content-Length of 1 TB, the body streamed as fast as it is read
-Run alone: python3 agones_sidecar.py PORT [--fail-first N] [--fault KIND] (prints each call)."""
+Run alone: python3 agones_sidecar.py PORT [--fail-first N] [--fault KIND] [--undeclared NAME]...
+(prints each call)."""
 import json, os, re, sys, threading, time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
@@ -34,7 +40,7 @@ LIST = re.compile(r"^/v1beta1/lists/([a-z0-9-]+)(:addValue|:removeValue)?$")
 
 class Sidecar:
     def __init__(self, port, fail_first=0, counters=None, lists=None, game_port=7777, fleet="fear-the-sphere",
-                 name="fts-local"):
+                 name="fts-local", undeclared=()):
         self.port = port
         self.name = name            # metadata.name of the GameServer
         self.game_port = game_port  # status.ports[0].port: where players connect
@@ -49,6 +55,12 @@ class Sidecar:
         # capacities unlike the server's so that a test sees the server set its own.
         self.counters = counters or {"seats": {"count": 0, "capacity": 10}}
         self.lists = lists or {"rooms": {"capacity": 3, "values": []}, "players": {"capacity": 100, "values": []}}
+        # Left out of the spec, as in a GameServer manifest that does not declare them.
+        self.undeclared = {}
+        for gone in undeclared:
+            where = self.counters if gone in self.counters else self.lists
+            assert gone in where, gone
+            self.undeclared[gone] = (where, where.pop(gone))
         self.server = None
         self.thread = None
         self.fault = None     # see set_fault
@@ -89,6 +101,12 @@ class Sidecar:
     def faulted_calls(self):
         with self.lock:
             return self.faulted
+
+    def declare(self, name):
+        """Declares a Counter or List left out by undeclared= (with its declared count/values)."""
+        with self.lock:
+            where, spec = self.undeclared.pop(name)
+            where[name] = spec
 
     def set_state(self, state):
         with self.lock:
@@ -134,8 +152,8 @@ class Sidecar:
         m = COUNTER.match(path)
         if m:
             c = self.counters.get(m.group(1))
-            if c is None:
-                return 404, {"error": "counter not declared"}
+            if c is None:  # what Agones answers (see the top of this file)
+                return 500, {"code": 2, "message": f"counter not found: {m.group(1)}", "details": []}
             if method == "PATCH":
                 fields = {k: body.get(k) for k in ("count", "capacity") if k in body}
                 if not fields or set(body) - {"count", "capacity"}:
@@ -151,8 +169,8 @@ class Sidecar:
         m = LIST.match(path)
         if m:
             lst = self.lists.get(m.group(1))
-            if lst is None:
-                return 404, {"error": "list not declared"}
+            if lst is None:  # UpdateList says "not found. NAME List not found", the others this
+                return 500, {"code": 2, "message": f"list not found: {m.group(1)}", "details": []}
             if method == "PATCH" and not m.group(2):
                 if not body or set(body) - {"capacity", "values"}:
                     return 400, {"error": "want capacity and/or values"}
@@ -257,7 +275,8 @@ class Sidecar:
 if __name__ == "__main__":
     port = int(sys.argv[1]) if len(sys.argv) > 1 else 9358
     fail = int(sys.argv[sys.argv.index("--fail-first") + 1]) if "--fail-first" in sys.argv else 0
-    s = Sidecar(port, fail_first=fail)
+    gone = [sys.argv[i + 1] for i, a in enumerate(sys.argv) if a == "--undeclared"]
+    s = Sidecar(port, fail_first=fail, undeclared=gone)
     if "--fault" in sys.argv:
         s.set_fault(sys.argv[sys.argv.index("--fault") + 1])
     s.start()

@@ -14,12 +14,18 @@
                  to the sidecars' GameServers as Agones would; quick play picks the fullest
                  server with a free seat and room slot, then the other once the first has
                  no slot left; "join code X" picks
-                 the server holding X and a bot joins X there; an unknown code is UnAllocated.
+                 the server holding X and a bot joins X there; an unknown code is UnAllocated;
+  undeclared_counter  a GameServer without the seats Counter (the sidecar answers 500 as Agones
+                 does): Ready within a second of the first call, Health at its period, the
+                 Lists set; the Counter's failures retried with backoff, counted in /metrics
+                 and logged once; declared later, it is set and the recovery logged;
+  undeclared_list  without the rooms List: Ready, Health, the Counter and the players List
+                 go on, a player is listed; SIGTERM: Shutdown does not wait for the List.
 Every wait polls with a deadline."""
 import json, os, re, signal, socket, subprocess, sys, time, urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import BOT, Failure, Server, check, finish_bots, main, run_bots, start_bots, wait_for  # noqa: E402
+from harness import BOT, Failure, Server, check, finish_bots, free_port, main, run_bots, start_bots, wait_for  # noqa: E402
 from agones_sidecar import Sidecar  # noqa: E402
 
 HEALTH_MS = 200
@@ -401,6 +407,105 @@ def test_join_by_code():
             sc.stop()
 
 
+# ---- Counters and Lists the GameServer does not declare -----------------------------
+
+UPDATE_FAILURES = re.compile(r'^fts_agones_update_failures_total\{([^}]*)\} ([0-9.e+-]+)$', re.M)
+
+
+def update_failures(metrics_port):
+    """fts_agones_update_failures_total by (kind, name), from the server's /metrics."""
+    with urllib.request.urlopen(f"http://127.0.0.1:{metrics_port}/metrics", timeout=5) as r:
+        body = r.read().decode()
+    out = {}
+    for labels, value in UPDATE_FAILURES.findall(body):
+        kv = dict(re.findall(r'(\w+)="([^"]*)"', labels))
+        out[(kv.get("kind"), kv.get("name"))] = float(value)
+    return out
+
+
+def refused(sc, path):
+    return [c for c in sc.snapshot() if c["path"] == path and c["status"] == 500]
+
+
+def ready_soon_and_healthy(sc, srv):
+    """Ready within a second of the server's first call, then Health at its period."""
+    wait_for(lambda: sc.paths("/ready"), 10, "POST /ready although a Counter or List is undeclared")
+    first = sc.snapshot()[0]["t"]
+    ready = sc.paths("/ready")[0]["t"]
+    check(ready - first < 1.0, f"Ready {ready - first:.2f} s after the first call, want < 1 s")
+    t0 = time.monotonic()
+    wait_for(lambda: len(health_times(sc, t0)) >= 8, 10, "8 health pings")
+    ts = health_times(sc, t0)
+    gaps = sorted(b - a for a, b in zip(ts, ts[1:]))
+    check(0.15 <= gaps[len(gaps) // 2] <= 0.4, f"health every {HEALTH_MS} ms expected, gaps {gaps}")
+
+
+def test_undeclared_counter():
+    port, mport = free_tcp_port(), free_port()
+    sc = Sidecar(port, undeclared={"seats"})
+    sc.start()
+    try:
+        with agones_server(port, "--metrics", f"127.0.0.1:{mport}") as srv:
+            ready_soon_and_healthy(sc, srv)
+            with sc.lock:
+                caps = (sc.lists["rooms"]["capacity"], sc.lists["players"]["capacity"])
+            check(caps == (64, 512), f"the Lists' capacities {caps}, want 64 and 512 beside the failing Counter")
+            # Retried with backoff (100 ms doubling), counted, logged once for the spell.
+            wait_for(lambda: len(refused(sc, "/v1beta1/counters/seats")) >= 4, 10, "4 tries of the seats Counter")
+            wait_for(lambda: update_failures(mport).get(("counter", "seats"), 0) >= 4, 5,
+                     "fts_agones_update_failures_total{kind=counter,name=seats} >= 4")
+            fails = update_failures(mport)
+            check(fails.get(("list", "rooms")) == 0 and fails.get(("list", "players")) == 0, f"list failures {fails}")
+            tries = refused(sc, "/v1beta1/counters/seats")
+            gaps = [b["t"] - a["t"] for a, b in zip(tries, tries[1:])]
+            # Each wait at least the doubled one before it (100, 200, 400 ms: a late thread only adds).
+            check(all(g >= 0.09 * 2 ** i for i, g in enumerate(gaps[:3])), f"no backoff between tries: {gaps}")
+            failing = records(srv, "agones_update_failing")
+            check(len(failing) == 1 and failing[0].get("name") == "seats" and failing[0].get("kind") == "counter",
+                  f"one agones_update_failing record for the seats spell expected: {failing}")
+            check(not records(srv, "agones_retry"), "the undeclared Counter held the other calls (agones_retry)")
+
+            # Declared: the next try (within the 5 s backoff cap) sets it, the spell ends.
+            sc.declare("seats")
+            wait_for(lambda: sc.counters["seats"]["capacity"] == 512, 10, "the seats capacity set once declared")
+            wait_for(lambda: records(srv, "agones_update_recovered"), 5, "the agones_update_recovered record")
+            rec = records(srv, "agones_update_recovered")
+            n = len(refused(sc, "/v1beta1/counters/seats"))
+            check(len(rec) == 1 and rec[0].get("name") == "seats" and rec[0].get("failures") == n,
+                  f"one agones_update_recovered with the spell's {n} failures: {rec}")
+            wait_for(lambda: update_failures(mport).get(("counter", "seats")) == n, 5, f"the metric at {n}")
+            check(len(records(srv, "agones_update_failing")) == 1, "a second agones_update_failing in one spell")
+            check(srv.proc.poll() is None and srv.stop() == 0, "the server did not exit cleanly")
+    finally:
+        sc.stop()
+
+
+def test_undeclared_list():
+    port, mport = free_tcp_port(), free_port()
+    sc = Sidecar(port, undeclared={"rooms"})
+    sc.start()
+    try:
+        with agones_server(port, "--metrics", f"127.0.0.1:{mport}") as srv:
+            ready_soon_and_healthy(sc, srv)
+            check(seats(sc) == 0 and sc.counters["seats"]["capacity"] == 512, "the seats Counter not set")
+            # A player: the players List and the seats Counter follow, the rooms List fails.
+            bot = start_bots("--connect", srv.address, "--name", "ul", "--behavior", "hunter", "--duration", "3")
+            wait_for(lambda: players(sc) == ["ul"] and seats(sc) == 1, 10, "the player listed, one seat taken")
+            wait_for(lambda: update_failures(mport).get(("list", "rooms"), 0) >= 2, 10, "the rooms List's failures")
+            failing = records(srv, "agones_update_failing")
+            check(len(failing) == 1 and failing[0].get("name") == "rooms", f"one agones_update_failing: {failing}")
+            finish_bots(bot, 30)
+            wait_for(lambda: players(sc) == [] and seats(sc) == 0, 10, "the player gone from the List and Counter")
+            # A drain with no player left: Shutdown, although the rooms List is still owed.
+            srv.proc.send_signal(signal.SIGTERM)
+            rc = srv.proc.wait(timeout=15)
+            check(rc == 0, f"exit status {rc} after the drain")
+            check(len(sc.paths("/shutdown")) == 1, "no POST /shutdown while the rooms List was failing")
+    finally:
+        sc.stop()
+
+
 if __name__ == "__main__":
     sys.exit(main({"lifecycle": test_lifecycle, "late_failing": test_late_failing, "drain_grace": test_drain_grace,
-                   "rooms_list": test_rooms_list, "join_by_code": test_join_by_code}))
+                   "rooms_list": test_rooms_list, "join_by_code": test_join_by_code,
+                   "undeclared_counter": test_undeclared_counter, "undeclared_list": test_undeclared_list}))

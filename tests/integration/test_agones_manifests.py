@@ -1,8 +1,8 @@
 """docker/agones/*.yaml checked against the fields Agones requires and against what
-fts-server does: UDP game port 7777 matching FTS_PORT, health checking on, the "seats"
-Counter and the "rooms" and "players" Lists declared with the names the server's SDK
-client uses and the capacities it sets (seats = FTS_MAX_ROOMS x FTS_MAX_PLAYERS, rooms >=
-FTS_MAX_ROOMS, Lists within Agones' 1000), the autoscaler's Counter policy on a declared
+fts-server does: UDP game port 7777 matching FTS_PORT, health checking on, exactly the
+Counters and Lists the server keeps (seats; rooms, players) with the names its SDK client
+uses and the capacities it sets (seats = FTS_MAX_ROOMS x FTS_MAX_PLAYERS, rooms =
+min(FTS_MAX_ROOMS, 1000), players = min(seats, 1000)), the autoscaler's Counter policy on a declared
 counter of the right Fleet, the two allocations (quick play and create: Allocated with a free
 seat and a free room slot first, the fullest first, then Ready; join code X: a rooms
 containsValue selector whose placeholder is no room code), a drain grace shorter than Kubernetes' termination grace.
@@ -10,8 +10,12 @@ The GameServerAllocations are checked field by field against the keys Agones' re
 (examples/gameserverallocation.yaml, GameServerSelector) allows, so a misspelt selector
 (which Agones would ignore or refuse) fails here. This is a hand-written check of the
 fields we use, not Agones' own OpenAPI schema (no cluster here).
-  test_agones_manifests.py SOURCE_DIR"""
-import os, re, sys
+The Counters and Lists (names, kinds, capacities) come from the server's one definition
+(server/fleet/fleet_names.hpp), asked of the built fts-server (--print-fleet-names, for the
+manifest's FTS_MAX_ROOMS and FTS_MAX_PLAYERS): a name or capacity changed on either side
+fails here.
+  FTS_BIN_DIR=BUILD_DIR test_agones_manifests.py SOURCE_DIR"""
+import json, os, re, subprocess, sys
 
 try:
     import yaml
@@ -37,15 +41,29 @@ def load(name):
     return docs[0]
 
 
-def server_names():
-    """The Counter and List names the server's SDK client uses (server/fleet/agones_sync.hpp)."""
-    with open(os.path.join(root, "server", "fleet", "agones_sync.hpp")) as f:
-        text = f.read()
-    name = lambda const: re.search(const + r' = "([^"]+)"', text).group(1)
-    return name("kSeatsCounter"), name("kRoomsList"), name("kPlayersList")
+SERVER = os.path.join(os.environ.get("FTS_BIN_DIR", os.path.join(root, "build")), "server", "fts-server")
+if not os.path.exists(SERVER):
+    print(f"SKIP: {SERVER} is not built (the names come from it)")
+    sys.exit(77)
 
 
-SEATS, ROOMS, PLAYERS = server_names()
+def server_names(max_rooms=64, max_players=8):
+    """The Counters and Lists the server keeps, by what they hold (seats_taken, room_codes,
+    player_names): {"kind", "name", "capacity", ...} as the built server prints them."""
+    run = subprocess.run([SERVER, "--print-fleet-names", "--max-rooms", str(max_rooms), "--max-players",
+                          str(max_players)], capture_output=True, text=True, timeout=60)
+    if run.returncode != 0:
+        print(f"FAIL - {SERVER} --print-fleet-names: exit {run.returncode}: {run.stderr.strip()}")
+        sys.exit(1)
+    rows = [json.loads(line) for line in run.stdout.splitlines() if line.strip()]
+    return {r["holds"]: r for r in rows}
+
+
+NAMES = server_names()
+need(set(NAMES) == {"seats_taken", "room_codes", "player_names"}, f"the server's fleet table holds {sorted(NAMES)}")
+need(NAMES["seats_taken"]["kind"] == "counter" and NAMES["room_codes"]["kind"] == "list" and
+     NAMES["player_names"]["kind"] == "list", f"kinds of the server's Counters and Lists: {NAMES}")
+SEATS, ROOMS, PLAYERS = (NAMES[h]["name"] for h in ("seats_taken", "room_codes", "player_names"))
 LIST_MAX = 1000  # Agones' limit on one List
 ROOM_CODE = re.compile(r"^[ABCDEFGHJKMNPQRSTUVWXYZ]{5}$")  # server/app/room_codes.hpp
 PHASES = ("lobby", "playing", "shop", "game_over", "draining")  # the sdk-phase label's values
@@ -72,21 +90,20 @@ def check_gameserver_spec(where, spec):
     for ct in pod.get("containers") or []:
         env.update({e["name"]: str(e.get("value", "")) for e in ct.get("env") or []})
     max_rooms, max_players = int(env.get("FTS_MAX_ROOMS", "64")), int(env.get("FTS_MAX_PLAYERS", "8"))
-    counters = spec.get("counters") or {}
-    need(set(counters) == {SEATS}, f"{where}: counters must be exactly {SEATS!r}, got {sorted(counters)}")
-    c = counters.get(SEATS) or {}
-    need(c.get("capacity") == max_rooms * max_players,
-         f"{where}: {SEATS}.capacity must be FTS_MAX_ROOMS x FTS_MAX_PLAYERS = {max_rooms * max_players}, "
-         f"got {c.get('capacity')}")
-    need(c.get("count", 0) == 0, f"{where}: {SEATS}.count must start at 0")
-    lists = spec.get("lists") or {}
-    need(set(lists) == {ROOMS, PLAYERS}, f"{where}: lists must be exactly {ROOMS!r} and {PLAYERS!r}, got {sorted(lists)}")
-    for name, least in ((ROOMS, min(max_rooms, LIST_MAX)), (PLAYERS, 1)):
-        lst = lists.get(name) or {}
-        cap = lst.get("capacity")
-        need(isinstance(cap, int) and least <= cap <= LIST_MAX,
-             f"{where}: {name}.capacity must be {least}..{LIST_MAX}, got {cap}")
-        need(lst.get("values", []) == [], f"{where}: {name} must start empty")
+    # Exactly the server's Counters and Lists, each with the capacity it sets for these limits.
+    want = server_names(max_rooms, max_players).values()
+    for kind, key in (("counter", "counters"), ("list", "lists")):
+        declared = spec.get(key) or {}
+        names = sorted(r["name"] for r in want if r["kind"] == kind)
+        need(sorted(declared) == names, f"{where}: {key} must be exactly {names} (fts-server's), got {sorted(declared)}")
+        for r in (r for r in want if r["kind"] == kind):
+            d = declared.get(r["name"]) or {}
+            need(d.get("capacity") == r["capacity"],
+                 f"{where}: {r['name']}.capacity must be {r['capacity_rule']} = {r['capacity']} (what fts-server sets for "
+                 f"FTS_MAX_ROOMS {max_rooms}, FTS_MAX_PLAYERS {max_players}), got {d.get('capacity')}")
+            need(d.get("capacity", 0) <= LIST_MAX or kind == "counter", f"{where}: {r['name']} over Agones' {LIST_MAX}")
+            start = ("count", 0) if kind == "counter" else ("values", [])
+            need(d.get(start[0], start[1]) == start[1], f"{where}: {r['name']}.{start[0]} must start at {start[1]!r}")
     containers = pod.get("containers") or []
     need(len(containers) == 1, f"{where}: one container expected")
     for ct in containers:
