@@ -7,6 +7,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
 jobs=${FTS_JOBS:-$(nproc)}
+# ccache caches a file compiled with a precompiled header only with this sloppiness
+# (the PCH's own macros and __TIME__ are then trusted to match; CMake rebuilds the PCH
+# whenever its headers change).
+export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
 targets=()
 for t in ${FTS_TARGETS:-}; do targets+=(--target "$t"); done
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"
