@@ -9,7 +9,7 @@ image=(build-essential cmake ninja-build pkg-config
        prometheus-cpp-dev libcpp-httplib-dev)
 packages=("${image[@]}" ccache catch2 clang libclang-rt-14-dev tmux gnuplot-nox python3
           prometheus python3-yaml python3-nacl python3-msgpack libbenchmark-dev
-          openssh-server openssh-client)
+          openssh-server openssh-client stress-ng)
 if [[ ${1:-} == --image ]]; then
   packages=("${image[@]}")
 elif [[ -n ${1:-} ]]; then

@@ -9,7 +9,8 @@
 # (min 5 s). The test command runs it with the default (about 50 s of fuzzing);
 # `ctest --test-dir build -L soak -R fuzz` runs it with 600 (the decoder 10 minutes, the
 # others 200 s each). FUZZ_BUILD_DIR overrides the build dir, FUZZ_JOBS the jobs;
-# FUZZ_BUILD_ONLY=1 builds and stops (the test command builds beside its tests).
+# FUZZ_BUILD_ONLY=1 builds and stops (the test command builds beside its tests);
+# FUZZ_RUN_ONLY=1 runs what is built (the test command runs two fuzzers at once).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-20}"
@@ -19,14 +20,17 @@ names=("$@")
 build="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
 jobs="${FUZZ_JOBS:-1}"
 
-cmake -S "$here" -B "$build" -G Ninja \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
-  -DFTS_FUZZ=ON -DFTS_BUILD_TESTS=OFF >/dev/null
-targets=()
-for n in "${names[@]}"; do targets+=(--target "fts_fuzz_$n"); done
-cmake --build "$build" -j"$jobs" "${targets[@]}"
+if [[ ${FUZZ_RUN_ONLY:-0} != 1 ]]; then
+  export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
+  cmake -S "$here" -B "$build" -G Ninja \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+    -DFTS_FUZZ=ON -DFTS_BUILD_TESTS=OFF >/dev/null
+  targets=()
+  for n in "${names[@]}"; do targets+=(--target "fts_fuzz_$n"); done
+  cmake --build "$build" -j"$jobs" "${targets[@]}"
+fi
 [[ ${FUZZ_BUILD_ONLY:-0} == 1 ]] && exit 0
 
 for n in "${names[@]}"; do

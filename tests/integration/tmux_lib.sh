@@ -41,9 +41,12 @@ fail() {
 
 pane() { tm capture-pane -p -t "$1"; }
 
-# wait_for PANE SECONDS REGEX: poll the pane until a line matches.
+# wait_for PANE SECONDS REGEX: poll the pane until a line matches. SECONDS is what an idle
+# machine needs; the deadline is FTS_WAIT_SCALE (default 3) times that, so that a loaded
+# machine (a sanitized client beside other tests, a CPU hog) passes too: the wait ends at
+# the match, so a longer deadline costs nothing when the test passes.
 wait_for() {
-  local deadline=$((SECONDS + $2))
+  local deadline=$((SECONDS + $2 * ${FTS_WAIT_SCALE:-3}))
   while ((SECONDS < deadline)); do
     if pane "$1" | grep -qE -- "$3"; then return 0; fi
     sleep 0.1
