@@ -6,6 +6,7 @@
 #include "app/game_host.hpp"
 #include "app/room_codes.hpp"
 #include "fts/protocol/limits.hpp"
+#include "fts/room/json_fields.hpp"
 #include "fts/room/text.hpp"
 
 namespace fts::server {
@@ -283,6 +284,20 @@ Reply console_command(GameHost& host, const nlohmann::json& req, std::uint64_t n
                {{"request", std::string_view(request_text)}, {"ok", false},
                 {"error", std::string_view(reply["error"].get_ref<const std::string&>())}});
   }
+  return reply;
+}
+
+// A request nests at most kConsoleMaxDepth deep (they are flat objects): the log's copy
+// of it is written by dump(), which recurses once per level, and a line of 32000 '['
+// overflowed the stack. The strict parser's walk does not recurse.
+Reply console_line(GameHost& host, const std::string& line, std::uint64_t now_ms) {
+  std::string why;
+  const auto request = room::parse_json(line, why, kConsoleMaxDepth);
+  if (request) return console_command(host, *request, now_ms);
+  const Reply reply = error_reply("not a JSON request: " + why);
+  log_record(spdlog::level::warn, "console",
+             {{"request", "(refused unread)"}, {"ok", false},
+              {"error", std::string_view(reply["error"].get_ref<const std::string&>())}});
   return reply;
 }
 

@@ -32,6 +32,13 @@ std::span<const ConsoleCommand> console_commands();
 // {"ok":false,"error":...} and changes nothing.
 nlohmann::ordered_json console_command(GameHost& host, const nlohmann::json& request, std::uint64_t now_ms);
 
+// One request line as the console socket gives it -> its reply. The line is read by
+// fts::room::parse_json: text that is not JSON, an object with a key twice (the last one
+// won, so {"cmd":"stats","cmd":"drain"} drained the server) or nesting deeper than
+// kConsoleMaxDepth is refused and logged, and runs nothing.
+inline constexpr int kConsoleMaxDepth = 8;
+nlohmann::ordered_json console_line(GameHost& host, const std::string& line, std::uint64_t now_ms);
+
 // `CMD ARGS...` -> the request object's JSON text, or "" with `error` set. A word that
 // starts with '{' is a request object as is; an unknown name is sent for the server to refuse.
 std::string console_request(const std::vector<std::string>& words, std::string& error);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/log.hpp"
+#include "fts/room/json_fields.hpp"
 
 namespace fts::server {
 namespace {
@@ -256,8 +257,11 @@ void AgonesClient::poll_gameserver() {
   in_flight(nullptr);
   if (!r || r->status != 200) return;
   // Whatever the answer holds: value() would throw on a state that is not a string, and
-  // an exception here ends the process.
-  const auto j = nlohmann::json::parse(r->body, nullptr, false);
+  // an exception here ends the process. Read strictly (a key twice is not an answer).
+  std::string why;
+  const auto parsed = room::parse_json(r->body, why);
+  if (!parsed) return;
+  const auto& j = *parsed;
   if (!j.is_object() || !j.contains("status") || !j["status"].is_object()) return;
   const auto& status = j["status"];
   if (!status.contains("state") || !status["state"].is_string()) return;

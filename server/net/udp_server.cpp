@@ -85,29 +85,8 @@ class Loop {
   void drain() { fleet_->drain(host_, now_ms()); }
 
   // One console request (a JSON line) -> its reply; datagrams it caused (a kick) go now.
-  // A request nests at most kConsoleMaxDepth deep (they are flat objects): the log's copy
-  // of it is written by dump(), which recurses once per level, and a line of 32000 '['
-  // overflowed the stack. The parser itself does not recurse; a deeper part is dropped.
-  static constexpr int kConsoleMaxDepth = 8;
   std::string console_line(const std::string& line) {
-    bool too_deep = false;
-    const auto request = nlohmann::json::parse(
-        line,
-        [&too_deep](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-          too_deep = too_deep || depth > kConsoleMaxDepth;
-          return !too_deep;
-        },
-        false);
-    nlohmann::ordered_json reply;
-    if (too_deep) {
-      reply = {{"ok", false}, {"error", "a request nests at most " + std::to_string(kConsoleMaxDepth) + " levels deep"}};
-      log_record(spdlog::level::warn, "console", {{"request", "(nested too deep)"}, {"ok", false}});
-    } else if (request.is_discarded()) {
-      reply = {{"ok", false}, {"error", "not a JSON line"}};
-      log_record(spdlog::level::warn, "console", {{"request", "(not JSON)"}, {"ok", false}});
-    } else {
-      reply = console_command(host_, request, now_ms());
-    }
+    const nlohmann::ordered_json reply = server::console_line(host_, line, now_ms());
     flush();
     // A drain with no room left ends the process at the next tick, after this reply is
     // written (stopping here would drop it).

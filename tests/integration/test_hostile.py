@@ -6,7 +6,8 @@ tick loop never stalled (stats records, written every 200 ms on its thread: no g
 1 s, under 50 ticks skipped, fts_ticks_total at > 80 Hz) and that a good client is answered.
   console_long_line  a line over kMaxLineBytes is closed, one just under answered
   console_garbage    every command x field x JSON type; NUL, invalid UTF-8, 32000 nested '['
-                     (a stack overflow: it crashed the server): an error line, or closed
+                     (a stack overflow: it crashed the server): an error line, or closed;
+                     {"cmd":"stats","cmd":"drain"} refused (it drained the server)
   console_idle       partial, trickled and never-read requests: closed after kIdleMs, RSS bounded
   console_flood      2000 connections at once: kMaxConnections accepted, the rest told busy
   metrics_slowloris  12 clients trickling a header: cut off kRequestTimeoutMs after a worker
@@ -211,6 +212,13 @@ def test_console_garbage(srv, t):
     with connect_unix(srv.sock) as s:  # what crashed the server is refused, not walked
         s.sendall(DEEP)
         check(b"nests at most" in (read_line(s) or b""), "no 'nests at most' error for 32000 nested arrays")
+    with connect_unix(srv.sock) as s:  # the last of two keys ran (issue 36): this drained the server
+        s.sendall(b'{"cmd":"stats","cmd":"drain"}\n')
+        reply = json.loads(read_line(s) or b"{}")
+        check(reply.get("ok") is False and 'key "cmd" appears twice' in reply.get("error", ""), f"cmd twice: {reply}")
+    with connect_unix(srv.sock) as s:
+        s.sendall(b'{"cmd":"stats"}\n')
+        check(json.loads(read_line(s) or b"{}").get("draining") is False, "a request with cmd twice drained the server")
     with connect_unix(srv.sock) as s:  # bytes, no line, a half-close: closed unanswered
         s.sendall(os.urandom(3000).replace(b"\n", b"."))
         s.shutdown(socket.SHUT_WR)

@@ -57,9 +57,10 @@ struct HostRig {
       clients[index_of.at(out.to)]->receive(out.bytes, now);
     }
   }
-  // A console request (JSON text) and its reply; the datagrams it caused are delivered.
+  // A console request (JSON text, read as the console socket's line is) and its reply;
+  // the datagrams it caused are delivered.
   nlohmann::ordered_json console(const std::string& text) {
-    auto reply = server::console_command(*host, nlohmann::json::parse(text), now);
+    auto reply = server::console_line(*host, text, now);
     deliver();
     return reply;
   }

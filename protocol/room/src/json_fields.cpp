@@ -71,15 +71,6 @@ std::string Fields::string_or(std::string_view key, std::string fallback) const 
   return has(key) ? string(key) : fallback;
 }
 
-std::optional<nlohmann::json> parse_json(const std::string& text, std::string& why) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    why = e.what();
-    return std::nullopt;
-  }
-}
-
 void require_positive(const Fields& f, std::string_view key, double v) {
   if (!(v > 0.0)) f.fail(key, "must be > 0, got " + nlohmann::json(v).dump());
 }

@@ -124,3 +124,26 @@ TEST_CASE("Journal cuts: both segments garbled, the room is refused with each se
   REQUIRE(std::holds_alternative<std::string>(empty));
   CHECK_THAT(std::get<std::string>(empty), Catch::Contains("no usable journal segment"));
 }
+
+// Issue 36 point 9: a line with a key twice was read as its last one; now it is damage.
+TEST_CASE("Journal cuts: a line with a key twice is damage, named, never read as its last key", "[journal]") {
+  TwoSegments t;
+  // A hash line late in the newest segment gets its tick a second time.
+  const std::size_t at = t.bytes.rfind(R"({"tick":440,"hash")");
+  REQUIRE(at != std::string::npos);
+  std::string bad = t.bytes;
+  bad.insert(at + 1, R"("tick":1,)");
+  write_bytes(t.newest, bad);
+  auto r = read_ok(t.d.path);
+  check_real(t.p, r, "a hash line with tick twice");
+  CHECK(r.state.tick < 440);
+  CHECK_THAT(r.damage, Catch::Contains(R"(invalid JSON (key "tick" appears twice in one object))"));
+  // The checkpoint's header line with a key twice: the segment is skipped, the older used.
+  bad = t.bytes;
+  bad.insert(1, R"("room":"ZZZZ",)");
+  write_bytes(t.newest, bad);
+  r = read_ok(t.d.path);
+  check_real(t.p, r, "a header with room twice");
+  REQUIRE(r.skipped.size() == 1);
+  CHECK_THAT(r.skipped[0], Catch::Contains(R"(line 1: invalid JSON: key "room" appears twice in one object)"));
+}

@@ -44,6 +44,9 @@ TEST_CASE("Config: values are read and an unknown key or a bad value is named") 
   CHECK_THAT(error_of(R"({"max_players": 0})"), Catch::Contains("max_players"));
   CHECK_THAT(error_of(R"([1, 2])"), Catch::Contains("object"));
   CHECK_THAT(error_of(R"({"coin_cap": 1)"), Catch::Contains("invalid JSON"));
+  // A key twice is refused naming it; nlohmann alone kept the last one (issue 36 point 9).
+  CHECK(error_of(R"({"tick_rate_hz": 50, "model": "seed", "tick_rate_hz": 100})") ==
+        R"(match config: invalid JSON: key "tick_rate_hz" appears twice in one object)");
 }
 
 TEST_CASE("Input log: one line per tick round-trips every input and command") {
@@ -77,6 +80,8 @@ TEST_CASE("Input log: a bad line names the field") {
     return e ? *e : std::string();
   };
   CHECK_THAT(err(R"({"tick": 1, "players": [{"id": 1, "x": 2}]})"), Catch::Contains("players[0].x"));
+  CHECK(err(R"({"tick": 1, "players": [{"id": 1, "id": 2}]})") ==
+        R"(input line: invalid JSON: key "id" appears twice in one object (at players[0].id))");
   CHECK_THAT(err(R"({"tick": 1, "players": [{"id": 1, "cmd": ["dance"]}]})"), Catch::Contains("dance"));
   CHECK_THAT(err(R"({"tick": -1})"), Catch::Contains("tick"));
   CHECK_THAT(err(R"({"tick": 1, "moves": []})"), Catch::Contains("moves"));

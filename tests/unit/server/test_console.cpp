@@ -52,3 +52,25 @@ TEST_CASE("Console: the front end's words make the request", "[server][console]"
   CHECK(request({"announce", "caf\xe9"}).empty());
   CHECK(error == "the command and its words must be UTF-8 text");
 }
+
+// Issue 36 point 9: nlohmann keeps the last of two equal keys, so this line drained the host.
+TEST_CASE("Console: a request with a key twice is refused and runs nothing", "[server][console]") {
+  test::HostRig rig;
+  rig.start();
+  auto reply = rig.console(R"({"cmd":"stats","cmd":"drain"})");
+  CHECK(reply["ok"] == false);
+  CHECK(reply["error"] == R"(not a JSON request: key "cmd" appears twice in one object)");
+  CHECK_FALSE(rig.host->draining());
+  reply = rig.console(R"({"cmd":"announce","text":{"a":1,"a":2}})");
+  CHECK(reply["error"] == R"(not a JSON request: key "a" appears twice in one object (at text.a))");
+  reply = rig.console(R"({"cmd":"rooms","x":[1,{"k":1},{"k":1,"k":2}]})");
+  CHECK(reply["error"] == R"(not a JSON request: key "k" appears twice in one object (at x[2].k))");
+  // Equal keys in different objects are no repeat; the request runs.
+  CHECK(rig.console(R"({"cmd":"stats","x":[{"k":1},{"k":1}],"y":{"cmd":1}})")["ok"] == true);
+  // Nesting past kConsoleMaxDepth is refused before a tree is built.
+  CHECK(rig.console(R"({"cmd":"stats","x":[[[[[[[1]]]]]]]})")["ok"] == true);  // 8 levels
+  reply = rig.console(R"({"cmd":"stats","x":[[[[[[[[1]]]]]]]]})");
+  CHECK(reply["error"] == "not a JSON request: the text nests at most 8 levels deep; this goes deeper (at x[0][0][0][0][0][0][0])");
+  CHECK(rig.console("{\"cmd\":\"stats\"")["error"].get<std::string>().find("parse error") != std::string::npos);
+  CHECK_FALSE(rig.host->draining());
+}

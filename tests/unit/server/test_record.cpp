@@ -54,6 +54,9 @@ TEST_CASE("Replay: each line is dispatched on its keys", "[server][replay]") {
     return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string("ok");
   };
   CHECK(error_of(R"({"tick":3,"joins":[{"player":1,"name":"hash"}]})") == "ok");
+  // A key twice is refused, not read as its last one (issue 36 point 9).
+  CHECK(error_of(R"({"tick":3,"joins":[{"player":1,"name":"ann","player":2}]})") ==
+        R"(line 2: invalid JSON: key "player" appears twice in one object (at joins[0].player))");
   CHECK(error_of(R"({"tick":100,"hash":"0000000000000000","joins":[]})") ==
         "line 2: a hash line needs an integer tick and a string hash, and nothing else");
   CHECK(error_of(R"({"tick":100,"hash":7})") ==

@@ -42,6 +42,12 @@ TEST_CASE("Scene files: errors name the field and the value", "[scene]") {
   CHECK(error_of(R"({"tick_rate": 100, "steps": 1, )" + kArena +
                  R"(, "balls": [{"x": "left", "y": 2, "r": 1, "m": 1}]})") ==
         R"(balls[0].x: must be a number, got "left")");
+  // A key twice, at any depth, is refused naming it (nlohmann kept the last one).
+  CHECK(error_of(R"({"tick_rate": 100, "tick_rate": 50, "steps": 1, )" + kArena + ", " + ball + "}") ==
+        R"(scene is not valid JSON: key "tick_rate" appears twice in one object)");
+  CHECK(error_of(R"({"tick_rate": 100, "steps": 1, )" + kArena +
+                 R"(, "balls": [{"x": 1, "y": 2, "r": 1, "m": 1, "r": 9}]})") ==
+        R"(scene is not valid JSON: key "r" appears twice in one object (at balls[0].r))");
   // JSON has no NaN literal: the parser's message says where it stopped.
   CHECK(error_of(R"({"tick_rate": NaN})").find("not valid JSON") != std::string::npos);
   CHECK(error_of(R"({"tick_rate": 100, "steps": 1, )" + kArena +

@@ -39,8 +39,13 @@ class Fields {
   std::string path_;
 };
 
-// Parses JSON text; on failure nothing, and `why` holds the parser's message.
-std::optional<nlohmann::json> parse_json(const std::string& text, std::string& why);
+// Parses JSON text that came from outside (a file, a console line); on failure nothing,
+// and `why` says why. Strict where nlohmann is lenient: an object with a key twice, at
+// any depth, is refused naming the key and where it is (nlohmann keeps the last, so
+// {"cmd":"stats","cmd":"drain"} drained the server), and so is text nesting deeper than
+// `max_depth` containers (a container at the top is depth 1). Defined in json_strict.cpp.
+inline constexpr int kNoDepthLimit = 0;
+std::optional<nlohmann::json> parse_json(const std::string& text, std::string& why, int max_depth = kNoDepthLimit);
 
 // Throws FieldError "<path>: must be > 0, got <v>" unless v > 0.
 void require_positive(const Fields& f, std::string_view key, double v);
