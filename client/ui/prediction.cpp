@@ -8,7 +8,9 @@
 namespace fts::client {
 
 namespace {
-constexpr std::int64_t kMaxAheadTicks = 200;  // never predict more than 2 s past the base
+// Never predict more than this past the base, in the server's ticks (200 at 100 Hz; a
+// fixed 200 ticks was 10 s at 20 Hz).
+constexpr double kMaxAheadS = 2.0;
 }  // namespace
 
 double LeadClock::predicted(double server_tick, double rtt_ms, double jitter_ms, double tick_rate_hz,
@@ -63,7 +65,7 @@ void OwnBallPredictor::step_once() {
 
 const sim::Ball* OwnBallPredictor::state_at(std::int64_t tick) {
   if (!base_) return nullptr;
-  tick = std::clamp(tick, base_tick_, base_tick_ + kMaxAheadTicks);
+  tick = std::clamp(tick, base_tick_, base_tick_ + static_cast<std::int64_t>(kMaxAheadS * tick_rate_hz_));
   if (tick < cache_tick_) {  // behind the cache (the shown tick went back): from the base
     world_.balls = {*base_};
     cache_tick_ = base_tick_;

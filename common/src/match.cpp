@@ -82,6 +82,17 @@ void handle_leaves(MatchState& s, std::vector<PlayerId> leaves, std::vector<Even
     if (!p) continue;
     if (p->ball) detail::remove_ball(s, p->ball);
     s.players.erase(s.players.begin() + (p - s.players.data()));
+    // What names the player goes with it: its rockets, and every enemy's credit for its
+    // touches (a fall after the leave credits nobody, issue 36).
+    std::vector<BallId> rockets;
+    for (auto& [ball, b] : s.bodies) {
+      if (b.kind == BodyKind::rocket && b.owner == id) rockets.push_back(ball);
+      if (b.credit == id) {
+        b.credit = 0;
+        b.credit_tick = -1;
+      }
+    }
+    for (BallId ball : rockets) detail::remove_ball(s, ball);
     out.push_back(Left{id});
   }
 }

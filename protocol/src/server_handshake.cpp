@@ -166,6 +166,9 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
     return;
   }
+  // Ids are never reused (server.hpp reserve_player_ids); when they run out (2^32 - 2
+  // sessions in one process life) the server takes nobody new.
+  if (next_player_id_ == kNoPlayerIdLeft) return refuse_full(from, enc, request_bytes);
   // The host picks the room last: a refused hello above creates no room.
   Admission admission;
   if (config_.admit) {
@@ -192,8 +195,8 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     }
     room_ticks_[admission.room] = admission.server_tick;
   }
-  std::uint32_t player_id = 1;
-  while (sessions_.count(player_id)) ++player_id;
+  const std::uint32_t player_id = next_player_id_;
+  reserve_player_ids(player_id);
   Session& s = sessions_[player_id];
   s.player_id = player_id;
   s.name = hello.name;

@@ -68,6 +68,13 @@ bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_m
   Room* r = open_room(id, *code, resumed.is_private, resumed.seed, resumed.config);
   r->resume_from(resumed);
   endpoint_.set_server_tick(id, static_cast<std::uint32_t>(resumed.state.tick));
+  // No newcomer gets an id the resumed match names (a player, a ball's owner or credit):
+  // ids are never reused (ServerEndpoint::reserve_player_ids).
+  for (const auto& p : resumed.state.players) endpoint_.reserve_player_ids(p.id.value);
+  for (const auto& [ball, b] : resumed.state.bodies) {
+    endpoint_.reserve_player_ids(b.owner.value);
+    endpoint_.reserve_player_ids(b.credit.value);
+  }
   for (const auto& s : resumed.sessions) {
     // Each comes back as "disconnected" in the next tick's events: the match marks it away.
     if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms, id, *code))

@@ -97,7 +97,7 @@ void Room::on_input(const protocol::PlayerInput& pi, std::uint64_t now_ms) {
     ++timing_.untimed;
   } else if (static_cast<std::int64_t>(f.tick) <= now_tick) {
     ++timing_.late;
-  } else if (static_cast<std::int64_t>(f.tick) - now_tick > kMaxLeadTicks) {
+  } else if (static_cast<std::int64_t>(f.tick) - now_tick > max_lead_ticks(stepper_.match().cfg.tick_rate_hz)) {
     ++timing_.too_early;
   } else {
     if (h.early.size() >= kMaxEarlyFrames) {

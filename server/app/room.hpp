@@ -3,6 +3,7 @@
 // and commands of its own sessions; a room never sees another room's players.
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <fstream>
 #include <map>
@@ -21,18 +22,22 @@
 
 namespace fts::server {
 
-// A frame may name a tick at most this far ahead of the room's (1 s at 100 Hz; beyond it
-// is no honest client's lead: applied at once), and a player's early frames wait in a
-// buffer of at most this many.
-inline constexpr std::int64_t kMaxLeadTicks = 100;
+// A frame may name a tick at most kMaxLeadMs ahead of the room's (beyond it is no honest
+// client's lead: applied at once), counted in the room's ticks: 100 at 100 Hz, 20 at
+// 20 Hz (a fixed 100 ticks was 5 s at 20 Hz). A player's early frames wait in a buffer
+// of at most kMaxEarlyFrames.
+inline constexpr std::int64_t kMaxLeadMs = 1000;
 inline constexpr std::size_t kMaxEarlyFrames = 32;
+inline std::int64_t max_lead_ticks(double tick_rate_hz) {
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(tick_rate_hz * static_cast<double>(kMaxLeadMs) / 1000.0));
+}
 
 // Input frames by when they arrived against the tick they were meant for.
 struct InputTiming {
   std::uint64_t on_time = 0;  // arrived early and applied at their tick
   std::uint64_t late = 0;     // arrived after their tick: applied at once
   std::uint64_t untimed = 0;  // no tick (0): applied at once
-  std::uint64_t too_early = 0;  // meant for more than kMaxLeadTicks ahead: applied at once
+  std::uint64_t too_early = 0;  // meant for more than max_lead_ticks ahead: applied at once
   std::uint64_t overflow = 0;   // the early buffer was full: its oldest applied at once
   InputTiming& operator+=(const InputTiming& o) {
     on_time += o.on_time, late += o.late, untimed += o.untimed, too_early += o.too_early, overflow += o.overflow;

@@ -228,3 +228,41 @@ TEST_CASE("Host resume: a room with nothing usable or another config is skipped,
   b.host.reset();
   fs::remove_all(root);
 }
+
+// Issue 36 point 10: a resumed room's players keep their ids, and a newcomer after the
+// resume gets an id above every id the room names (a new session took the lowest free
+// one, 1 here, below the resumed player's).
+TEST_CASE("Host resume: a newcomer's id is above every resumed player's", "[journal][host][ids]") {
+  const fs::path root = fs::temp_directory_path() / ("fts-host-resume-ids-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  std::uint32_t bob_id = 0;
+  std::string code;
+  {
+    Rig a(root, 1);
+    auto& ann = a.join("ann", "create");
+    REQUIRE(ann.state() == ClientState::connected);
+    code = ann.welcome()->room;
+    auto& bob = a.join("bob", "join", code);
+    REQUIRE(bob.state() == ClientState::connected);
+    bob_id = bob.welcome()->player_id;
+    bob.send_command(protocol::CommandOp::ready, 0, a.now);
+    REQUIRE(a.console(R"({"cmd":"kick","player":)" + std::to_string(ann.welcome()->player_id) + "}")["ok"] == true);
+    for (int i = 0; i < 100; ++i) {
+      bob.send_input({0, 1, 0, false}, a.now);
+      a.tick();
+    }
+    REQUIRE(a.host->room_by_code(code));
+    a.host->journal(a.host->room_by_code(code)->id())->flush();
+  }
+  const auto reads = server::read_room_journals(root, {code}, 2);
+  Rig b(root, 2);
+  b.now = 50;
+  REQUIRE(server::resume_rooms(*b.host, reads, *server::resumed_config(reads), b.now).sessions == 1);
+  b.tick();
+  REQUIRE(sim::find_player(b.host->room_by_code(code)->match(), bob_id));
+  auto& cy = b.join("cy", "join", code);
+  REQUIRE(cy.state() == ClientState::connected);
+  CHECK(cy.welcome()->player_id > bob_id);
+  b.host.reset();
+  fs::remove_all(root);
+}

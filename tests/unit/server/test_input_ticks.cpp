@@ -101,3 +101,24 @@ TEST_CASE("Input ticks: a record made with predicting clients' frames replays bi
   CHECK(std::get<room::ReplayReport>(replay).hashes_checked >= 6);
   CHECK(std::get<room::ReplayReport>(replay).final_hash == sim::match_hash(rig.host->match()));
 }
+
+// Issue 36 point 10: the lead bound was 100 ticks whatever the rate, 5 s at 20 Hz; it is
+// kMaxLeadMs of the room's ticks.
+TEST_CASE("Input ticks: the most a frame may lead is a second of the room's ticks", "[server][input]") {
+  CHECK(server::max_lead_ticks(100) == 100);
+  CHECK(server::max_lead_ticks(20) == 20);
+  CHECK(server::max_lead_ticks(0.5) == 1);
+  test::HostRig rig;
+  rig.config.tick_rate_hz = 20;
+  rig.options.tick_rate_hz = 20;
+  rig.start();
+  auto& a = rig.add("ann");
+  REQUIRE(rig.connect_all());
+  const auto now_tick = [&] { return static_cast<std::uint32_t>(rig.host->match().tick); };
+  a.send_input({0, 1, 0, false, now_tick() + 15}, rig.now);  // 0.75 s ahead: waits for its tick
+  for (int i = 0; i < 5; ++i) rig.tick();
+  CHECK(rig.host->input_timing().too_early == 0);
+  a.send_input({0, -1, 0, false, now_tick() + 40}, rig.now);  // 2 s ahead: no honest lead
+  for (int i = 0; i < 5; ++i) rig.tick();
+  CHECK(rig.host->input_timing().too_early == 1);
+}

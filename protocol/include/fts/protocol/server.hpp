@@ -238,6 +238,15 @@ class ServerEndpoint {
   // `room` / `room_code`: the host's room the session belongs to (0: a server without rooms).
   bool restore_session(const RestoredSession& restored, std::uint64_t now_ms, std::uint32_t room = 0,
                        const std::string& room_code = {});
+  // Player ids are never reused in the endpoint's life: a newcomer given the id of a
+  // player who left was credited with that player's touches (issue 36). From now on no
+  // new session gets an id up to `id` (a resumed room's players; restore_session does it
+  // for its own). kNoPlayerIdLeft is never given: with it reached, every hello is
+  // refused server_full.
+  static constexpr std::uint32_t kNoPlayerIdLeft = 0xFFFFFFFFu;
+  void reserve_player_ids(std::uint32_t id) {
+    if (id >= next_player_id_) next_player_id_ = id >= kNoPlayerIdLeft - 1 ? kNoPlayerIdLeft : id + 1;
+  }
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
@@ -372,6 +381,7 @@ class ServerEndpoint {
   std::uint64_t last_forget_ms_ = 0;
   std::set<std::uint32_t> idle_paused_rooms_;
   std::uint64_t sessions_made_ = 0;
+  std::uint32_t next_player_id_ = 1;  // the next new session's (reserve_player_ids)
   std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;

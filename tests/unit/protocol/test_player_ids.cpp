@@ -1,0 +1,42 @@
+// Player ids are never reused in an endpoint's life (issue 36 point 10): not a released
+// session's, not one below a restored session's, and past the last one nobody new is
+// taken. (A new session took the lowest free id, so a newcomer inherited a departed
+// player's credit.) Time stepped by hand.
+#include <catch2/catch.hpp>
+
+#include "harness.hpp"
+
+using namespace fts::protocol;
+using namespace fts::protocol::test;
+
+namespace {
+
+std::uint32_t join(Harness& h, const std::string& name) {
+  Peer& p = h.add_client(named(name));
+  p.client.connect(h.now);
+  const bool done = h.run_until([&] { return p.client.state() != ClientState::connecting; }, h.now + 1000);
+  return done && p.client.welcome() ? p.client.welcome()->player_id : 0;
+}
+
+}  // namespace
+
+TEST_CASE("Player ids: never reused, above every restored id, none past the last", "[protocol][sessions][ids]") {
+  Harness h;
+  // A restored session (a resumed room's player 7): a newcomer's id is above it.
+  REQUIRE(h.server.restore_session({7, "ann", std::string(32, 'a'), false}, h.now));
+  const std::uint32_t bob = join(h, "bob");
+  CHECK(bob == 8);  // was 1, the lowest free
+  CHECK_FALSE(h.server.restore_session({7, "ann", std::string(32, 'a'), false}, h.now));  // 7 is in use
+  // A released session's id is not given again.
+  h.server.kick(bob, "kicked", "test", h.now);
+  CHECK(join(h, "cy") == 9);
+  // Ids only go up; the last one is given, then every new player is refused.
+  h.server.reserve_player_ids(3);
+  h.server.reserve_player_ids(ServerEndpoint::kNoPlayerIdLeft - 2);
+  CHECK(join(h, "dan") == ServerEndpoint::kNoPlayerIdLeft - 1);
+  Peer& eve = h.add_client(named("eve"));
+  eve.client.connect(h.now);
+  REQUIRE(h.run_until([&] { return eve.client.state() == ClientState::refused; }, h.now + 1000));
+  CHECK(eve.client.error()->code == "server_full");
+  CHECK(h.server.sessions().size() == 3);
+}
