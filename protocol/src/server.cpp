@@ -177,6 +177,12 @@ std::size_t ServerEndpoint::spectators_in_room(std::uint32_t room) const {
   }));
 }
 
+std::size_t ServerEndpoint::holding_in_room(std::uint32_t room) const {
+  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+    return kv.second.room == room && (kv.second.connected || kv.second.played);
+  }));
+}
+
 std::size_t ServerEndpoint::sessions_in_room(std::uint32_t room) const {
   return static_cast<std::size_t>(
       std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) { return kv.second.room == room; }));

@@ -40,10 +40,16 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
   }
   auto new_room = [&](bool is_private) -> protocol::Admission {
     if (draining_) return refusal("server_full", "the server is draining (about to restart): no new rooms");
-    if (rooms_.size() >= options_.max_rooms)
+    // A host's open rooms are counted against it; its own empty ones make way first.
+    const std::string maker(protocol::host_of(ask.from));
+    if (rooms_made_by(maker) >= options_.max_rooms_per_host && !reclaim_room(&maker, now_ms_))
+      return refusal("address_full", "this address has made " + std::to_string(options_.max_rooms_per_host) +
+                                                   " rooms that are still open (the most one address may); join one by its code");
+    // Never refused while a room that holds nobody could be closed: the longest empty goes.
+    if (rooms_.size() >= options_.max_rooms && !reclaim_room(nullptr, now_ms_))
       return refusal("server_full", "the server has " + std::to_string(options_.max_rooms) +
                                         " rooms already, all full; try again later");
-    Room* r = create_room(is_private);
+    Room* r = create_room(is_private, maker);
     if (!r) return refusal("server_full", "no room code is free");
     return admitted(*r, false);
   };

@@ -92,13 +92,31 @@ std::vector<std::uint32_t> GameHost::room_ids() const {
   return ids;
 }
 
-Room* GameHost::create_room(bool is_private) {
+Room* GameHost::create_room(bool is_private, const std::string& maker_host) {
   auto code = codes_.next([&](const std::string& c) { return room_by_code(c) != nullptr || journal_exists(c); });
   if (!code) return nullptr;
   const std::uint32_t id = next_room_id_++;
   Room* r = open_room(id, *code, is_private, room_seed(options_.seed, id), config_);
+  r->maker_host = maker_host;
   start_journal(*r);
   return r;
+}
+
+bool GameHost::reclaim_room(const std::string* maker, std::uint64_t now_ms) {
+  const Room* pick = nullptr;
+  for (const auto& [id, r] : rooms_) {
+    if ((maker && r->maker_host != *maker) || endpoint_.holding_in_room(id) != 0) continue;
+    if (!pick || r->last_occupied_ms < pick->last_occupied_ms) pick = r.get();
+  }
+  if (!pick) return false;
+  log_record(spdlog::level::info, "room_reclaimed", {{"room", pick->id()}, {"code", pick->code()}});
+  close_room(pick->id(), "room_closed", "the room was empty and is closed", now_ms);
+  return true;
+}
+
+std::size_t GameHost::rooms_made_by(const std::string& host) const {
+  return static_cast<std::size_t>(
+      std::count_if(rooms_.begin(), rooms_.end(), [&](const auto& kv) { return kv.second->maker_host == host; }));
 }
 
 Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
@@ -121,6 +139,7 @@ Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_pri
 
 void GameHost::receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   stats_.received(bytes.size());
+  now_ms_ = now_ms;
   if (bans_.drops(from, now_ms)) return;  // dropped without an answer: a ban costs the server nothing
   endpoint_.receive_later(from, bytes, now_ms);  // opened at the tick, on the pool
 }
@@ -224,6 +243,7 @@ void GameHost::dispatch(std::uint64_t now_ms) {
 }
 
 void GameHost::tick(std::uint64_t now_ms) {
+  now_ms_ = now_ms;
   if (const auto stalled = endpoint_.stalled_ms(); stalled != stalled_logged_ms_) {
     log_record(spdlog::level::warn, "stall", {{"ms", stalled - stalled_logged_ms_}, {"total_ms", stalled}});
     stalled_logged_ms_ = stalled;
@@ -251,15 +271,18 @@ void GameHost::tick(std::uint64_t now_ms) {
             [&](std::size_t i) { order_[i]->send_snapshots(endpoint_, members(order_[i]->id()), now_ms, lanes_[i]); });
   for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
 
-  // A room nobody is connected to for room_idle_ms is closed; while draining, at once (the
-  // drain ends when the last room does).
+  // A room nobody is connected to for room_idle_ms is closed, one that holds nobody after
+  // kEmptyRoomMs; while draining, at once (the drain ends when the last room does).
   std::vector<std::uint32_t> idle;
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
     const bool connected = !members(id).empty();
-    if (!draining_ && (r->last_occupied_ms == 0 || connected))
+    if (!draining_ && (r->last_occupied_ms == 0 || connected)) {
       r->last_occupied_ms = now_ms;
-    else if (!connected && now_ms - r->last_occupied_ms >= idle_ms) idle.push_back(id);
+    } else if (!connected) {
+      const bool empty = endpoint_.holding_in_room(id) == 0;
+      if (now_ms - r->last_occupied_ms >= (empty ? std::min(idle_ms, kEmptyRoomMs) : idle_ms)) idle.push_back(id);
+    }
   }
   for (auto id : idle) close_room(id, "room_closed", "the room was empty and is closed", now_ms);
   std::erase_if(closing_journals_, [](const auto& j) { return j->stopped(); });

@@ -88,6 +88,8 @@ std::optional<OptionError> apply(Options& o, const std::string& key, const std::
     if (!parse_uint<std::uint32_t>(value, o.journal_checkpoint_s, 1, 3600)) return bad("must be 1..3600 s");
   } else if (key == "max-rooms") {
     if (!parse_uint<std::uint32_t>(value, o.max_rooms, 1, 1024)) return bad("must be 1..1024");
+  } else if (key == "max-rooms-per-host") {
+    if (!parse_uint<std::uint32_t>(value, o.max_rooms_per_host, 1, 1024)) return bad("must be 1..1024");
   } else if (key == "threads") {
     if (!parse_uint<std::uint32_t>(value, o.threads, 0, 256)) return bad("must be 0..256 (0: every core)");
   } else if (key == "room-idle-ms") {
@@ -170,6 +172,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--drain-grace-ms", "FTS_DRAIN_GRACE_MS", "25000", "with Agones, SIGTERM drains: the longest wait for the last match (ms)"},
       {"--metrics", "FTS_METRICS", "", "serve Prometheus /metrics on ADDR:PORT (off when empty)"},
       {"--max-rooms", "FTS_MAX_ROOMS", "64", "rooms at once, each a match of --max-players (1..1024)"},
+      {"--max-rooms-per-host", "FTS_MAX_ROOMS_PER_HOST", "4", "open rooms one IP address may have made (1..1024)"},
       {"--threads", "FTS_THREADS", "0", "threads that step the rooms; 0: every core the process may use (0..256)"},
       {"--room-idle-ms", "FTS_ROOM_IDLE_MS", "60000", "a room with nobody connected this long is closed (ms)"},
       {"--max-spectators", "FTS_MAX_SPECTATORS", "8", "spectators per room (0..64)"},

@@ -46,6 +46,10 @@ struct Options {
   std::uint32_t drain_grace_ms = 25000;
   std::string metrics_address;  // "ADDR:PORT"
   std::uint32_t max_rooms = 64;         // rooms at once; each a match of max_players
+  // Open rooms one host (address without port) may have made: one host made every room
+  // (a create then a bye, 5 a second) and the rest of the world got server_full (issue 36).
+  // A host at the bound gets its own empty rooms back first, else address_full.
+  std::uint32_t max_rooms_per_host = 4;
   std::uint32_t threads = 0;            // threads stepping the rooms (0: every usable core)
   std::uint32_t room_idle_ms = 60000;   // a room without a connected client this long is closed
   std::uint32_t max_spectators = 8;     // spectators per room (0: none)

@@ -102,6 +102,9 @@ class Room {
   const InputTiming& input_timing() const { return timing_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
+  // The host (address without port) whose hello made the room; "" for a resumed one.
+  // Its open rooms count against it (Options::max_rooms_per_host).
+  std::string maker_host;
 
  private:
   struct Held {

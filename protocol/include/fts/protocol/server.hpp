@@ -291,6 +291,10 @@ class ServerEndpoint {
   std::size_t seats_in_room(std::uint32_t room) const;
   std::size_t spectators_in_room(std::uint32_t room) const;
   std::size_t sessions_in_room(std::uint32_t room) const;
+  // Sessions of a room that hold something: connected, or a player who played (its
+  // progress waits for the reconnect window). A room with none holds nobody: a host
+  // may close it at once (one that only shook hands and left, issue 36).
+  std::size_t holding_in_room(std::uint32_t room) const;
   // Time the server itself stood still (gaps over stall_threshold_ms), in total.
   std::uint64_t stalled_ms() const { return stalled_ms_; }
 
