@@ -15,7 +15,7 @@ namespace fts::protocol::wire {
 // ---- bit streams --------------------------------------------------------------------
 // Exp-Golomb codes of order k (H.264's ue(v) generalised): n >= 0 takes
 // 2 * bit_length(n + 2^k) - k - 1 bits, so small values are a few bits and nothing is
-// ever out of reach. Signed values are zigzag-mapped first (0, -1, 1, -2, ...).
+// ever out of reach. Signed values are zigzag-mapped first (0, -1, 1, -2, ... to 0, 1, 2, 3, ...).
 inline std::uint64_t zigzag(std::int64_t v) {
   return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
 }
@@ -89,8 +89,11 @@ class BitReader {
     if (failed_) return 0;
     return m - (std::uint64_t{1} << k);
   }
-  // Only zero padding may follow the last value.
-  bool rest_is_padding() const { return 8 * b_.size() - pos_ < 8; }
+  // Only zero padding may follow the last value: fewer than 8 bits, all 0.
+  bool rest_is_padding() const {
+    const std::size_t left = 8 * b_.size() - pos_;
+    return left < 8 && (left == 0 || (b_.back() & ((1u << left) - 1)) == 0);
+  }
 
  private:
   std::span<const std::uint8_t> b_;

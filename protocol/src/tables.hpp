@@ -92,8 +92,10 @@ struct FullBalls {
 };
 
 // "mv": the motion entries of SnapshotMsg::balls (PROTOCOL.md 8.2). MessagePack: one bin
-// of Exp-Golomb codes, five streams (id step, x, y, vx, vy) with one order k each;
-// JSON: rows [id, x, y, vx, vy]. Either form is read in either encoding.
+// of Exp-Golomb codes, five streams (id gap, x, y, vx, vy) with one order k each: the id
+// gap `id - previous id - 1` as it is (never negative), the others zigzag-mapped. JSON:
+// rows [id, x, y, vx, vy]. Either form is read in either encoding; the test vector of
+// 8.2.1 holds this code and the document to each other (test_motion_vector.cpp).
 struct Motions {
   static constexpr std::size_t kStreams = 5;
   static constexpr unsigned kMaxOrder = 47;
@@ -104,9 +106,20 @@ struct Motions {
       if (!b.full) return true;
     return false;
   }
+  // The packed form needs ids in increasing order from 1 (each gap >= 0); entries in any
+  // other order (make_delta never makes them) are written as rows, which a reader takes.
+  static bool packable(const std::vector<BallEntry>& balls) {
+    std::uint32_t prev = 0;
+    for (const auto& b : balls) {
+      if (b.full) continue;
+      if (b.id <= prev) return false;
+      prev = b.id;
+    }
+    return true;
+  }
   using Codes = std::array<std::uint64_t, kStreams>;
   static Codes codes(const BallEntry& b, std::uint32_t prev) {
-    return {zigzag(static_cast<std::int64_t>(b.id) - prev - 1), zigzag(b.x), zigzag(b.y), zigzag(b.vx), zigzag(b.vy)};
+    return {std::uint64_t{b.id} - prev - 1, zigzag(b.x), zigzag(b.y), zigzag(b.vx), zigzag(b.vy)};
   }
   // The codes of every motion entry (computed once), the order of each stream that makes
   // it shortest, and the total bits.
@@ -150,13 +163,13 @@ struct Motions {
 
   template <class W>
   void put(W& w, const std::vector<BallEntry>& balls) const {
-    if constexpr (std::is_same_v<W, JsonWriter>) {
+    if (std::is_same_v<W, JsonWriter> || !packable(balls)) {
       std::size_t n = 0;
       for (const auto& b : balls) n += b.full ? 0 : 1;
       w.array(n);
       for (const auto& b : balls)
         if (!b.full) BallKindOfEntry{}.put(w, b);
-    } else {
+    } else if constexpr (!std::is_same_v<W, JsonWriter>) {
       Plan p;
       plan(balls, p);
       const std::size_t bytes = (p.bits + 7) / 8;
@@ -190,12 +203,13 @@ struct Motions {
     std::int64_t prev = 0;
     for (std::uint64_t i = 0; i < count && !br.failed(); ++i) {
       std::array<std::int64_t, kStreams> v{};
-      for (std::size_t s = 0; s < kStreams; ++s) v[s] = unzigzag(br.golomb(order[s], 50));
+      v[0] = static_cast<std::int64_t>(br.golomb(order[0], 50));  // the id gap: no zigzag
+      for (std::size_t s = 1; s < kStreams; ++s) v[s] = unzigzag(br.golomb(order[s], 50));
       if (br.failed()) break;  // garbage, below
       BallEntry b;
       b.full = false;
       const std::int64_t id = prev + 1 + v[0];
-      if (id < 0 || id > static_cast<std::int64_t>(kU32Max)) return r.fail(Reject::out_of_range);
+      if (id > static_cast<std::int64_t>(kU32Max)) return r.fail(Reject::out_of_range);
       for (std::size_t s = 1; s < kStreams; ++s)
         if (v[s] < -kDeltaQ || v[s] > kDeltaQ) return r.fail(Reject::out_of_range);
       b.id = static_cast<std::uint32_t>(id);

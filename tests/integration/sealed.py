@@ -3,8 +3,9 @@
 (Debian: python3-nacl): the key exchange, sealing and opening datagrams, the hello's
 token box, and a scripted JSON session that speaks the protocol from a Python socket.
 
-`python3 sealed.py` checks the test vectors of PROTOCOL.md 5.7.5 (exit status 0: they
-match the C++ library's)."""
+`python3 sealed.py` checks the test vectors of PROTOCOL.md 5.7.5 and the `mv` vector of
+8.2.1, packed and unpacked from the document's rules (exit status 0: they match the C++
+library's)."""
 import json, struct, sys
 
 try:
@@ -174,6 +175,112 @@ class Handshake:
         return False
 
 
+# ---- the packed motion entries of a snap's "mv" (PROTOCOL.md 8.2) -----------------------
+
+def zigzag(v):
+    return 2 * v if v >= 0 else -2 * v - 1
+
+
+def unzigzag(u):
+    return u // 2 if u % 2 == 0 else -(u + 1) // 2
+
+
+class Bits:
+    """Most significant bit first; Exp-Golomb codes of order k."""
+
+    def __init__(self, data=b""):
+        self.bits = [(byte >> (7 - i)) & 1 for byte in data for i in range(8)]
+        self.pos = 0
+
+    def put(self, value, n):
+        self.bits += [(value >> (n - 1 - i)) & 1 for i in range(n)]
+
+    def put_golomb(self, n, k):
+        m = n + (1 << k)
+        self.put(0, m.bit_length() - k - 1)
+        self.put(m, m.bit_length())
+
+    def take(self, n):
+        if self.pos + n > len(self.bits):
+            raise ValueError("the bin ends inside a code")
+        v = 0
+        for b in self.bits[self.pos:self.pos + n]:
+            v = v << 1 | b
+        self.pos += n
+        return v
+
+    def take_golomb(self, k):
+        zeros = 0
+        while self.take(1) == 0:
+            zeros += 1
+        return ((1 << (zeros + k)) | self.take(zeros + k)) - (1 << k)
+
+    def padded(self):
+        """The bits written, zero-padded to a byte."""
+        bits = self.bits + [0] * (-len(self.bits) % 8)
+        return bytes(int("".join(map(str, bits[i:i + 8])), 2) for i in range(0, len(bits), 8))
+
+
+def mv_pack(rows, orders):
+    """The bin of motion rows [id, ex, ey, dvx, dvy] (increasing ids) with these orders."""
+    w = Bits()
+    w.put_golomb(len(rows), 3)
+    for k in orders:
+        w.put(k, 6)
+    prev = 0
+    for row in rows:
+        codes = [row[0] - prev - 1] + [zigzag(v) for v in row[1:]]  # the id gap as it is
+        assert codes[0] >= 0, "ids in increasing order"
+        prev = row[0]
+        for code, k in zip(codes, orders):
+            w.put_golomb(code, k)
+    return w.padded()
+
+
+def mv_unpack(data):
+    """(rows, orders) of a bin; ValueError if it is not one."""
+    r = Bits(data)
+    count = r.take_golomb(3)
+    orders = [r.take(6) for _ in range(5)]
+    rows, prev = [], 0
+    for _ in range(count):
+        codes = [r.take_golomb(k) for k in orders]
+        prev = prev + 1 + codes[0]
+        rows.append([prev] + [unzigzag(c) for c in codes[1:]])
+    if len(r.bits) - r.pos >= 8 or any(r.bits[r.pos:]):
+        raise ValueError("not zero padding")
+    return rows, orders
+
+
+def motion_vector(path=None):
+    """The rows, orders and bin of PROTOCOL.md 8.2.1, read from the document."""
+    import os
+    path = path or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "protocol", "PROTOCOL.md")
+    out, inside = {}, False
+    for line in open(path, encoding="utf-8"):
+        if line.startswith("#### 8.2.1"):
+            inside = True
+        elif inside and line.startswith("#"):
+            break
+        words = line.split()
+        if inside and words and words[0] in ("rows", "orders", "bin"):
+            out[words[0]] = words[1:]
+    rows = [json.loads(r) for r in out["rows"]]
+    return rows, [int(k) for k in out["orders"]], bytes.fromhex(out["bin"][0])
+
+
+def check_motion_vector():
+    rows, orders, data = motion_vector()
+    ok = True
+    if mv_pack(rows, orders) != data:
+        print(f"mv vector: packed {mv_pack(rows, orders).hex()}, PROTOCOL.md 8.2.1 says {data.hex()}")
+        ok = False
+    if mv_unpack(data) != (rows, orders):
+        print(f"mv vector: unpacked {mv_unpack(data)}, PROTOCOL.md 8.2.1 says {(rows, orders)}")
+        ok = False
+    return ok
+
+
 def check_vectors():
     cpk, csk = nb.crypto_kx_seed_keypair(bytes(range(0x00, 0x20)))
     spk, ssk = nb.crypto_kx_seed_keypair(bytes(range(0x20, 0x40)))
@@ -209,4 +316,6 @@ def check_vectors():
 if __name__ == "__main__":
     ok = check_vectors()
     print("sealed framing test vectors:", "ok" if ok else "MISMATCH")
-    sys.exit(0 if ok else 1)
+    mv_ok = check_motion_vector()
+    print("mv test vector (8.2.1):", "ok" if mv_ok else "MISMATCH")
+    sys.exit(0 if ok and mv_ok else 1)
