@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <random>
 
+#include "control_tables.hpp"
+
 namespace fts::protocol {
 
 const char* to_string(ClientState state) {
@@ -128,7 +130,9 @@ void ClientEndpoint::disconnect(std::uint64_t now_ms, const std::string& reason)
       h.encoding = config_.encoding;
       h.session = session_;
       acks_.stamp(h, now_ms);
-      emit(h, {Bye{reason.substr(0, kMaxTextBytes)}});
+      Bye bye{reason};
+      std::get<0>(wire::kByeFields).kind.clamp(bye.reason);  // what the server reads (4.9)
+      emit(h, {bye});
     }
   }
   state_ = ClientState::disconnected;

@@ -96,9 +96,9 @@ inline const auto kChatFields = std::make_tuple(
 inline const std::tuple<> kPingFields{};
 
 // ---- bye (4.9)
-// A reason that does not read (not text, or not printable) reads as "": a bye is never
-// lost to its reason.
+// A reason that does not read (not text, longer than 200 bytes, not printable) is refused
+// like any other bad field: the datagram is dropped and the session goes on (3, 4.9).
 inline const auto kByeFields =
-    std::make_tuple(F<Bye, std::string, Tolerant<Text>>{"reason", &Bye::reason, {{0, kMaxTextBytes}}});
+    std::make_tuple(F<Bye, std::string, Text>{"reason", &Bye::reason, {0, kMaxTextBytes}});
 
 }  // namespace fts::protocol::wire

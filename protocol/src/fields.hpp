@@ -275,8 +275,9 @@ void write_map(W& w, const char* type, const M& m, const std::tuple<F...>& table
 }
 
 // Reads a map into m (which starts at its defaults): known keys by the table, any other
-// key (including "t") skipped. A required field missing is garbage, and so is a known key
-// given twice (two lists would otherwise merge into something no writer sends).
+// key (including "t") skipped unless its value is a bin. A required field missing is
+// garbage, and so is a key given twice (validate_value refuses any key twice; the check
+// here keeps two lists from merging into something no writer sends even without it).
 template <class M, class... F>
 void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
   static_assert(sizeof...(F) <= 64);
@@ -296,7 +297,7 @@ void read_map(MsgpackReader& r, M& m, const std::tuple<F...>& table) {
            ...);
         },
         table);
-    if (!matched) r.skip();
+    if (!matched) r.skip_unknown();
     if constexpr (requires { m.fault = std::string(k); })
       if (r.faults() != faults && m.fault.empty()) m.fault = std::string(k);
   }

@@ -1,5 +1,6 @@
 #include "json_reader.hpp"
 
+#include <algorithm>
 #include <array>
 
 #include <nlohmann/json.hpp>
@@ -88,6 +89,10 @@ class SaxToMsgpack {
 }  // namespace
 
 bool json_to_msgpack(std::span<const std::uint8_t> text, std::vector<std::uint8_t>& out, Reject& why) {
+  // nlohmann skips a UTF-8 byte order mark; PROTOCOL.md 3 says there is none.
+  static constexpr std::array<std::uint8_t, 3> kBom{0xef, 0xbb, 0xbf};
+  if (text.size() >= kBom.size() && std::equal(kBom.begin(), kBom.end(), text.begin()))
+    return why = Reject::garbage, false;
   SaxToMsgpack sax(out);
   bool parsed = false;
   try {

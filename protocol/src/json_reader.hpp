@@ -13,7 +13,7 @@
 namespace fts::protocol::wire {
 
 // Appends the MessagePack form of the JSON `text` to `out`. Returns false with `why`
-// (garbage: not JSON; out_of_range: nested deeper than kMaxNestingDepth or more than
+// (garbage: not JSON, or a byte order mark first; out_of_range: nested deeper than kMaxNestingDepth or more than
 // kMaxPayloadValues values) and then `out` holds a partial value.
 bool json_to_msgpack(std::span<const std::uint8_t> text, std::vector<std::uint8_t>& out, Reject& why);
 

@@ -322,6 +322,12 @@ class MsgpackReader {
     if (!std::isfinite(v) || v < lo || v > hi) return fail(Reject::out_of_range), 0.0;
     return v;
   }
+  // Skips the value of a key the reader does not know; a bin there is garbage (bin is
+  // only "mv", PROTOCOL.md 3).
+  void skip_unknown() {
+    if (!at_end() && b_[pos_] >= 0xc4 && b_[pos_] <= 0xc6) return fail(Reject::garbage);
+    skip();
+  }
   // Skips one value of any shape (already validated by validate()).
   void skip() {
     std::size_t depth = 0, values = 0;
@@ -330,7 +336,9 @@ class MsgpackReader {
 
   // Walks one whole value and enforces the payload bounds (PROTOCOL.md 10): nesting at
   // most kMaxNestingDepth, at most kMaxPayloadValues values, no container claiming more
-  // elements than there are bytes left, no bin/ext/nil. Leaves the position unchanged.
+  // elements than there are bytes left, no ext, no key twice in a map, bin only as a
+  // message's "mv" (read_map refuses it under a key the message does not know). Leaves the
+  // position unchanged.
   void validate_value() {
     const std::size_t start = pos_;
     std::size_t depth = 0, values = 0;
@@ -390,7 +398,36 @@ class MsgpackReader {
     return n;
   }
 
-  void skip_value(std::size_t& depth, std::size_t& values, bool checked) {
+  // The pairs of a map being validated: string keys, each at most once (PROTOCOL.md 3,
+  // either encoding: JSON objects arrive here as maps), a bin value only under "mv" in a
+  // message (depth 2: the payload's list, then the message). The keys of a map of up to
+  // kFewKeys are compared on the stack; a bigger one (no message has one) is sorted.
+  static constexpr std::size_t kFewKeys = 32;
+  void check_map(std::size_t n, std::size_t& depth, std::size_t& values) {
+    std::array<std::string_view, kFewKeys> few;
+    std::vector<std::string_view> many;
+    for (std::size_t i = 0; i < n && !failed_; ++i) {
+      if (++values > kMaxPayloadValues) return fail(Reject::out_of_range);
+      if (at_end()) return fail(Reject::truncated);
+      if (!is_str_tag(b_[pos_])) return fail(Reject::garbage);
+      const std::string_view key = str(SIZE_MAX);
+      if (failed_) return;
+      if (i < kFewKeys) {
+        for (std::size_t j = 0; j < i; ++j)
+          if (few[j] == key) return fail(Reject::garbage);
+        few[i] = key;
+      } else {
+        many.push_back(key);
+      }
+      skip_value(depth, values, /*checked=*/true, /*bin_ok=*/depth == 2 && key == "mv");
+    }
+    if (many.empty() || failed_) return;
+    many.insert(many.end(), few.begin(), few.end());
+    std::sort(many.begin(), many.end());
+    if (std::adjacent_find(many.begin(), many.end()) != many.end()) fail(Reject::garbage);
+  }
+
+  void skip_value(std::size_t& depth, std::size_t& values, bool checked, bool bin_ok = false) {
     if (failed_) return;
     if (at_end()) return fail(Reject::truncated);
     if (checked && ++values > kMaxPayloadValues) return fail(Reject::out_of_range);
@@ -400,9 +437,10 @@ class MsgpackReader {
       const bool is_map = is_map_tag(t);
       if (checked && ++depth > kMaxNestingDepth) return fail(Reject::out_of_range);
       const std::size_t n = container(is_map, SIZE_MAX);
-      for (std::size_t i = 0; i < n * (is_map ? 2 : 1) && !failed_; ++i) {
-        if (checked && is_map && i % 2 == 0 && !at_end() && !is_str_tag(b_[pos_])) return fail(Reject::garbage);
-        skip_value(depth, values, checked);
+      if (checked && is_map) {
+        check_map(n, depth, values);
+      } else {
+        for (std::size_t i = 0; i < n * (is_map ? 2 : 1) && !failed_; ++i) skip_value(depth, values, checked);
       }
       --depth;
       return;
@@ -412,6 +450,7 @@ class MsgpackReader {
       return;
     }
     if (t >= 0xc4 && t <= 0xc6) {
+      if (checked && !bin_ok) return fail(Reject::garbage);  // bin only in "mv" (PROTOCOL.md 3)
       bin(SIZE_MAX);
       return;
     }

@@ -45,3 +45,10 @@ TEST_CASE("Bye: a probe's slot is freed at once, a player's is held", "[protocol
   CHECK(has(quit, ServerEvent::Kind::disconnected));
   CHECK_FALSE(has(quit, ServerEvent::Kind::released));
 }
+
+TEST_CASE("Bye: a client's reason is cleaned to one the server reads (PROTOCOL.md 4.9)", "[protocol][bye]") {
+  // The server drops a bye whose reason is too long or not printable; the client's
+  // disconnect() sends what it reads, so the session still ends.
+  const auto ended = connect_then_bye("\x1b[2J" + std::string(300, 'x'));
+  CHECK(has(ended, ServerEvent::Kind::disconnected));
+}
