@@ -37,6 +37,11 @@ BallId place_player(MatchState& s, Player& p, Vec2 pos) {
   return p.ball;
 }
 
+// Spawn protection (docs/rules.md) from this tick on, when the match has it.
+void protect(const MatchState& s, Player& p) {
+  if (s.cfg.spawn_protection_s > 0.0) p.protected_until_tick = s.tick + ticks_for(s.cfg, s.cfg.spawn_protection_s);
+}
+
 }  // namespace
 
 BallId add_ball(MatchState& s, Vec2 pos, Vec2 vel, double radius, double mass, const Body& body) {
@@ -76,10 +81,11 @@ void start_level(MatchState& s, std::int64_t level, bool restart, std::vector<Ev
     p.ready = false;
     p.ball = 0;
     p.respawn_tick = -1;
-    p.protected_until_tick = -1;  // a level starts with every enemy at rest: no protection
+    p.protected_until_tick = -1;
     p.next_fire_tick = s.tick;
     if (!p.in_match() || p.parked) continue;
     place_player(s, p, spawn_slot(s.cfg, slot++, k));
+    protect(s, p);  // every start, a restart included: a player who has not acted yet is not knocked off
   }
   const std::int64_t n = enemy_count_for_players(level, k, s.cfg);
   const Box box = enemy_spawn_box(s.cfg);
@@ -125,7 +131,7 @@ void respawn_player(MatchState& s, Player& p, std::vector<Event>& out) {
     pos = find_spawn(s.world.balls, r, left, s.rng, s.cfg);
   }
   place_player(s, p, *pos);
-  if (s.cfg.spawn_protection_s > 0.0) p.protected_until_tick = s.tick + ticks_for(s.cfg, s.cfg.spawn_protection_s);
+  protect(s, p);
   out.push_back(PlayerRespawned{p.id, p.ball});
 }
 

@@ -10,11 +10,13 @@ using namespace fts::test;
 namespace {
 
 // A match of `players` with no enemies but one still anchor far from the action (so the
-// level does not end).
+// level does not end). The level start's spawn protection (issue 37) is lifted, as if
+// every player had acted: these scenes are about credit and falls, not protection.
 MatchState bare(int players, MatchConfig cfg = {}) {
   MatchState s = started(players, 1, cfg);
   remove_enemies(s);
   add_enemy(s, {60, 30});
+  for (Player& p : s.players) p.protected_until_tick = -1;
   return s;
 }
 

@@ -43,13 +43,14 @@ struct MatchConfig {
   double respawn_delay_s = 2.0;
   double player_spawn_x_fraction = 1.0 / 6.0;  // spawn column, in the left third
 
-  // A ball put back on the platform during a level is immovable (others reflect off it,
-  // its touches credit nobody) until spawn_protection_s after, or until its player
-  // thrusts or fires. A player joining a running match gets every cleared level's growth
+  // A ball put on the platform (every level start, a restart included, and every
+  // respawn or arrival during a level) is immovable (others reflect off it, its touches
+  // credit nobody) until spawn_protection_s after, or until its player thrusts or fires.
+  // A player joining a running match gets every cleared level's growth
   // (multiplier, life price) and late_join_share of the median total value (coins +
   // spent) of the players still in the match, if that is more than the start coins.
   // Respawns and late joiners (README, "Where the rules left room")
-  double spawn_protection_s = 3.0;  // immovable this long after a respawn, or until the player acts; 0: off
+  double spawn_protection_s = 3.0;  // immovable this long after a (re)spawn, or until the player acts; 0: off
   double late_join_share = 1.0;     // of the median total value, for a newcomer; 0: the original start
 
   // Levels: n(L).
