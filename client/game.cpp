@@ -66,7 +66,7 @@ class Game {
   // The link and prediction figures of the session (--stats-file).
   std::string stats_json(std::uint64_t now) const {
     const auto& st = conn_.endpoint().stats();
-    return net_.stats_json(now - started_ms_, st.rtt_ms, loss_.percent(), st.bytes_sent, st.bytes_received);
+    return net_.stats_json(now - started_ms_, st.rtt_ms, net_.loss_percent(), st.bytes_sent, st.bytes_received);
   }
   const std::string& exit_message() const { return exit_message_; }
 
@@ -297,9 +297,7 @@ class Game {
       if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
       for (const auto& p : s.players)
         if (view_.names.size() < kMaxNames || view_.names.count(p.id) > 0) view_.names[p.id] = p.name;
-      net_.on_snapshot(s, view_.my_player_id, now);
-      if (const auto& w = endpoint.welcome(); w && w->snapshot_rate_hz > 0)
-        loss_.on_snapshot(s.tick, static_cast<double>(w->tick_rate_hz) / w->snapshot_rate_hz);
+      net_.on_snapshot(s, view_.my_player_id, now);  // and the loss meter
       read_events(s);
       buffer_.push(std::move(s));
     }
@@ -361,7 +359,7 @@ class Game {
                         : now < back_until_ms_                 ? "Reconnected: welcome back"
                                                                : "";
     view_.ping_ms = endpoint.stats().rtt_ms > 0 ? endpoint.stats().rtt_ms : -1;
-    view_.loss_percent = loss_.percent();
+    view_.loss_percent = net_.loss_percent();
   }
 
   void note(std::string line) { push_log(LogLine{std::move(line), now_ms()}); }
@@ -401,7 +399,6 @@ class Game {
   term::Painter painter_;
   HoldTracker hold_;
   SnapshotBuffer buffer_;
-  LossMeter loss_;
   EventFeed events_;
   ViewState view_;
   std::map<std::uint32_t, char> pending_buys_;

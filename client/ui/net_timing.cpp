@@ -4,8 +4,14 @@ namespace fts::client {
 
 void NetTiming::on_welcome(const protocol::Welcome& w) {
   tick_rate_hz_ = w.tick_rate_hz > 0 ? w.tick_rate_hz : 100;
-  clock_.set_tick_rate(tick_rate_hz_);
-  jitter_.set_rates(tick_rate_hz_, w.snapshot_rate_hz > 0 ? tick_rate_hz_ / w.snapshot_rate_hz : 5);
+  ticks_per_snapshot_ = w.snapshot_rate_hz > 0 ? tick_rate_hz_ / w.snapshot_rate_hz : 5;
+  clock_ = ServerClock(tick_rate_hz_);
+  jitter_ = JitterBuffer();
+  jitter_.set_rates(tick_rate_hz_, ticks_per_snapshot_);
+  lead_ = LeadClock();
+  loss_ = LossMeter();
+  shown_tick_ = 0;
+  delay_ms_ = 0;
   // The prediction steps the match's physics on this platform at this tick rate.
   sim::MatchConfig cfg;
   cfg.arena_width_u = w.arena_width_u;
@@ -17,6 +23,7 @@ void NetTiming::on_welcome(const protocol::Welcome& w) {
 void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms) {
   clock_.observe(s.tick, now_ms);
   jitter_.on_snapshot(s.tick, now_ms);
+  loss_.on_snapshot(s.tick, ticks_per_snapshot_);
   if (predict_) predictor_.on_snapshot(s, me, shown_tick_, now_ms);
 }
 

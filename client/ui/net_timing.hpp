@@ -13,6 +13,7 @@
 #include "fts/protocol/snapshot.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/jitter_buffer.hpp"
+#include "ui/link_meters.hpp"
 #include "ui/link_stats.hpp"
 #include "ui/prediction.hpp"
 
@@ -25,7 +26,10 @@ class NetTiming {
   explicit NetTiming(bool predict = true) : predict_(predict) {}
 
   // The welcome's rates and platform: the clock's rate, the snapshot interval, the
-  // prediction's world.
+  // prediction's world. A welcome starts a session (the first or a reconnect): the clock,
+  // the jitter buffer, the lead and the loss meter start afresh, since what they learnt
+  // of the old session's link (a gap of a minute read as loss and lateness) is not this
+  // one's (issue 37).
   void on_welcome(const protocol::Welcome& w);
   // A complete snapshot arrived; `me`: our player id.
   void on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms);
@@ -56,6 +60,8 @@ class NetTiming {
   const PredictionStats& prediction() const { return predictor_.stats(); }
   double lead_ticks() const { return lead_.lead_ticks(); }
   double jitter_ms() const { return jitter_.jitter_ms(); }
+  // Snapshots lost in this session, recently (0..100; < 0 before there is anything to judge).
+  double loss_percent() const { return loss_.percent(); }
   // The session's figures as one JSON object (--stats-file).
   std::string stats_json(std::uint64_t duration_ms, double rtt_ms, double loss_percent, std::uint64_t bytes_sent,
                          std::uint64_t bytes_received) const;
@@ -67,6 +73,8 @@ class NetTiming {
   JitterBuffer jitter_;
   LeadClock lead_;
   OwnBallPredictor predictor_;
+  LossMeter loss_;
+  double ticks_per_snapshot_ = 5;
   double shown_tick_ = 0;
   double delay_ms_ = 0;
   StallMeter stalls_;
