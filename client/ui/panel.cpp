@@ -230,14 +230,18 @@ std::vector<std::string> scoreboard_lines(const Snapshot& s, const ViewState& vi
     const auto it = view.scores.find(id);
     return it == view.scores.end() ? Score{} : it->second;
   };
+  // By what each player earned in this match (its knocks' coins), not by coins in hand:
+  // a late joiner's grant, a bank's interest or a thrifty shopper do not rank anyone up
+  // (issue 37). Coins in hand, then lives, break ties.
   std::stable_sort(order.begin(), order.end(), [&](const PlayerState* a, const PlayerState* b) {
-    if (a->coins != b->coins) return a->coins > b->coins;
     if (score(a->id).coins_total != score(b->id).coins_total) return score(a->id).coins_total > score(b->id).coins_total;
+    if (a->coins != b->coins) return a->coins > b->coins;
     return a->lives > b->lives;
   });
   std::vector<std::string> out;
-  out.push_back(final_standings ? "Final standings, game over at level " + std::to_string(s.level)
-                                : "Standings after level " + std::to_string(s.level));
+  out.push_back((final_standings ? "Final standings, game over at level " + std::to_string(s.level)
+                                 : "Standings after level " + std::to_string(s.level)) +
+                ", by coins earned");
   char buf[160];
   std::snprintf(buf, sizeof buf, "%2s %-16s %6s %7s %6s %5s %9s", "#", "Player", "Level", "Earned", "Knocks", "Lives",
                 "Coins");

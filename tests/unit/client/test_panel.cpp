@@ -208,7 +208,7 @@ TEST_CASE("refusals are said in words", "[client][hud]") {
   CHECK(refusal_text("weird", "", 0, nullptr) == "refused (weird)");
 }
 
-TEST_CASE("the scoreboard ranks by coins and counts knocks per level", "[client][score]") {
+TEST_CASE("the scoreboard ranks by coins earned and counts knocks per level", "[client][score]") {
   Snapshot s = eight_players();
   ViewState view = view_of(0);
   tally_event(view.scores, Event{1, 1, EventKind::enemy_fell, 50, 2, 40});
@@ -221,11 +221,11 @@ TEST_CASE("the scoreboard ranks by coins and counts knocks per level", "[client]
   CHECK(view.scores[2].coins_total == 85);
   const auto board = scoreboard_lines(s, view, true);
   REQUIRE(board.size() == 10);
-  CHECK(board[0] == "Final standings, game over at level 3");
-  CHECK(board[2].find("hiro") != std::string::npos);  // most coins first
+  CHECK(board[0] == "Final standings, game over at level 3, by coins earned");
+  CHECK(board[2].find("bob") != std::string::npos);  // the only one who earned: first
+  CHECK(board[2].find("  85 ") != std::string::npos);
+  CHECK(board[3].find("hiro") != std::string::npos);  // then by coins in hand
   CHECK(board[9].find("ann*") != std::string::npos);  // you, marked
-  CHECK(board[8].find("bob") != std::string::npos);
-  CHECK(board[8].find("  85 ") != std::string::npos);
   tally_event(view.scores, Event{5, 5, EventKind::level_started, 0, 0, 1});  // play again
   CHECK(view.scores.empty());
   // At game over the standings replace the field.
