@@ -324,10 +324,10 @@ class Game {
     // Connection trouble: show it after 2 s of silence; the connection resumes with the
     // token by itself (ClientConnection) until the reconnect window has passed.
     const S st = conn_.state();
-    if (st == S::refused && endpoint.error() && endpoint.error()->code == "bad_token" && !opts_.fresh)
+    if (st == S::refused && endpoint.error() && proto::has_code(*endpoint.error(), proto::ErrorCode::bad_token) && !opts_.fresh)
       return start_fresh(now);
     if (idle_) return;
-    if (st == S::refused && endpoint.error() && endpoint.error()->code == "idle") {
+    if (st == S::refused && endpoint.error() && proto::has_code(*endpoint.error(), proto::ErrorCode::idle)) {
       // The server treats an idle player as one who quit: its seat is free, its progress
       // kept for the reconnect window. Stay, and come back on a key (issue 26).
       idle_ = true;

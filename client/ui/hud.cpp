@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "fts/protocol/codes.hpp"
 #include "fts/sim/shop_text.hpp"
 #include "ui/sanitize.hpp"
 
@@ -143,22 +144,28 @@ std::string refusal_text(const std::string& code, const std::string& server_mess
   for (const sim::ItemDef& d : sim::item_table())
     if (item != 0 && d.key == item) def = &d;
   const std::string what = def != nullptr ? std::string(def->name) : std::string("that");
-  if (code == "coins") {
-    if (me != nullptr && def != nullptr)
-      return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(def->item)]) +
-             ", you have " + sim::with_thousands(me->coins);
-    return "not enough coins";
+  using protocol::ResultCode;
+  switch (protocol::result_code_of(code).value_or(ResultCode::count_)) {
+    case ResultCode::coins:
+      if (me != nullptr && def != nullptr)
+        return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(def->item)]) +
+               ", you have " + sim::with_thousands(me->coins);
+      return "not enough coins";
+    case ResultCode::owned: return "you already have " + what + ": it is bought once";
+    case ResultCode::phase:
+      // Out of lives, the shop is closed to us while it is open to the others (issue 26).
+      if (me != nullptr && me->lives <= 0) return "you are out of lives: you play again when this match ends";
+      return "not now: the shop is closed";
+    case ResultCode::dead: return "you are out of the match: watching";
+    case ResultCode::item: return "there is no such item in the shop";
+    case ResultCode::op: return "this server does not know that command";
+    case ResultCode::rate: return "too many chat lines: wait a moment";
+    case ResultCode::empty: return "nothing to say";
+    case ResultCode::ok:
+    case ResultCode::field:
+    case ResultCode::spectator:
+    case ResultCode::count_: break;  // the server's sentence says it
   }
-  if (code == "owned") return "you already have " + what + ": it is bought once";
-  // Out of lives, the shop is closed to us while it is open to the others (issue 26).
-  if (code == "phase" && me != nullptr && me->lives <= 0)
-    return "you are out of lives: you play again when this match ends";
-  if (code == "phase") return "not now: the shop is closed";
-  if (code == "dead") return "you are out of the match: watching";
-  if (code == "item") return "there is no such item in the shop";
-  if (code == "op") return "this server does not know that command";
-  if (code == "rate") return "too many chat lines: wait a moment";
-  if (code == "empty") return "nothing to say";
   const std::string msg = sanitize(server_message, 120);
   return msg.empty() ? "refused (" + sanitize(code, 32) + ")" : msg;
 }

@@ -142,14 +142,14 @@ void ClientEndpoint::update(std::uint64_t now_ms) {
   if (state_ == ClientState::connecting) {
     if (now_ms - connect_start_ms_ >= config_.connect_timeout_ms) {
       state_ = ClientState::timed_out;
-      error_ = Error{"timeout", "no answer from the server during the handshake"};
+      error_ = make_error(ErrorCode::timeout, "no answer from the server during the handshake");
     } else if (now_ms - last_hello_ms_ >= config_.hello_resend_ms) {
       send_hello(now_ms);
     }
   } else if (state_ == ClientState::connected) {
     if (now_ms - last_receive_ms_ >= timeout_ms_) {
       state_ = ClientState::timed_out;
-      error_ = Error{"timeout", "the server stopped answering"};
+      error_ = make_error(ErrorCode::timeout, "the server stopped answering");
     } else if (now_ms - last_send_ms_ >= config_.heartbeat_ms ||
                commands_.due(now_ms, config_.resend_ms)) {
       send_packet(now_ms);
@@ -242,7 +242,7 @@ void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {
       if (auto why = chats_.accept(*chat)) reject(*why);
     } else if (std::holds_alternative<Ping>(m)) {
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
-      error_ = Error{"bye", bye->reason};
+      error_ = make_error(ErrorCode::bye, bye->reason);
       state_ = ClientState::disconnected;
     } else if (const auto* e = std::get_if<Error>(&m)) {
       error_ = *e;

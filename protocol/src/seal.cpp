@@ -138,7 +138,9 @@ void SealedChannel::seal(const Header& header, std::span<const std::uint8_t> pay
 
 std::optional<Reject> SealedChannel::open(const Header& header, std::span<const std::uint8_t> datagram,
                                           std::vector<std::uint8_t>& plain) {
-  if (!ready_ || datagram.size() < kHeaderBytes + kSealTagBytes) {
+  // Too short to hold a tag: cut short, not a forgery (no tag was checked).
+  if (datagram.size() < kHeaderBytes + kSealTagBytes) return Reject::truncated;
+  if (!ready_) {
     ++drops_.forged;
     return Reject::forged;
   }

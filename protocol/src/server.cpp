@@ -3,6 +3,15 @@
 #include <algorithm>
 
 namespace fts::protocol {
+namespace {
+
+// At least a hello's size, "FTSP", this version and session 0 (whatever the flags say).
+bool hello_of_version(std::span<const std::uint8_t> bytes, std::uint16_t version) {
+  return bytes.size() >= kMinHelloBytes && bytes[4] == (version >> 8) && bytes[5] == (version & 0xFF) &&
+         bytes[7] == 0 && bytes[8] == 0 && bytes[9] == 0 && bytes[10] == 0;
+}
+
+}  // namespace
 
 ServerEndpoint::ServerEndpoint(ServerConfig config)
     : config_(std::move(config)),
@@ -98,10 +107,24 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
     rejects_.add(r);
     return nullptr;
   };
+  // A hello-sized datagram of our version that does not decode is most likely a hello
+  // from a client with a bug: say why, in fewer bytes than it sent (no amplification).
+  auto bad_hello = [&](Encoding encoding, Reject why) {
+    const std::string text = "the server could not read this hello (" + std::string(to_string(why)) +
+                             "); see PROTOCOL.md section 4.1";
+    reply_unconnected(from, encoding, 0, make_error(ErrorCode::bad_hello, text), bytes.size());
+  };
   AddressState* host = address_state(host_of(from), now_ms);
   if (host && !host->datagrams.take(now_ms)) return drop(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
-  if (!header) return drop(header.error());
+  if (!header) {
+    // Flags we do not know on a hello of ours (FTSP, our version, session 0): answered in
+    // JSON, the encoding every client reads, within the handshake's rate.
+    if (header.error() == Reject::bad_flags && hello_of_version(bytes, config_.version) &&
+        (!host || host->hellos.take(now_ms)))
+      bad_hello(Encoding::json, Reject::bad_flags);
+    return drop(header.error());
+  }
   // Handshake datagrams cost a keyed hash and a reply: 10 a second per host (ioquake3).
   if (header->session == 0 && host && !host->hellos.take(now_ms)) return drop(Reject::rate_limited);
   if (header->version != config_.version) {
@@ -112,7 +135,7 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
                                std::to_string(config_.version) + ": update your client";
       Header h;
       h.version = config_.version;
-      auto reply = encode_version_refusal(h, Error{"version", text});
+      auto reply = encode_version_refusal(h, make_error(ErrorCode::version, text));
       if (reply.size() <= bytes.size()) emit(from, std::move(reply));
     }
     return nullptr;
@@ -128,13 +151,7 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
     rejects_.add(d.error());
-    // A hello-sized datagram of our version that does not decode is most likely a hello
-    // from a client with a bug: say why, in fewer bytes than it sent (no amplification).
-    if (header->session == 0 && bytes.size() >= kMinHelloBytes) {
-      const std::string text = "the server could not read this hello (" + std::string(to_string(d.error())) +
-                               "); see PROTOCOL.md section 4.1";
-      reply_unconnected(from, header->encoding, 0, Error{"bad_hello", text}, bytes.size());
-    }
+    if (bytes.size() >= kMinHelloBytes) bad_hello(header->encoding, d.error());
     return nullptr;
   }
   if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0])) return drop(Reject::unexpected);
@@ -314,18 +331,16 @@ void ServerEndpoint::adopt(SendLane& lane) {
   }
 }
 
-void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
+void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, ResultCode code,
                                  std::string message, std::uint64_t now_ms) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
   Session& s = it->second;
-  code.resize(std::min<std::size_t>(code.size(), 32));
   message.resize(std::min<std::size_t>(message.size(), kMaxTextBytes));
-  for (auto* text : {&code, &message})
-    for (char& c : *text)
-      if (c < 0x20 || c > 0x7E) c = '?';
+  for (char& c : message)
+    if (c < 0x20 || c > 0x7E) c = '?';
   if (s.unanswered > 0) --s.unanswered;
-  s.results.push(Result{0, command_rid, ok, std::move(code), std::move(message)});
+  s.results.push(Result{0, command_rid, code == ResultCode::ok, std::string(to_string(code)), std::move(message)});
   // Sent by the next update(), batched with the session's other due results.
   if (s.results.pending() > config_.max_pending_results) overflow(s, "results", now_ms);
 }
@@ -334,12 +349,12 @@ void ServerEndpoint::answer_fault(Session& s, const Command& c, std::uint64_t no
   rejects_.add(Reject::bad_field);
   // op and item have their own codes (the same as an unknown op or item); any other
   // field is "field".
-  const std::string code = c.fault == "op" || c.fault == "item" ? c.fault : "field";
+  const ResultCode code = c.fault == "op" ? ResultCode::op : c.fault == "item" ? ResultCode::item : ResultCode::field;
   const std::string why = c.fault == "op"     ? "op must be text: buy, ready, again, chat or rooms"
                           : c.fault == "item" ? "item must be one printable character: m s a r l x b"
                           : c.fault == "text" ? "text must be text of at most 200 bytes"
                                               : c.fault + " is not valid";
-  send_result(s.player_id, c.rid, false, code, "command not applied: " + why, now_ms);
+  send_result(s.player_id, c.rid, code, "command not applied: " + why, now_ms);
 }
 
 void ServerEndpoint::update(std::uint64_t now_ms) {
@@ -382,8 +397,8 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
     rejects_.add(Reject::idle);
     Session& s = sessions_.at(id);
     send_packet(s,
-                {Error{"idle", "no input for " + std::to_string(config_.idle_timeout_ms / 1000) +
-                                   " s: your seat is freed; your progress is kept for the reconnect window"}},
+                {make_error(ErrorCode::idle, "no input for " + std::to_string(config_.idle_timeout_ms / 1000) +
+                                             " s: your seat is freed; your progress is kept for the reconnect window")},
                 false, now_ms);
     s.quit = true;
     drop_connection(s, "idle", now_ms);

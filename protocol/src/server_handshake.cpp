@@ -84,7 +84,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   if (const std::string why = name_problem(hello.name); !why.empty()) {
     rejects_.add(Reject::out_of_range);
-    reply_unconnected(from, enc, 0, Error{"bad_name", why}, request_bytes);
+    reply_unconnected(from, enc, 0, make_error(ErrorCode::bad_name, why), request_bytes);
     return;
   }
   Session* here = nullptr;
@@ -102,7 +102,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   const auto keys = client_key ? server_session_keys(kx_, *client_key) : std::nullopt;
   if (!keys) {
     rejects_.add(Reject::bad_key);
-    reply_unconnected(from, enc, 0, Error{"bad_key", "the hello has no usable key (PROTOCOL.md 5.7)"}, request_bytes);
+    reply_unconnected(from, enc, 0, make_error(ErrorCode::bad_key, "the hello has no usable key (PROTOCOL.md 5.7)"), request_bytes);
     return;
   }
   std::string token;
@@ -111,7 +111,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     // back and forth, faster than this.
     if (AddressState* host = address_state(host_of(from), now_ms); host && !host->takeovers.take(now_ms)) {
       rejects_.add(Reject::takeover_limited);
-      reply_unconnected(from, enc, 0, Error{"rate_limited", "too many reconnects from this address; try again soon"},
+      reply_unconnected(from, enc, 0, make_error(ErrorCode::rate_limited, "too many reconnects from this address; try again soon"),
                         request_bytes);
       return;
     }
@@ -119,7 +119,11 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   // A new attempt from the address of a live session: the client there restarted.
   // With that session's token it is taken back below; otherwise the old client is gone.
-  if (here && here->connected && token != here->token) drop_connection(*here, "replaced by a new connection", now_ms);
+  if (here && here->connected && token != here->token) {
+    drop_connection(*here, "replaced by a new connection", now_ms);
+    // A session that never played holds no slot (PROTOCOL.md 6): freed now, its token dead.
+    if (!here->played) release(here->player_id, "replaced");
+  }
   if (!token.empty()) {
     // A restored session knows only its token's verifier (compared once per hello).
     const std::string verifier = token_verifier(token);
@@ -129,7 +133,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     if (it == sessions_.end()) {
       rejects_.add(Reject::bad_token);
       reply_unconnected(from, enc, 0,
-                        Error{"bad_token", "unknown or expired session token; connect again without one"},
+                        make_error(ErrorCode::bad_token, "unknown or expired session token; connect again without one"),
                         request_bytes);
       return;
     }
@@ -141,13 +145,13 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       if (!config_.admit) return refuse_full(from, enc, request_bytes);
       rejects_.add(Reject::join_refused);
       reply_unconnected(from, enc, 0,
-                        Error{"room_full", "room " + s.room_code + " has no free seat; try again later"},
+                        make_error(ErrorCode::room_full, "room " + s.room_code + " has no free seat; try again later"),
                         request_bytes);
       return;
     }
     // The token from another address takes the session over; the old address is told.
     if (s.connected && s.address != from)
-      send_packet(s, {Error{"taken_over", "another connection took this player over with its token"}}, false, now_ms);
+      send_packet(s, {make_error(ErrorCode::taken_over, "another connection took this player over with its token")}, false, now_ms);
     start_session(s, from, enc, hello, *keys, now_ms);
     s.welcomed_as_reconnect = true;
     events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
@@ -163,7 +167,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     rejects_.add(Reject::address_full);
     const std::string text = "this address has " + std::to_string(cap) +
                              (watching ? " spectators" : " players") + " already; no more from it";
-    reply_unconnected(from, enc, 0, Error{"address_full", text}, request_bytes);
+    reply_unconnected(from, enc, 0, make_error(ErrorCode::address_full, text), request_bytes);
     return;
   }
   // Ids are never reused (server.hpp reserve_player_ids); when they run out (2^32 - 2
@@ -178,18 +182,18 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     if (host && !host->code_misses.has(now_ms)) {
       rejects_.add(Reject::code_limited);
       reply_unconnected(from, enc, 0,
-                        Error{"rate_limited", "too many unknown room codes from this address; try again in a minute"},
+                        make_error(ErrorCode::rate_limited, "too many unknown room codes from this address; try again in a minute"),
                         request_bytes);
       return;
     }
     admission = config_.admit(JoinAsk{hello.join, hello.room, from});
-    if (!admission.error.empty() || admission.room == 0) {
-      const bool unknown = admission.error == "no_such_room";
+    if (admission.error || admission.room == 0) {
+      const bool unknown = admission.error == ErrorCode::no_such_room;
       if (unknown && host) (void)host->code_misses.take(now_ms);
       rejects_.add(unknown ? Reject::unknown_room : Reject::join_refused);
       reply_unconnected(from, enc, 0,
-                        Error{admission.error.empty() ? "refused" : admission.error.substr(0, 32),
-                              admission.message.substr(0, kMaxTextBytes)},
+                        make_error(admission.error.value_or(ErrorCode::refused),
+                                   admission.message.substr(0, kMaxTextBytes)),
                         request_bytes);
       return;
     }
@@ -212,14 +216,10 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
 
 void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
   rejects_.add(Reject::server_full);
-  if (config_.admit) {
-    reply_unconnected(to, encoding, 0, Error{"server_full", "the server has no room for more players; try again later"},
-                      request_bytes);
-    return;
-  }
-  const std::string text = "the server is full (" + std::to_string(config_.max_players) +
-                           " players); try again later";
-  reply_unconnected(to, encoding, 0, Error{"full", text}, request_bytes);
+  const std::string text = config_.admit ? "the server has no room for more players; try again later"
+                                         : "the server is full (" + std::to_string(config_.max_players) +
+                                               " players); try again later";
+  reply_unconnected(to, encoding, 0, make_error(ErrorCode::server_full, text), request_bytes);
 }
 
 }  // namespace fts::protocol

@@ -11,7 +11,7 @@ void ServerEndpoint::overflow(Session& s, const std::string& what, std::uint64_t
   const std::uint32_t id = s.player_id;
   std::erase_if(commands_, [&](const PlayerCommand& c) { return c.player_id == id; });
   std::erase_if(inputs_, [&](const PlayerInput& i) { return i.player_id == id; });
-  kick(id, "overflow",
+  kick(id, ErrorCode::overflow,
        "too many " + what + " waiting on this connection (results are not acknowledged); it is closed",
        now_ms);
 }
@@ -34,13 +34,11 @@ void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason)
   sessions_.erase(it);
 }
 
-void ServerEndpoint::kick(std::uint32_t player_id, const std::string& code, const std::string& message,
-                          std::uint64_t now_ms) {
+void ServerEndpoint::kick(std::uint32_t player_id, ErrorCode code, const std::string& message, std::uint64_t now_ms) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
-  if (it->second.connected)
-    send_packet(it->second, {Error{code.substr(0, 32), message.substr(0, kMaxTextBytes)}}, false, now_ms);
-  release(player_id, code);
+  if (it->second.connected) send_packet(it->second, {make_error(code, message.substr(0, kMaxTextBytes))}, false, now_ms);
+  release(player_id, std::string(to_string(code)));
 }
 
 bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms, std::uint32_t room,
@@ -75,7 +73,7 @@ std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {
 void ServerEndpoint::shutdown(std::uint64_t now_ms) {
   std::vector<std::uint32_t> ids;
   for (const auto& [id, s] : sessions_) ids.push_back(id);
-  for (auto id : ids) kick(id, "shutdown", "the server is shutting down", now_ms);
+  for (auto id : ids) kick(id, ErrorCode::shutdown, "the server is shutting down", now_ms);
 }
 
 }  // namespace fts::protocol

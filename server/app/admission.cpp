@@ -5,9 +5,9 @@
 namespace fts::server {
 namespace {
 
-protocol::Admission refusal(std::string code, std::string message) {
+protocol::Admission refusal(protocol::ErrorCode code, std::string message) {
   protocol::Admission a;
-  a.error = std::move(code);
+  a.error = code;
   a.message = std::move(message);
   return a;
 }
@@ -35,22 +35,22 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
     return a;
   };
   if (refuse_players_) {
-    log_record(spdlog::level::info, "join_refused", {{"address", ask.from}, {"reason", "draining"}});
-    return refusal("draining", "this server is shutting down; join another");
+    log_record(spdlog::level::info, "join_refused", {{"address", ask.from}, {"reason", protocol::to_string(protocol::ErrorCode::draining)}});
+    return refusal(protocol::ErrorCode::draining, "this server is shutting down; join another");
   }
   auto new_room = [&](bool is_private) -> protocol::Admission {
-    if (draining_) return refusal("server_full", "the server is draining (about to restart): no new rooms");
+    if (draining_) return refusal(protocol::ErrorCode::server_full, "the server is draining (about to restart): no new rooms");
     // A host's open rooms are counted against it; its own empty ones make way first.
     const std::string maker(protocol::host_of(ask.from));
     if (rooms_made_by(maker) >= options_.max_rooms_per_host && !reclaim_room(&maker, now_ms_))
-      return refusal("address_full", "this address has made " + std::to_string(options_.max_rooms_per_host) +
+      return refusal(protocol::ErrorCode::address_full, "this address has made " + std::to_string(options_.max_rooms_per_host) +
                                                    " rooms that are still open (the most one address may); join one by its code");
     // Never refused while a room that holds nobody could be closed: the longest empty goes.
     if (rooms_.size() >= options_.max_rooms && !reclaim_room(nullptr, now_ms_))
-      return refusal("server_full", "the server has " + std::to_string(options_.max_rooms) +
+      return refusal(protocol::ErrorCode::server_full, "the server has " + std::to_string(options_.max_rooms) +
                                         " rooms already, all full; try again later");
     Room* r = create_room(is_private, maker);
-    if (!r) return refusal("server_full", "no room code is free");
+    if (!r) return refusal(protocol::ErrorCode::server_full, "no room code is free");
     return admitted(*r, false);
   };
   if (how.empty() || how == "quick") {
@@ -75,21 +75,21 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
   if (how == "create") return new_room(true);
   if (how == "join" || how == "spectate") {
     const auto code = normalize_room_code(ask.room);
-    if (!code) return refusal("no_such_room", "a room code is 5 letters (A-Z without I, L, O)");
+    if (!code) return refusal(protocol::ErrorCode::no_such_room, "a room code is 5 letters (A-Z without I, L, O)");
     const Room* r = room_by_code(*code);
-    if (!r) return refusal("no_such_room", "there is no room " + *code + " on this server");
+    if (!r) return refusal(protocol::ErrorCode::no_such_room, "there is no room " + *code + " on this server");
     if (how == "join") {
       if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
-        return refusal("room_full", "room " + *code + " has all " + std::to_string(options_.max_players) +
+        return refusal(protocol::ErrorCode::room_full, "room " + *code + " has all " + std::to_string(options_.max_players) +
                                         " seats taken; spectate it or try again later");
       return admitted(*r, false);
     }
     if (endpoint_.spectators_in_room(r->id()) >= options_.max_spectators)
-      return refusal("room_full", "room " + *code + " has " + std::to_string(options_.max_spectators) +
+      return refusal(protocol::ErrorCode::room_full, "room " + *code + " has " + std::to_string(options_.max_spectators) +
                                       " spectators already (the most it takes)");
     return admitted(*r, true);
   }
-  return refusal("bad_join", "join must be quick, create, join or spectate");
+  return refusal(protocol::ErrorCode::bad_join, "join must be quick, create, join or spectate");
 }
 
 }  // namespace fts::server

@@ -24,7 +24,7 @@ std::string ChatRelay::clean(std::string_view text, std::size_t max_chars) {
 
 ChatVerdict ChatRelay::accept(std::uint32_t player_id, std::string_view text, std::uint64_t now_ms) {
   std::string line = clean(text, limits_.max_chars);
-  if (line.empty()) return {false, "empty", {}};
+  if (line.empty()) return {false, protocol::ResultCode::empty, {}};
   auto it = buckets_.find(player_id);
   if (it == buckets_.end()) {
     if (buckets_.size() >= limits_.max_tracked) {
@@ -40,9 +40,9 @@ ChatVerdict ChatRelay::accept(std::uint32_t player_id, std::string_view text, st
   if (now_ms > b.at_ms && limits_.refill_ms > 0)
     b.tokens = std::min(limits_.burst_lines, b.tokens + static_cast<double>(now_ms - b.at_ms) / static_cast<double>(limits_.refill_ms));
   b.at_ms = std::max(b.at_ms, now_ms);
-  if (b.tokens < 1) return {false, "rate", {}};
+  if (b.tokens < 1) return {false, protocol::ResultCode::rate, {}};
   b.tokens -= 1;
-  return {true, "ok", std::move(line)};
+  return {true, protocol::ResultCode::ok, std::move(line)};
 }
 
 }  // namespace fts::server

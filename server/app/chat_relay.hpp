@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "fts/protocol/codes.hpp"
+
 namespace fts::server {
 
 struct ChatLimits {
@@ -20,7 +22,7 @@ struct ChatLimits {
 
 struct ChatVerdict {
   bool ok = false;
-  std::string code;  // "ok", "rate" (too many lines: refused), "empty" (nothing printable)
+  protocol::ResultCode code = protocol::ResultCode::ok;  // ok, rate (too many lines), empty (nothing printable)
   std::string text;  // the cleaned line (ok only)
 };
 

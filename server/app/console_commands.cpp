@@ -100,7 +100,7 @@ Reply kick(GameHost& host, const nlohmann::json& req, std::uint64_t now_ms) {
   if (std::none_of(sessions.begin(), sessions.end(), [&](const auto& s) { return s.player_id == *id; }))
     return error_reply("no player " + std::to_string(*id));
   const std::string reason = req.contains("reason") && req["reason"].is_string() ? req["reason"].get<std::string>() : "";
-  host.kick(*id, "kicked", reason.empty() ? "kicked by the host" : "kicked by the host: " + reason, now_ms);
+  host.kick(*id, protocol::ErrorCode::kicked, reason.empty() ? "kicked by the host" : "kicked by the host: " + reason, now_ms);
   Reply out = ok_reply();
   out["kicked"] = *id;
   return out;
@@ -122,7 +122,8 @@ Reply ban(GameHost& host, const nlohmann::json& req, std::uint64_t now_ms) {
   std::vector<std::uint32_t> kicked;
   for (const auto& s : host.endpoint().sessions())
     if (protocol::host_of(s.address) == address) kicked.push_back(s.player_id);
-  for (auto id : kicked) host.kick(id, "banned", "banned by the host for " + std::to_string(minutes) + " minutes", now_ms);
+  for (auto id : kicked)
+    host.kick(id, protocol::ErrorCode::banned, "banned by the host for " + std::to_string(minutes) + " minutes", now_ms);
   Reply out = ok_reply();
   out["banned"] = address;
   out["minutes"] = minutes;
@@ -144,7 +145,7 @@ Reply close(GameHost& host, const nlohmann::json& req, std::uint64_t now_ms) {
   if (!r) return error_reply("close needs \"room\": the code or id of an open room");
   Reply out = ok_reply();
   out["closed"] = r->code();
-  host.close_room(r->id(), "room_closed", "the host closed this room", now_ms);
+  host.close_room(r->id(), protocol::ErrorCode::room_closed, "the host closed this room", now_ms);
   return out;
 }
 

@@ -110,7 +110,7 @@ bool GameHost::reclaim_room(const std::string* maker, std::uint64_t now_ms) {
   }
   if (!pick) return false;
   log_record(spdlog::level::info, "room_reclaimed", {{"room", pick->id()}, {"code", pick->code()}});
-  close_room(pick->id(), "room_closed", "the room was empty and is closed", now_ms);
+  close_room(pick->id(), protocol::ErrorCode::room_closed, "the room was empty and is closed", now_ms);
   return true;
 }
 
@@ -156,7 +156,7 @@ void GameHost::take_datagrams(std::vector<protocol::Outgoing>& batch) {
 }
 
 void GameHost::answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
-  endpoint_.send_result(pc.player_id, pc.command.rid, true, "ok", room_list_text(), now_ms);
+  endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::ok, room_list_text(), now_ms);
 }
 
 // "CODE players/seats level phase" per public room, most players first, as many as fit
@@ -182,11 +182,12 @@ std::string GameHost::room_list_text() const {
 void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
   const ChatVerdict v = chat_.accept(pc.player_id, pc.command.text, now_ms);
   if (!v.ok) {
-    endpoint_.send_result(pc.player_id, pc.command.rid, false, v.code,
-                          v.code == "rate" ? "too many chat lines: wait a moment" : "nothing to say", now_ms);
+    endpoint_.send_result(pc.player_id, pc.command.rid, v.code,
+                          v.code == protocol::ResultCode::rate ? "too many chat lines: wait a moment" : "nothing to say",
+                          now_ms);
     return;
   }
-  endpoint_.send_result(pc.player_id, pc.command.rid, true, "ok", "", now_ms);
+  endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::ok, "", now_ms);
   protocol::Chat line;
   line.from = pc.player_id;
   line.name = "player " + std::to_string(pc.player_id);
@@ -234,8 +235,8 @@ void GameHost::dispatch(std::uint64_t now_ms) {
     }
     auto m = members_.find(pc.player_id);
     if (m != members_.end() && m->second.spectator) {
-      endpoint_.send_result(pc.player_id, pc.command.rid, false, "spectator", "a spectator cannot play; join the room to play",
-                            now_ms);
+      endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::spectator,
+                            "a spectator cannot play; join the room to play", now_ms);
       continue;
     }
     if (auto it = rooms_.find(pc.room); it != rooms_.end()) it->second->on_command(pc, endpoint_, now_ms);
@@ -284,12 +285,13 @@ void GameHost::tick(std::uint64_t now_ms) {
       if (now_ms - r->last_occupied_ms >= (empty ? std::min(idle_ms, kEmptyRoomMs) : idle_ms)) idle.push_back(id);
     }
   }
-  for (auto id : idle) close_room(id, "room_closed", "the room was empty and is closed", now_ms);
+  for (auto id : idle) close_room(id, protocol::ErrorCode::room_closed, "the room was empty and is closed", now_ms);
   std::erase_if(closing_journals_, [](const auto& j) { return j->stopped(); });
   bans_.expire(now_ms);
 }
 
-void GameHost::close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms) {
+void GameHost::close_room(std::uint32_t id, protocol::ErrorCode code, const std::string& message,
+                          std::uint64_t now_ms) {
   auto it = rooms_.find(id);
   if (it == rooms_.end()) return;
   for (const auto& s : endpoint_.sessions())
@@ -299,14 +301,14 @@ void GameHost::close_room(std::uint32_t id, const std::string& code, const std::
   finish_journal(r);  // first: the seal must not wait for the journal's disk
   r.seal();
   log_record(spdlog::level::info, "room_closed",
-             {{"room", id}, {"code", r.code()}, {"reason", code}, {"tick", r.match().tick},
+             {{"room", id}, {"code", r.code()}, {"reason", protocol::to_string(code)}, {"tick", r.match().tick},
               {"state_hash", room::hex16(sim::match_hash(r.match()))}, {"record", r.record_path()}});
   endpoint_.forget_room(id);
   rooms_.erase(it);
   if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
 }
 
-void GameHost::kick(std::uint32_t player_id, const std::string& code, const std::string& message,
+void GameHost::kick(std::uint32_t player_id, protocol::ErrorCode code, const std::string& message,
                     std::uint64_t now_ms) {
   endpoint_.kick(player_id, code, message, now_ms);
 }

@@ -74,9 +74,9 @@ class GameHost {
 
   // ---- what the console's commands (app/console_commands.cpp) do
   // Ends a player's session; its client gets error `code` with `message`.
-  void kick(std::uint32_t player_id, const std::string& code, const std::string& message, std::uint64_t now_ms);
+  void kick(std::uint32_t player_id, protocol::ErrorCode code, const std::string& message, std::uint64_t now_ms);
   // Kicks the room's clients with `code` and `message`, finishes its journal and record.
-  void close_room(std::uint32_t id, const std::string& code, const std::string& message, std::uint64_t now_ms);
+  void close_room(std::uint32_t id, protocol::ErrorCode code, const std::string& message, std::uint64_t now_ms);
   // A chat line from the host to every connected client; how many were told.
   std::size_t announce(const std::string& text, std::uint64_t now_ms);
   // The console's drain: no new rooms from now on (see drained()).

@@ -21,7 +21,17 @@ std::string result_message(const sim::CommandResult& r) {
 
 }  // namespace
 
-std::string refusal_code(sim::Refusal r) { return std::string(sim::refusal_info(r).code); }
+protocol::ResultCode refusal_code(sim::Refusal r) {
+  switch (r) {
+    case sim::Refusal::none: return protocol::ResultCode::ok;
+    case sim::Refusal::not_enough_coins: return protocol::ResultCode::coins;
+    case sim::Refusal::already_owned: return protocol::ResultCode::owned;
+    case sim::Refusal::wrong_phase: return protocol::ResultCode::phase;
+    case sim::Refusal::unknown_item: return protocol::ResultCode::item;
+    case sim::Refusal::no_player: return protocol::ResultCode::dead;
+  }
+  return protocol::ResultCode::phase;
+}
 
 Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
            const sim::MatchConfig& config)
@@ -138,7 +148,7 @@ void Room::on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoin
     case protocol::CommandOp::rooms:  // the host answers these
     case protocol::CommandOp::chat:
     case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
-      endpoint.send_result(pc.player_id, pc.command.rid, false, "op",
+      endpoint.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::op,
                            "unknown command; this server knows buy, ready, again, chat and rooms", now_ms);
       break;
   }
@@ -177,7 +187,7 @@ sim::TickInputs Room::gather(std::uint64_t now_ms) {
 void Room::answer(const std::vector<sim::CommandResult>& results, protocol::ServerEndpoint& endpoint,
                   std::uint64_t now_ms) {
   for (const sim::CommandResult& r : results)
-    endpoint.send_result(r.player.value, r.tag, r.ok(), refusal_code(r.code), result_message(r), now_ms);
+    endpoint.send_result(r.player.value, r.tag, refusal_code(r.code), result_message(r), now_ms);
 }
 
 void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
@@ -186,7 +196,7 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
         sim::Overloaded{
             [&](const sim::JoinRefused& e) {
               log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}, {"room", id_}});
-              endpoint.kick(e.player.value, "refused", "the match refused the join: " + e.reason, now_ms);
+              endpoint.kick(e.player.value, protocol::ErrorCode::refused, "the match refused the join: " + e.reason, now_ms);
             },
             [&](const sim::LevelStarted& e) {
               log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}, {"room", id_}});

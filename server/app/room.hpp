@@ -145,7 +145,7 @@ class Room {
   Stats::Totals* totals_ = nullptr;
 };
 
-// The sentence and code of a command's result (shared with the unit tests).
-std::string refusal_code(sim::Refusal r);
+// The result code (PROTOCOL.md 4.7) of the match's answer to a command.
+protocol::ResultCode refusal_code(sim::Refusal r);
 
 }  // namespace fts::server

@@ -12,6 +12,11 @@ forged:       a scripted session's address and session id with unsealed commands
 bad_fields:   every cmd op with every kind of bad field (wrong type, control bytes, too
               long, UTF-8), in JSON and MessagePack: each command answered with its code,
               and the reliable channel goes on (issue 25: a control byte stalled it).
+codes:        the codes and drop reasons PROTOCOL.md's tables give, on the wire (issue 36):
+              a hello-sized hello with flags 2 gets bad_hello (it got nothing), a
+              malformed key bad_hello and no key bad_key, a cmd with rid 2^32 is
+              out_of_range (not garbage), a sealed datagram under 21 + 16 bytes
+              truncated (it was forged), a full server server_full (never "full").
 room_flood:   one host makes a private room and leaves it every 0.2 s; another host's quick
               play and create are each welcomed within a second throughout (issue 36).
 Scripted sessions speak PROTOCOL.md directly (JSON encoding, sealed with PyNaCl as in
@@ -292,6 +297,80 @@ def test_bad_fields():
             print(f"drops: {drops_logged(srv)}")
 
 
+def padded(msg, flags=sealed.JSON):
+    """A session-0 datagram of this hello, its pad grown to 512 bytes, with these flags."""
+    msg = dict(msg, pad="")
+    while sealed.HEADER_BYTES + len(sealed.encode([msg], sealed.JSON)) < 512:
+        msg["pad"] += "." * (512 - sealed.HEADER_BYTES - len(sealed.encode([msg], sealed.JSON)))
+    return sealed.header(encoding=flags) + sealed.encode([msg], sealed.JSON)
+
+
+def handshake_answer(sock, server, data, timeout_s=5):
+    """Sends a session-0 datagram and returns the first answer's (flags, messages)."""
+    sock.sendto(data, server)
+    got = []
+
+    def answered():
+        try:
+            reply = sock.recv(2048)
+        except BlockingIOError:
+            return False
+        got.append((reply[6], sealed.decode(reply[sealed.HEADER_BYTES:], reply[6] & 3)))
+        return True
+    wait_for(answered, timeout_s, "an answer to a hello")
+    return got[0]
+
+
+def test_codes():
+    with Server("--stats-interval-ms", "200", "--log-format", "json", "--max-players", "1",
+                "--max-rooms", "1") as srv:
+        probe = Script(srv.port, 0xc0de)
+        hello = {"t": "hello", "name": "probe", "token": "", "cookie": "", "nonce": "00000000000c0de1",
+                 "key": probe.hs.pk.hex()}
+        # 4.1: a hello-sized hello whose flags name no encoding is answered bad_hello, in JSON.
+        flags, msgs = handshake_answer(probe.sock, probe.server, padded(hello, flags=2))
+        print(f"flags 2: answered flags {flags}: {msgs}")
+        check(flags == sealed.JSON and msgs and msgs[0].get("code") == "bad_hello",
+              f"a hello with flags 2: {flags} {msgs}")
+        check("bad_flags" in msgs[0].get("msg", ""), f"bad_hello names the reason: {msgs}")
+        # 5.7.1: with a cookie, a key that is not 64 hex digits does not decode (bad_hello);
+        # no key at all is bad_key.
+        _, msgs = handshake_answer(probe.sock, probe.server, padded(hello))
+        cookie = msgs[0]["cookie"]
+        _, msgs = handshake_answer(probe.sock, probe.server, padded(dict(hello, cookie=cookie, key="zz")))
+        check(msgs[0].get("code") == "bad_hello", f"a malformed key: {msgs}")
+        no_key = dict(hello, cookie=cookie)
+        del no_key["key"]
+        _, msgs = handshake_answer(probe.sock, probe.server, padded(no_key))
+        check(msgs[0].get("code") == "bad_key", f"no key: {msgs}")
+        # A session; the server is full behind it (one seat, one room): server_full.
+        script = Script(srv.port, 0xc0df)
+        handshake_all([script], 10)
+        check(script.session is not None, f"the script was refused: {script.error}")
+        other = Script(srv.port, 0xc0e0)
+        handshake_all([other], 10)
+        check(other.error == "server_full", f"a full server answers {other.error}")
+        # 4.6: rid 2^32 is out of range (3), a rid that is text garbage; neither is answered.
+        s = script.session
+        base = drops_logged(srv)
+        script.sock.sendto(s.datagram([{"t": "cmd", "rid": 2 ** 32, "op": "ready"}]), script.server)
+        script.sock.sendto(s.datagram([{"t": "cmd", "rid": "x", "op": "ready"}]), script.server)
+        # 5.7.2: shorter than a header and a tag is truncated, not forged.
+        script.sock.sendto(s.datagram([{"t": "ping"}])[:30], script.server)
+        want = {"out_of_range": 1, "garbage": 1, "truncated": 1}
+
+        def counted():
+            d = drops_logged(srv)
+            return all(d.get(k, 0) - base.get(k, 0) >= n for k, n in want.items())
+        wait_for(counted, 5, f"the server's stats to count {want}")
+        d = drops_logged(srv)
+        delta = {k: d.get(k, 0) - base.get(k, 0) for k in set(d) | set(base) if d.get(k, 0) != base.get(k, 0)}
+        print(f"drops counted: {delta}")
+        check(delta == want, f"drops: {delta}, want {want}")
+        results = [m for m in script.received() if m.get("t") == "result"]
+        check(not results, f"a dropped cmd was answered: {results}")
+
+
 def stats_lines(srv):
     return [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
 
@@ -408,6 +487,6 @@ def test_room_flood():
 
 
 if __name__ == "__main__":
-    sys.exit(main({"address_full": test_address_full, "command_flood": test_command_flood,
+    sys.exit(main({"codes": test_codes, "address_full": test_address_full, "command_flood": test_command_flood,
                    "forged": test_forged, "soak_flood": test_soak_flood, "bad_fields": test_bad_fields,
                    "room_flood": test_room_flood}))

@@ -99,7 +99,7 @@ TEST_CASE("commands exactly once and snapshots exact over 25% loss, 25% dups, 10
     for (auto& pc : h.server.take_commands()) {
       commands_at_server[pc.player_id].push_back(pc.command.rid);
       world.players[pc.player_id - 1].coins += 1;  // the state changes with every command
-      h.server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass", t);
+      h.server.send_result(pc.player_id, pc.command.rid, ResultCode::ok, "bought mass", t);
     }
     if (t % 50 == 0) {
       world = advance(world, 5, 0.05);
@@ -214,7 +214,7 @@ TEST_CASE("the player after the last slot gets a clear refusal", "[protocol][con
   CHECK(h.peers[0]->client.state() == ClientState::connected);
   CHECK(h.peers[1]->client.state() == ClientState::connected);
   REQUIRE(h.peers[2]->client.state() == ClientState::refused);
-  CHECK(h.peers[2]->client.error()->code == "full");
+  CHECK(h.peers[2]->client.error()->code == "server_full");
   CHECK(h.peers[2]->client.error()->message.find("full") != std::string::npos);
 }
 

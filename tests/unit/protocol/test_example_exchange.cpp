@@ -65,7 +65,7 @@ TEST_CASE("example exchange", "[.example]") {
   client.send_command(CommandOp::buy, 'm', now);
   pump();
   for (auto& pc : server.take_commands())
-    server.send_result(pc.player_id, pc.command.rid, true, "ok", "bought mass: 41 -> 42", now);
+    server.send_result(pc.player_id, pc.command.rid, ResultCode::ok, "bought mass: 41 -> 42", now);
   server.update(now);  // results go out with the next update, batched
   pump();
   now += 40;

@@ -89,7 +89,7 @@ TEST_CASE("Limits: the host of an address", "[protocol][limits]") {
 TEST_CASE("Limits: results ride the next update, batched", "[protocol][limits]") {
   Flooder f;
   f.h.server.take_datagrams();
-  for (std::uint32_t rid = 1; rid <= 5; ++rid) f.h.server.send_result(f.player, rid, true, "ok", "done", f.h.now);
+  for (std::uint32_t rid = 1; rid <= 5; ++rid) f.h.server.send_result(f.player, rid, ResultCode::ok, "done", f.h.now);
   CHECK(f.h.server.take_datagrams().empty());  // nothing sent per result
   f.h.server.update(f.h.now + 1);
   auto first = f.h.server.take_datagrams();
@@ -106,10 +106,10 @@ TEST_CASE("Limits: unacknowledged results past the cap drop the session", "[prot
   config.max_pending_results = 10;
   Flooder f(config);
   f.h.server.take_datagrams();
-  for (std::uint32_t rid = 1; rid <= 10; ++rid) f.h.server.send_result(f.player, rid, true, "ok", "done", f.h.now);
+  for (std::uint32_t rid = 1; rid <= 10; ++rid) f.h.server.send_result(f.player, rid, ResultCode::ok, "done", f.h.now);
   CHECK(f.h.server.connected_players().size() == 1);
   CHECK(f.h.server.rejects()[Reject::overflow] == 0);
-  f.h.server.send_result(f.player, 11, true, "ok", "done", f.h.now);  // the 11th, never acknowledged
+  f.h.server.send_result(f.player, 11, ResultCode::ok, "done", f.h.now);  // the 11th, never acknowledged
   CHECK(f.h.server.connected_players().empty());
   CHECK(f.h.server.rejects()[Reject::overflow] == 1);
   CHECK(f.released_for("overflow"));
@@ -127,7 +127,7 @@ TEST_CASE("Limits: acknowledged results never reach the cap", "[protocol][limits
   REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
   const std::uint32_t player = p.client.welcome()->player_id;
   for (std::uint32_t rid = 1; rid <= 40; ++rid) {
-    h.server.send_result(player, rid, true, "ok", "done", h.now);
+    h.server.send_result(player, rid, ResultCode::ok, "done", h.now);
     h.run_until([] { return false; }, h.now + 25);
   }
   CHECK(h.server.connected_players().size() == 1);
@@ -158,7 +158,7 @@ TEST_CASE("Limits: commands past the cap drop the session", "[protocol][limits]"
       for (int i = 0; i < 32; ++i) batch.push_back(Command{rid++, CommandOp::buy, 'm', {}, {}});
       f.raw(batch);
       for (const auto& c : f.h.server.take_commands())
-        f.h.server.send_result(c.player_id, c.command.rid, false, "coins", "no", f.h.now);
+        f.h.server.send_result(c.player_id, c.command.rid, ResultCode::coins, "no", f.h.now);
     }
     CHECK(f.h.server.connected_players().empty());
     CHECK(f.h.server.rejects()[Reject::overflow] == 1);

@@ -84,7 +84,7 @@ TEST_CASE("mutated datagrams never crash or change a session", "[protocol][rejec
   s.tick = 10;
   s.balls.push_back({1, 10, 10, 1, 1, 16, 40, BallKind::player, 1});
   h.server.send_snapshot(1, s, h.now);
-  h.server.send_result(1, 1, false, "coins", "no", h.now);
+  h.server.send_result(1, 1, ResultCode::coins, "no", h.now);
   std::vector<std::vector<std::uint8_t>> seeds;
   for (auto& o : h.server.take_datagrams()) seeds.push_back(o.bytes);
   p.client.send_command(CommandOp::buy, 'm', h.now);

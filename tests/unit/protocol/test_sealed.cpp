@@ -180,10 +180,13 @@ TEST_CASE("Sealed: a tampered datagram is dropped and counted, nothing changes",
     c.h.server.receive(c.p->address, bad, c.h.now);
     CHECK(c.h.server.rejects()[Reject::forged] == ++forged);
   }
-  // Cut short, or the tag alone.
+  // Cut short: a tag that does not verify; shorter than a header and a tag: truncated,
+  // no tag to check (PROTOCOL.md 5.7.2), and not a drop of the sealed channel.
   c.h.server.receive(c.p->address, std::span(good).first(good.size() - 1), c.h.now);
+  const auto truncated = c.h.server.rejects()[Reject::truncated];
   c.h.server.receive(c.p->address, std::span(good).first(kHeaderBytes + kSealTagBytes - 1), c.h.now);
-  CHECK(c.info().sealed_drops.forged == forged + 2);
+  CHECK(c.h.server.rejects()[Reject::truncated] == truncated + 1);
+  CHECK(c.info().sealed_drops.forged == forged + 1);
   CHECK(c.h.server.take_inputs().empty());
   CHECK(c.server_acks() == acks);
   // The untouched datagram still opens afterwards.

@@ -22,12 +22,12 @@ TEST_CASE("chat is rate-limited per player with a token bucket", "[server][chat]
   for (int i = 0; i < 3; ++i) CHECK(relay.accept(1, "hi", t).ok);
   const auto refused = relay.accept(1, "hi", t);
   CHECK_FALSE(refused.ok);
-  CHECK(refused.code == "rate");
+  CHECK(refused.code == fts::protocol::ResultCode::rate);
   CHECK(relay.accept(2, "me too", t).ok);  // another player has its own bucket
   CHECK_FALSE(relay.accept(1, "hi", t + 999).ok);
   CHECK(relay.accept(1, "hi", t + 1000).ok);  // one line back per refill_ms
   const auto empty = relay.accept(3, " \x1b ", t);
   CHECK_FALSE(empty.ok);
-  CHECK(empty.code == "empty");
+  CHECK(empty.code == fts::protocol::ResultCode::empty);
   CHECK(relay.accept(3, "  a  b ", t).text == "a b");
 }

@@ -18,22 +18,21 @@ using Coins = std::int64_t;
 
 enum class Refusal : std::uint8_t { none, not_enough_coins, already_owned, wrong_phase, unknown_item, no_player };
 
-// Every refusal once: its name in logs, its code in a command's result (PROTOCOL.md 4.7)
-// and the sentence a player reads. One table: the server's results, its logs and
-// fts-sim's output read it.
+// Every refusal once: its name in logs and the sentence a player reads. One table: the
+// server's results, its logs and fts-sim's output read it. The code a result carries on
+// the wire is the protocol's (fts/protocol/codes.hpp; the server maps each refusal).
 struct RefusalInfo {
   Refusal refusal;
   std::string_view name;      // logs: "not_enough_coins"
-  std::string_view code;      // the result's code: "coins"
   std::string_view sentence;  // the result's message: "not enough coins"
 };
 inline constexpr std::array<RefusalInfo, 6> kRefusals{{
-    {Refusal::none, "", "ok", "done"},
-    {Refusal::not_enough_coins, "not_enough_coins", "coins", "not enough coins"},
-    {Refusal::already_owned, "already_owned", "owned", "already owned (it is bought once)"},
-    {Refusal::wrong_phase, "wrong_phase", "phase", "not now (wrong phase)"},
-    {Refusal::unknown_item, "unknown_item", "item", "no such item; the shop sells m s a r l x b"},
-    {Refusal::no_player, "no_player", "dead", "not in the match"},
+    {Refusal::none, "", "done"},
+    {Refusal::not_enough_coins, "not_enough_coins", "not enough coins"},
+    {Refusal::already_owned, "already_owned", "already owned (it is bought once)"},
+    {Refusal::wrong_phase, "wrong_phase", "not now (wrong phase)"},
+    {Refusal::unknown_item, "unknown_item", "no such item; the shop sells m s a r l x b"},
+    {Refusal::no_player, "no_player", "not in the match"},
 }};
 static_assert(kRefusals.size() == static_cast<std::size_t>(Refusal::no_player) + 1);
 constexpr const RefusalInfo& refusal_info(Refusal r) { return kRefusals[static_cast<std::size_t>(r) % kRefusals.size()]; }

@@ -13,6 +13,7 @@
 
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
+#include "fts/protocol/codes.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
 #include "fts/protocol/snapshot_delta.hpp"

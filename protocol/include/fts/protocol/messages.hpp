@@ -67,7 +67,7 @@ struct Welcome {
 
 // server -> client: a refusal or a fatal error; the connection is over.
 struct Error {
-  std::string code;     // "version", "full", "bad_token", "timeout", "kicked", "shutdown"
+  std::string code;     // one of kErrorCodes (codes.hpp), or a code this version does not know
   std::string message;  // a sentence a person can act on
   bool operator==(const Error&) const = default;
 };
@@ -125,7 +125,7 @@ struct Result {
   std::uint32_t rid = 0;  // server's reliable id, 1, 2, 3, ... per session
   std::uint32_t command_rid = 0;  // the Command this answers
   bool ok = false;
-  std::string code;     // "ok", "coins", "owned", "phase", ... (see PROTOCOL.md)
+  std::string code;     // one of kResultCodes (codes.hpp), or a code this version does not know
   std::string message;  // human readable
   bool operator==(const Result&) const = default;
 };

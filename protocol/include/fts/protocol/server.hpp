@@ -17,6 +17,7 @@
 
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
+#include "fts/protocol/codes.hpp"
 #include "fts/protocol/cookie.hpp"
 #include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
@@ -43,7 +44,7 @@ struct Admission {
   std::string code;        // the room's code, sent in the welcome
   bool spectator = false;
   std::uint32_t server_tick = 0;  // the room's tick, sent in the welcome
-  std::string error;       // "" : admitted; else "room_full", "no_such_room", "server_full", ...
+  std::optional<ErrorCode> error;  // none: admitted; else room_full, no_such_room, server_full, ...
   std::string message;
 };
 
@@ -225,13 +226,13 @@ class ServerEndpoint {
   // Queues the lane's datagrams after those queued already; the lane keeps buffers of
   // sent datagrams for its next ones.
   void adopt(SendLane& lane);
-  // Answers a command (reliably). code: "ok" or a refusal code; message for a person.
-  // Queued: the next update() sends the session's due results together in one datagram.
-  void send_result(std::uint32_t player_id, std::uint32_t command_rid, bool ok, std::string code,
-                   std::string message, std::uint64_t now_ms);
+  // Answers a command (reliably): applied (ResultCode::ok, `ok: true`) or refused with
+  // that code; message for a person. Queued: the next update() sends the session's due
+  // results together in one datagram.
+  void send_result(std::uint32_t player_id, std::uint32_t command_rid, ResultCode code, std::string message,
+                   std::uint64_t now_ms);
   // Ends a session now (error sent to the client, slot released).
-  void kick(std::uint32_t player_id, const std::string& code, const std::string& message,
-            std::uint64_t now_ms);
+  void kick(std::uint32_t player_id, ErrorCode code, const std::string& message, std::uint64_t now_ms);
   // Re-creates a session of a previous server process, disconnected as of now_ms (an
   // event `disconnected` with reason "restart" tells the host). A player id in use or a
   // bad verifier is refused (false), changing nothing.
