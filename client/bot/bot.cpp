@@ -186,8 +186,8 @@ protocol::InputFrame Bot::behave() {
   sight.accel_u_per_s2 = p->accel_u_per_s2;
   sight.rockets = p->weapon == protocol::Weapon::rockets;
   if (const auto& w = conn_.endpoint().welcome()) {
-    sight.arena_width_u = w->arena_width_u;
-    sight.arena_height_u = w->arena_height_u;
+    sight.arena_width_u = w->match.arena_width_u;
+    sight.arena_height_u = w->match.arena_height_u;
   }
   const sim::PlayerInput in = sim::bot_play_input(sight);
   f.move_x = in.move_x;
@@ -236,7 +236,7 @@ void Bot::update(std::uint64_t now_ms) {
   }
   if (const auto& w = conn_.endpoint().welcome()) {
     if (player_id_ == 0 || w->player_id != 0) player_id_ = w->player_id;
-    ticks_per_snapshot_ = std::max<std::uint32_t>(1, w->tick_rate_hz / std::max<std::uint32_t>(1, w->snapshot_rate_hz));
+    ticks_per_snapshot_ = std::max<std::uint32_t>(1, w->tick_rate_hz() / std::max<std::uint32_t>(1, w->snapshot_rate_hz));
     if (options_.predict && seen_welcome_ != conn_.attempt()) {
       seen_welcome_ = conn_.attempt();
       net_.on_welcome(*w);
@@ -289,7 +289,7 @@ void Bot::update(std::uint64_t now_ms) {
     new_events_.clear();
   }
   // One input per server tick (by the clock; snapshots come slower than ticks).
-  const std::uint64_t tick_ms = conn_.endpoint().welcome() ? 1000 / std::max<std::uint32_t>(1, conn_.endpoint().welcome()->tick_rate_hz) : 10;
+  const std::uint64_t tick_ms = conn_.endpoint().welcome() ? 1000 / std::max<std::uint32_t>(1, conn_.endpoint().welcome()->tick_rate_hz()) : 10;
   if (conn_.endpoint().state() == protocol::ClientState::connected && latest_ && now_ms >= last_input_ms_ + tick_ms) {
     last_input_ms_ = now_ms;
     protocol::InputFrame f = options_.script.empty() || script_.hunting ? behave() : script_.hold;
@@ -346,6 +346,8 @@ nlohmann::ordered_json Bot::report() const {
     r["prediction"] = {{"corrections", p.corrections}, {"snaps", p.snaps}, {"contact_corrections", p.contact_corrections},
                        {"correction_p50_radii", client::percentile(p.all_sizes_radii, 50)},
                        {"correction_p99_radii", client::percentile(p.all_sizes_radii, 99)},
+                       {"free_corrections", p.free_sizes_radii.size()},
+                       {"free_correction_p50_radii", client::percentile(p.free_sizes_radii, 50)},
                        {"free_correction_p99_radii", client::percentile(p.free_sizes_radii, 99)},
                        {"lead_ticks", net_.lead_ticks()}, {"jitter_ms", net_.jitter_ms()}};
   }

@@ -3,7 +3,7 @@
 namespace fts::client {
 
 void NetTiming::on_welcome(const protocol::Welcome& w) {
-  tick_rate_hz_ = w.tick_rate_hz > 0 ? w.tick_rate_hz : 100;
+  tick_rate_hz_ = w.tick_rate_hz();
   ticks_per_snapshot_ = w.snapshot_rate_hz > 0 ? tick_rate_hz_ / w.snapshot_rate_hz : 5;
   clock_ = ServerClock(tick_rate_hz_);
   jitter_ = JitterBuffer();
@@ -12,12 +12,9 @@ void NetTiming::on_welcome(const protocol::Welcome& w) {
   loss_ = LossMeter();
   shown_tick_ = 0;
   delay_ms_ = 0;
-  // The prediction steps the match's physics on this platform at this tick rate.
-  sim::MatchConfig cfg;
-  cfg.arena_width_u = w.arena_width_u;
-  cfg.arena_height_u = w.arena_height_u;
-  cfg.tick_rate_hz = tick_rate_hz_;
-  predictor_ = OwnBallPredictor(cfg);
+  // The prediction steps the match's physics as the server configured it: everything the
+  // welcome carries of its configuration (platform, tick rate, model, sub-steps, friction).
+  predictor_ = OwnBallPredictor(w.match);
 }
 
 void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms) {

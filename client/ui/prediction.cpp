@@ -11,6 +11,16 @@ namespace {
 // Never predict more than this past the base, in the server's ticks (200 at 100 Hz; a
 // fixed 200 ticks was 10 s at 20 Hz).
 constexpr double kMaxAheadS = 2.0;
+
+// The configuration as given when the step can run on it (a server's always can: it
+// validated it); else the defaults. The welcome's ranges let friction 0 through, which
+// no valid configuration has and on which the friction factor is not defined.
+sim::MatchConfig steppable(const sim::MatchConfig& cfg) {
+  const bool ok = cfg.tick_rate_hz >= 1.0 && cfg.frame_s > 0.0 && cfg.friction_per_frame > 0.0 &&
+                  cfg.friction_per_frame <= 1.0 && cfg.friction_cutoff_u_per_s >= 0.0 && cfg.substeps >= 1 &&
+                  cfg.substeps <= 1024;
+  return ok ? cfg : sim::MatchConfig{};
+}
 }  // namespace
 
 double LeadClock::predicted(double server_tick, double rtt_ms, double jitter_ms, double tick_rate_hz,
@@ -29,11 +39,12 @@ std::uint32_t LeadClock::stamp(double predicted_tick) {
   return static_cast<std::uint32_t>(std::clamp<std::int64_t>(stamp_, 1, 0xffffffffll));
 }
 
-OwnBallPredictor::OwnBallPredictor(const sim::MatchConfig& cfg, PredictionTuning tuning)
-    : k_(tuning),
-      physics_(sim::physics_settings(cfg)),
-      step_k_(sim::make_step_constants(physics_, 1.0 / cfg.tick_rate_hz)),
-      tick_rate_hz_(cfg.tick_rate_hz) {
+OwnBallPredictor::OwnBallPredictor(const sim::MatchConfig& given, PredictionTuning tuning) : k_(tuning) {
+  const sim::MatchConfig cfg = steppable(given);
+  // The match's own settings and constants (match.cpp make_match()).
+  physics_ = sim::physics_settings(cfg);
+  step_k_ = sim::make_step_constants(physics_, 1.0 / cfg.tick_rate_hz);
+  tick_rate_hz_ = cfg.tick_rate_hz;
   world_.arena.width_u = cfg.arena_width_u;
   world_.arena.height_u = cfg.arena_height_u;
   world_.arena.boundary = sim::Boundary::open;

@@ -65,6 +65,8 @@ class LeadClock {
 
 class OwnBallPredictor {
  public:
+  // `cfg`: the match's configuration as the welcome carries it (Welcome::match): the
+  // step runs with exactly its physics (defaults if the step could not run on it).
   explicit OwnBallPredictor(const sim::MatchConfig& cfg = {}, PredictionTuning tuning = {});
 
   // The input in force from `tick` on (the frame sent stamped with that tick).

@@ -2,10 +2,13 @@
 // the input's are in tables.hpp. One row per wire key, documented in PROTOCOL.md 4.
 #pragma once
 
+#include <cmath>
 #include <tuple>
+#include <type_traits>
 
 #include "fields.hpp"
 #include "fts/protocol/messages.hpp"
+#include "fts/sim/config_fields.hpp"
 
 namespace fts::protocol::wire {
 
@@ -39,26 +42,71 @@ inline const auto kChallengeFields =
                     F<Challenge, std::string, Hex>{"key", &Challenge::key, {kKeyHex, true}});
 
 // ---- welcome (4.3)
+// A number of the match's configuration, written as an integer when it is a whole one:
+// tick_rate_hz was an integer key before it came from the configuration, and readers of
+// that time still read it as one (any reader takes an integer for a number).
+struct ConfigNum : Num {
+  template <class W>
+  void put(W& w, double v) const {
+    if (std::isfinite(v) && std::fabs(v) < 9e15 && static_cast<double>(static_cast<std::int64_t>(v)) == v)
+      w.integer(static_cast<std::int64_t>(v));
+    else Num::put(w, v);
+  }
+};
+
+// An optional key of the configuration: written only when it is not the default (what
+// an older server's welcome lacks reads as that default).
+template <class K, class T>
+struct UnlessDefault : K {
+  T fallback;
+  bool present(const T& v) const { return !(v == fallback); }
+};
+
+enum class ConfigKey : std::uint8_t { required, optional };  // config_fields.hpp's presence
+
+// The welcome's row of a field of the match configuration (config_fields.hpp CLIENT): its
+// own key, its kind from its type, lo..hi its range.
+template <ConfigKey P, class T>
+auto config_row(std::string_view key, T sim::MatchConfig::*member, double lo, double hi) {
+  auto kind = [&] {
+    if constexpr (std::is_same_v<T, double>) {
+      return ConfigNum{{lo, hi}};
+    } else if constexpr (std::is_same_v<T, sim::Model>) {
+      static_assert(static_cast<int>(sim::Model::continuous) == 2);
+      return Named<sim::Model, 3>{{"seed", "discrete", "continuous"}};
+    } else {
+      static_assert(std::is_integral_v<T>, "a kind for this type of config field");
+      return Int<T>{static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)};
+    }
+  }();
+  using K = decltype(kind);
+  if constexpr (P == ConfigKey::required) {
+    return SubField<Welcome, sim::MatchConfig, T, K>{key, &Welcome::match, member, kind, Presence::required};
+  } else {
+    using O = UnlessDefault<K, T>;
+    return SubField<Welcome, sim::MatchConfig, T, O>{key, &Welcome::match, member, O{kind, sim::MatchConfig{}.*member},
+                                                     Presence::nonzero};
+  }
+}
+
+#define FTS_WELCOME_CLIENT(name, lo, hi, presence) \
+  config_row<ConfigKey::presence>(#name, &sim::MatchConfig::name, lo, hi),
+#define FTS_WELCOME_HOST(name)
 inline const auto kWelcomeFields = std::make_tuple(
     F<Welcome, std::uint32_t, U32>{"player_id", &Welcome::player_id, {1, kAnyU32}},
     F<Welcome, std::string, Hex>{"token", &Welcome::token, {kTokenHex}},
-    F<Welcome, std::uint32_t, U32>{"tick_rate_hz", &Welcome::tick_rate_hz, {0, 10000}},
     F<Welcome, std::uint32_t, U32>{"snapshot_rate_hz", &Welcome::snapshot_rate_hz, {0, 10000}},
-    F<Welcome, double, Num>{"arena_width_u", &Welcome::arena_width_u, {0, 1e6}},
-    F<Welcome, double, Num>{"arena_height_u", &Welcome::arena_height_u, {0, 1e6}},
     F<Welcome, std::uint32_t, U32>{"max_players", &Welcome::max_players, {0, 64}},
     F<Welcome, std::uint32_t, U32>{"timeout_ms", &Welcome::timeout_ms, {0, kAnyU32}},
     F<Welcome, std::uint32_t, U32>{"reconnect_window_ms", &Welcome::reconnect_window_ms, {0, kAnyU32}},
     F<Welcome, std::uint32_t, U32>{"input_redundancy", &Welcome::input_redundancy, {0, kMaxInputFrames}},
     F<Welcome, std::uint32_t, U32>{"server_tick", &Welcome::server_tick, {0, kAnyU32}},
     F<Welcome, bool, Bool>{"reconnected", &Welcome::reconnected, {}},
-    SubField<Welcome, sim::ShopTerms, double, Num>{"frame_s", &Welcome::shop, &sim::ShopTerms::frame_s, {1e-6, 1e6}},
-    SubField<Welcome, sim::ShopTerms, double, Num>{"multiplier_upgrade_factor", &Welcome::shop,
-                                                   &sim::ShopTerms::multiplier_upgrade_factor, {0, 1e6}},
-    SubField<Welcome, sim::ShopTerms, double, Num>{"bank_interest_factor", &Welcome::shop,
-                                                   &sim::ShopTerms::bank_interest_factor, {0, 1e6}},
+    FTS_MATCH_CONFIG_FIELDS(FTS_WELCOME_CLIENT, FTS_WELCOME_HOST)
     F<Welcome, std::string, Text>{"room", &Welcome::room, {0, kRoomBytes}, Presence::nonzero},
     F<Welcome, bool, Bool>{"spectator", &Welcome::spectator, {}, Presence::nonzero});
+#undef FTS_WELCOME_HOST
+#undef FTS_WELCOME_CLIENT
 
 // ---- error (4.4)
 inline const auto kErrorFields =

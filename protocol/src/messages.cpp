@@ -15,4 +15,10 @@ std::string name_problem(const std::string& name) {
   return "";
 }
 
+std::uint32_t Welcome::tick_rate_hz() const {
+  const double hz = match.tick_rate_hz;
+  if (!(hz >= 1.0 && hz <= 10000.0) || static_cast<double>(static_cast<std::uint32_t>(hz)) != hz) return 100;
+  return static_cast<std::uint32_t>(hz);
+}
+
 }  // namespace fts::protocol

@@ -62,7 +62,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.results = ReliableSender<Result>{};
   s.chats = ReliableSender<Chat>{};
   s.commands = ReliableReceiver<Command>{};
-  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz);
+  s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz());
   by_session_id_[s.session_id] = s.player_id;
   by_address_[from] = s.player_id;
 }

@@ -8,6 +8,7 @@
 #include "fts/room/snapshot_build.hpp"
 #include "fts/protocol/limits.hpp"
 #include "fts/room/text.hpp"
+#include "fts/sim/config_fields.hpp"
 
 namespace fts::server {
 namespace {
@@ -39,14 +40,13 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.idle_timeout_ms = o.idle_timeout_ms;
   apply_address_limits(c, o.max_per_address);
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
-  c.settings.tick_rate_hz = o.tick_rate_hz;
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
-  c.settings.arena_width_u = cfg.arena_width_u;
-  c.settings.arena_height_u = cfg.arena_height_u;
   c.settings.max_players = o.max_players;
   c.settings.timeout_ms = o.timeout_ms;
   c.settings.reconnect_window_ms = o.reconnect_window_ms;
-  c.settings.shop = sim::shop_terms(cfg);
+  // Everything of the match's configuration a client steps or states (config_fields.hpp).
+  // (Its tick rate is the rooms' clock's: resolve_match_config() makes them one.)
+  c.settings.match = sim::client_part(cfg);
   return c;
 }
 

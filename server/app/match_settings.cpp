@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/game_host.hpp"
+#include "fts/protocol/welcome_size.hpp"
 #include "fts/room/match_config_json.hpp"
 
 namespace fts::server {
@@ -33,6 +35,14 @@ std::variant<sim::MatchConfig, std::string> resolve_match_config(Options& option
   options.tick_rate_hz = static_cast<std::uint32_t>(config.tick_rate_hz);
   options.max_players = static_cast<std::uint32_t>(config.max_players);
   options.model = std::string(sim::to_string(config.model));
+  // The welcome carries the configuration's client fields (issue 36) and is never larger
+  // than the hello it answers: numbers with many digits in all of them would not fit.
+  const std::size_t welcome = protocol::largest_welcome_bytes(make_endpoint_config(options, config, {}).settings);
+  if (welcome > protocol::kMinHelloBytes)
+    return "configuration: the welcome would be " + std::to_string(welcome) + " bytes, more than the " +
+           std::to_string(protocol::kMinHelloBytes) +
+           " of a hello it answers (PROTOCOL.md 5.1): write the fields it carries (4.3: tick rate, arena, "
+           "frame, friction, shop factors) with fewer digits";
   return config;
 }
 

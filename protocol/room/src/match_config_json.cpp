@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "fts/room/json_fields.hpp"
+#include "fts/sim/config_fields.hpp"
 
 namespace fts::room {
 namespace {
@@ -14,39 +15,16 @@ using FieldPtr = std::variant<double MatchConfig::*, std::int64_t MatchConfig::*
 struct FieldDef {
   const char* name;
   FieldPtr ptr;
+  bool client;  // the welcome carries it (PROTOCOL.md 4.3)
 };
 
-#define FTS_F(name) FieldDef{#name, &MatchConfig::name}
-const FieldDef kFields[] = {
-    FTS_F(tick_rate_hz), FTS_F(model), FTS_F(substeps), FTS_F(max_players), FTS_F(frame_s),
-    FTS_F(arena_width_u), FTS_F(arena_height_u), FTS_F(spawn_margin_u), FTS_F(spawn_gap_u),
-    FTS_F(spawn_attempts), FTS_F(friction_per_frame), FTS_F(friction_cutoff_u_per_s), FTS_F(radius_base_u),
-    FTS_F(radius_mass_divisor), FTS_F(player_mass), FTS_F(player_vmax_u_per_s), FTS_F(player_accel_u_per_s2),
-    FTS_F(player_lives), FTS_F(player_coins), FTS_F(player_multiplier), FTS_F(respawn_delay_s),
-    FTS_F(spawn_protection_s), FTS_F(late_join_share),
-    FTS_F(player_spawn_x_fraction), FTS_F(enemies_max_normal), FTS_F(enemies_min_late), FTS_F(boss_period),
-    FTS_F(boss_count), FTS_F(boss_double_period), FTS_F(boss_double_count), FTS_F(swarm_phase),
-    FTS_F(swarm_count), FTS_F(enemies_cap), FTS_F(chaser_index), FTS_F(level1_enemy_mass),
-    FTS_F(normal_mass_base), FTS_F(normal_mass_per_level), FTS_F(normal_mass_per_q), FTS_F(normal_mass_jitter),
-    FTS_F(normal_accel_base_u_per_frame2), FTS_F(normal_accel_per_level), FTS_F(normal_accel_per_q),
-    FTS_F(normal_vmax_base_u_per_frame), FTS_F(normal_vmax_per_level), FTS_F(normal_vmax_per_q),
-    FTS_F(swarm_mass_per_q1), FTS_F(swarm_radius_base_u), FTS_F(swarm_radius_per_q),
-    FTS_F(swarm_vmax_base_u_per_frame), FTS_F(swarm_vmax_per_level), FTS_F(swarm_vmax_per_q),
-    FTS_F(swarm_accel_base_u_per_frame2), FTS_F(swarm_accel_per_level), FTS_F(swarm_accel_per_q),
-    FTS_F(boss_mass_per_q), FTS_F(boss_mass_per_pair), FTS_F(boss_radius_base_u), FTS_F(boss_vmax_base_u_per_frame),
-    FTS_F(boss_vmax_per_q), FTS_F(boss_accel_base_u_per_frame2), FTS_F(boss_accel_per_q), FTS_F(goal_half_w_u),
-    FTS_F(goal_half_h_u), FTS_F(goal_shrink_per_level_u), FTS_F(goal_shrink_level_cap), FTS_F(boss_goal_half_w_u),
-    FTS_F(boss_goal_half_h_u), FTS_F(goal_reach_u), FTS_F(reward_level_bonus), FTS_F(credit_chain_s),
-    FTS_F(bank_interest_factor), FTS_F(level_multiplier_growth), FTS_F(level_life_price_growth),
-    FTS_F(price_mass), FTS_F(price_mass_level_coeff), FTS_F(price_mass_offset), FTS_F(price_speed),
-    FTS_F(price_speed_growth), FTS_F(speed_upgrade_factor), FTS_F(price_accel), FTS_F(price_accel_growth),
-    FTS_F(accel_upgrade_factor), FTS_F(price_rockets), FTS_F(price_life), FTS_F(price_life_growth),
-    FTS_F(price_multiplier), FTS_F(price_multiplier_growth), FTS_F(multiplier_upgrade_factor), FTS_F(price_bank),
-    FTS_F(shop_timeout_s), FTS_F(lobby_timeout_s), FTS_F(rocket_cooldown_s), FTS_F(rocket_mass), FTS_F(rocket_radius_u),
-    FTS_F(rocket_speed_factor), FTS_F(rocket_lifetime_s), FTS_F(coin_cap), FTS_F(multiplier_cap),
-    FTS_F(player_vmax_cap_u_per_s), FTS_F(player_accel_cap_u_per_s2), FTS_F(player_mass_cap), FTS_F(lives_cap),
-};
-#undef FTS_F
+// One row per field of config_fields.hpp, with its mark: a client needs it (the welcome
+// carries it) or not.
+#define FTS_F_CLIENT(name, ...) FieldDef{#name, &MatchConfig::name, true},
+#define FTS_F_HOST(name) FieldDef{#name, &MatchConfig::name, false},
+const FieldDef kFields[] = {FTS_MATCH_CONFIG_FIELDS(FTS_F_CLIENT, FTS_F_HOST)};
+#undef FTS_F_HOST
+#undef FTS_F_CLIENT
 
 const FieldDef* find_field(std::string_view key) {
   for (const FieldDef& f : kFields)
@@ -109,6 +87,13 @@ nlohmann::json match_config_to_json(const sim::MatchConfig& cfg) {
         f.ptr);
   }
   return j;
+}
+
+std::vector<std::string> match_config_client_keys() {
+  std::vector<std::string> out;
+  for (const FieldDef& f : kFields)
+    if (f.client) out.emplace_back(f.name);
+  return out;
 }
 
 std::string to_input_line(std::int64_t tick, const sim::TickInputs& in) {

@@ -130,7 +130,7 @@ ViewState hostile_view(const Snapshot& s, const std::string& text, const std::st
   ViewState view;
   fts::protocol::Welcome w;
   w.player_id = 1;
-  w.tick_rate_hz = 100;
+  w.match.tick_rate_hz = 100;
   w.room = text.substr(0, 16);
   show_welcome(view, w);
   view.now_ms = 10'000;

@@ -109,10 +109,10 @@ TEST_CASE("Item table: a changed price rule and shop terms reach match, wire, HU
   sent.player_id = 1;  // the endpoint fills these in per session
   sent.token = std::string(32, 'a');
   const auto welcome = std::get<protocol::Welcome>(through_wire(sent));
-  CHECK(welcome.shop == shop_terms(cfg));
+  CHECK(welcome.shop() == shop_terms(cfg));
 
   // HUD's shop screen (from the wire) == the match's shop text (from the state).
-  const auto screen = client::shop_screen_lines(wire, snap.level, welcome.shop);
+  const auto screen = client::shop_screen_lines(wire, snap.level, welcome.shop());
   const auto text = shop_lines(me.eco, s.level, shop_terms(cfg));
   CHECK(screen == text);
   CHECK(has_line(screen, "To increase Max Speed, press 's' (120 coins)"));

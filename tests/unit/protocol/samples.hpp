@@ -117,7 +117,18 @@ inline std::vector<Message> all_messages() {
       Hello{"ann", "", "", "....", "0123456789abcdef"},
       Hello{"bob", std::string(96, 'a'), std::string(48, '0'), "", "fedcba9876543210", "", "", std::string(64, 'c')},
       Challenge{"00000000000003e8" + std::string(32, 'f'), std::string(64, 'd')},
-      Welcome{3, std::string(32, 'b'), 100, 20, 500, 300, 8, 10000, 60000, 8, 12345, true, {0.02, 1.25, 1.2}},
+      [] {
+        Welcome w{3, std::string(32, 'b'), 20, 8, 10000, 60000, 8, 12345, true};
+        w.match.frame_s = 0.02;  // a tuned host's physics and shop (issue 36)
+        w.match.multiplier_upgrade_factor = 1.25;
+        w.match.bank_interest_factor = 1.2;
+        w.match.model = fts::sim::Model::discrete;
+        w.match.substeps = 4;
+        w.match.friction_per_frame = 0.95;
+        w.match.friction_cutoff_u_per_s = 0;
+        w.match.arena_width_u = 640.5;
+        return w;
+      }(),
       Error{"version", "protocol version 2 is not supported; this server speaks version 1"},
       Input{41, {{10, -1, 1, false}, {9, 0, 0, true}}},
       Command{1, CommandOp::buy, 'm', {}, {}},

@@ -77,8 +77,13 @@ TEST_CASE("Join fields: the largest welcome still fits in the reply to a minimal
   w.token = std::string(32, 'c');
   w.server_tick = 4294967295u;
   w.timeout_ms = w.reconnect_window_ms = 3600000;
-  w.arena_width_u = w.arena_height_u = 123456.789;
-  w.shop = {0.0333333333333, 1.1000000000001, 1.1000000000001};
+  w.match.arena_width_u = w.match.arena_height_u = 123456.789;
+  w.match.frame_s = 0.0333333333333;
+  w.match.multiplier_upgrade_factor = w.match.bank_interest_factor = 1.1000000000001;
+  // The friction of issue 36's host (a configuration whose welcome would not fit is
+  // refused at start: test_welcome_config.cpp).
+  w.match.friction_per_frame = 0.95;
+  w.match.tick_rate_hz = 1000;
   w.room = "KXBQT";
   w.spectator = true;
   for (Encoding enc : {Encoding::json, Encoding::msgpack}) {

@@ -54,8 +54,11 @@ TEST_CASE("Wire tables: messages from another writer (keys sorted, \"t\" last) d
        R"("input_redundancy":3,"max_players":8,"multiplier_upgrade_factor":1.1,"player_id":1,)"
        R"("reconnect_window_ms":60000,"reconnected":false,"server_tick":0,"snapshot_rate_hz":20,"t":"welcome",)"
        R"("tick_rate_hz":100,"timeout_ms":10000,"token":"bcf8ef0b804a8357ee42dd8334a3619d"}])",
-       Welcome{1, "bcf8ef0b804a8357ee42dd8334a3619d", 100, 20, 500, 300, 8, 10000, 60000, 3, 0, false,
-               {0.02, 1.1, 1.1}}},
+       [] {  // a server from before issue 36: no model, sub-steps or friction; they read as defaults
+         Welcome w{1, "bcf8ef0b804a8357ee42dd8334a3619d", 20, 8, 10000, 60000, 3, 0, false};
+         w.match.frame_s = 0.02;
+         return w;
+       }()},
       {R"([{"item":"m","op":"buy","rid":1,"t":"cmd"}])", Command{1, CommandOp::buy, 'm', {}, {}}},
       {R"([{"cmd":1,"code":"ok","msg":"bought mass: 41 -> 42","ok":true,"rid":1,"t":"result"}])",
        Result{1, 1, true, "ok", "bought mass: 41 -> 42"}},

@@ -1,4 +1,5 @@
 // MatchConfig: every number of GAME_RULES.md as a default, with units in the names.
+// Every member is listed once in config_fields.hpp, which says whether a client needs it.
 // "per frame" figures of the original (frame = 0.01 s) are kept in their original unit
 // where the rules state a formula in that unit (enemy speeds) and converted in code.
 #pragma once
@@ -150,6 +151,8 @@ struct MatchConfig {
   double player_accel_cap_u_per_s2 = 100000.0;
   std::int64_t player_mass_cap = 100000;
   std::int64_t lives_cap = 1'000'000;
+
+  bool operator==(const MatchConfig&) const = default;
 };
 
 // Whole ticks for a duration at the configured tick rate (at least 1).

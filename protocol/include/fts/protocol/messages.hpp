@@ -48,19 +48,25 @@ struct Challenge {
 struct Welcome {
   std::uint32_t player_id = 0;
   std::string token;  // 32 hex digits; keep it to reconnect (only ever sent sealed)
-  std::uint32_t tick_rate_hz = 100;
   std::uint32_t snapshot_rate_hz = 20;
-  double arena_width_u = 500;
-  double arena_height_u = 300;
   std::uint32_t max_players = 8;
   std::uint32_t timeout_ms = 10000;
   std::uint32_t reconnect_window_ms = 60000;
   std::uint32_t input_redundancy = 3;  // send at least this many recent input frames
   std::uint32_t server_tick = 0;
   bool reconnected = false;
-  sim::ShopTerms shop;  // what the shop screen states: the server's frame and factors
   std::string room = "";   // the code of the room joined ("" from a server without rooms)
   bool spectator = false;  // joined to watch: no ball, no seat, inputs ignored
+  // The match's configuration as far as a client needs it: every field config_fields.hpp
+  // marks CLIENT (tick rate, arena, physics model, sub-steps, friction, frame, the shop's
+  // factors), each under its own key; every other field at its default. The client
+  // predicts its ball with exactly this (sim::client_part() on the server's config).
+  sim::MatchConfig match = {};
+
+  // Whole ticks per second (fts-server runs whole rates; 100 when the number is not one).
+  std::uint32_t tick_rate_hz() const;
+  // What the shop screen states: the server's frame and factors.
+  sim::ShopTerms shop() const { return sim::shop_terms(match); }
 
   bool operator==(const Welcome&) const = default;
 };

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,9 @@ namespace fts::room {
 std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string& json_text,
                                                                const sim::MatchConfig& base = {});
 nlohmann::json match_config_to_json(const sim::MatchConfig& cfg);
+// The keys a client needs (config_fields.hpp marks them), in table order: the welcome
+// carries each under the same key (PROTOCOL.md 4.3).
+std::vector<std::string> match_config_client_keys();
 
 // One tick of input, e.g.
 // {"tick":5,"joins":[{"player":1,"name":"bot1"}],"leaves":[2],
