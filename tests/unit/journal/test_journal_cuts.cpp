@@ -136,7 +136,7 @@ TEST_CASE("Journal cuts: a line with a key twice is damage, named, never read as
   write_bytes(t.newest, bad);
   auto r = read_ok(t.d.path);
   check_real(t.p, r, "a hash line with tick twice");
-  CHECK(r.state.tick < 440);
+  CHECK(r.state.tick <= 440);  // stopped there: the file goes on to 445
   CHECK_THAT(r.damage, Catch::Contains(R"(invalid JSON (key "tick" appears twice in one object))"));
   // The checkpoint's header line with a key twice: the segment is skipped, the older used.
   bad = t.bytes;
