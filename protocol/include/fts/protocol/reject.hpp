@@ -51,7 +51,8 @@ inline constexpr std::array<CodeRow<Reject>, kRejectCount> kRejects{{
     {Reject::address_full, "address_full", "a new player from a host with 4 seated sessions (10.1)"},
     {Reject::idle, "idle", "a session dropped for 120 s without real input (10.1)"},
     {Reject::join_refused, "join_refused",
-     "a new player's room choice refused: `room_full`, `server_full`, `bad_join`, `draining` (5.6)"},
+     "a new player's room choice refused: `room_full`, `server_full`, `bad_join`, `draining`, or "
+     "`address_full` for a new room from a host at its room cap (5.6, 10.1)"},
     {Reject::forged, "forged",
      "a sealed datagram whose tag does not verify: forged, tampered, cut short or sealed with other keys (5.7.2)"},
     {Reject::replayed, "replayed",
