@@ -12,6 +12,8 @@ forged:       a scripted session's address and session id with unsealed commands
 bad_fields:   every cmd op with every kind of bad field (wrong type, control bytes, too
               long, UTF-8), in JSON and MessagePack: each command answered with its code,
               and the reliable channel goes on (issue 25: a control byte stalled it).
+bad_bye:      a bye whose reason is 201 characters, an escape sequence or the integer 7 is
+              dropped and counted, and the session goes on (issue 36: it ended it).
 codes:        the codes and drop reasons PROTOCOL.md's tables give, on the wire (issue 36):
               a hello-sized hello with flags 2 gets bad_hello (it got nothing), a
               malformed key bad_hello and no key bad_key, a cmd with rid 2^32 is
@@ -24,7 +26,7 @@ sealed.py) from Python sockets."""
 import json, os, socket, struct, sys, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import Failure, Server, check, main, run_bots, start_bots, finish_bots, wait_for  # noqa: E402
+from harness import Failure, Server, check, main, records, run_bots, start_bots, finish_bots, wait_for  # noqa: E402
 import sealed  # noqa: E402
 
 FLOOD_HOST = "127.0.0.2"  # another host than the real bots (127.0.0.1)
@@ -371,6 +373,38 @@ def test_codes():
         check(not results, f"a dropped cmd was answered: {results}")
 
 
+def test_bad_bye():
+    """Issue 36 point 3: a bye whose reason does not read (201 characters, an escape
+    sequence, the integer 7) ended the session; PROTOCOL.md 3 and 4.9 say its datagram is
+    dropped. In JSON and MessagePack: each is counted as a drop, no disconnect is logged,
+    the session answers a command after each; then a bye that reads ends it."""
+    for encoding in (sealed.JSON, sealed.MSGPACK):
+        with Server("--stats-interval-ms", "200", "--log-format", "json") as srv:
+            script = Script(srv.port, 0xb7e0 + encoding, encoding=encoding)
+            handshake_all([script], 10)
+            check(script.session is not None, f"the script was refused: {script.error}")
+            base = drops_logged(srv)
+            for rid, reason in enumerate(["q" * 201, "\x1b[2J", 7], start=1):
+                for _ in range(3):  # a client sends its bye three times (4.9)
+                    script.sock.sendto(script.session.datagram([{"t": "bye", "reason": reason}]), script.server)
+                script.sock.sendto(script.session.datagram([{"t": "cmd", "rid": rid, "op": "rooms"}]), script.server)
+                got = answers(script, [rid], 5)[rid]
+                check(got["ok"], f"the command after a bye with reason {reason!r}: {got}")
+            want = {"out_of_range": 6, "garbage": 3}
+
+            def counted():
+                d = drops_logged(srv)
+                return all(d.get(k, 0) - base.get(k, 0) >= n for k, n in want.items())
+            wait_for(counted, 5, f"the server's stats to count {want}")
+            ended = records(srv, "disconnect")
+            check(not ended, f"a bye that does not read ended the session: {ended}")
+            script.sock.sendto(script.session.datagram([{"t": "bye", "reason": "quit"}]), script.server)
+            quit = wait_for(lambda: records(srv, "disconnect"), 5, "the disconnect of a bye that reads")
+            print(f"encoding {encoding}: 9 bad byes dropped and counted, the session answered after each; "
+                  f"then {quit[0]['reason']!r} ended it")
+            check(quit[0]["reason"] == "quit", f"the disconnect: {quit}")
+
+
 def stats_lines(srv):
     return [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
 
@@ -488,5 +522,5 @@ def test_room_flood():
 
 if __name__ == "__main__":
     sys.exit(main({"codes": test_codes, "address_full": test_address_full, "command_flood": test_command_flood,
-                   "forged": test_forged, "soak_flood": test_soak_flood, "bad_fields": test_bad_fields,
+                   "forged": test_forged, "soak_flood": test_soak_flood, "bad_fields": test_bad_fields, "bad_bye": test_bad_bye,
                    "room_flood": test_room_flood}))
