@@ -82,6 +82,14 @@ class Game {
     note(std::move(why));
   }
 
+  // How long the server keeps this player's lives and coins for its return: while a
+  // match runs, until it ends; else the reconnect window (PROTOCOL.md 5.4, issue 37).
+  std::string kept_for() const {
+    if (phase() == proto::Phase::play || phase() == proto::Phase::shop)
+      return "Your lives and coins are kept until this match ends";
+    return "Your coins are kept " + std::to_string(reconnect_window_s(conn_.endpoint().welcome())) + " s";
+  }
+
   // The saved token was refused (expired, or the server restarted): a new player.
   void start_fresh(std::uint64_t now) {
     store_.forget();
@@ -183,8 +191,7 @@ class Game {
     switch (a.kind) {
       case ActionKind::quit:
         quit_asked_ = true;
-        note("Quit? Press q again (or y) to leave, any other key to stay. Your coins are kept " +
-             std::to_string(reconnect_window_s(conn_.endpoint().welcome())) + " s.");
+        note("Quit? Press q again (or y) to leave, any other key to stay. " + kept_for() + ".");
         return;
       case ActionKind::move:
         if (auto d = direction_of(e)) hold_.on_key(*d, e, now);
@@ -329,12 +336,11 @@ class Game {
     if (idle_) return;
     if (st == S::refused && endpoint.error() && proto::has_code(*endpoint.error(), proto::ErrorCode::idle)) {
       // The server treats an idle player as one who quit: its seat is free, its progress
-      // kept for the reconnect window. Stay, and come back on a key (issue 26).
+      // kept until the match ends (PROTOCOL.md 5.4). Stay, and come back on a key (issue 26).
       idle_ = true;
       steer_.stop();
       view_.chat_open = false;
-      note("Idle for a while: you left the match. Your coins are kept " +
-           std::to_string(reconnect_window_s(conn_.endpoint().welcome())) + " s.");
+      note("Idle for a while: you left the match. " + kept_for() + ".");
       view_.status = "idle: press a key to play again, q to quit";
       return;
     }

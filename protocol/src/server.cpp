@@ -366,8 +366,11 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
   std::vector<std::uint32_t> expired;
   std::vector<std::uint32_t> idle;
   std::vector<std::uint32_t> never_played;
+  std::vector<std::uint32_t> keep;
+  std::map<std::uint32_t, std::size_t> kept_in_room;
   for (auto& [id, s] : sessions_) {
-    if (s.spectator || idle_paused_rooms_.count(s.room)) s.last_active_ms = now_ms;
+    if (s.kept) ++kept_in_room[s.room];
+    if (s.spectator || s.watching || idle_paused_rooms_.count(s.room)) s.last_active_ms = now_ms;
     if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) {
       drop_connection(s, "timeout", now_ms);
       // A session that never played (a probe whose bye was lost, a script that only
@@ -382,23 +385,41 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
       continue;
     }
     if (!s.connected) {
-      if (now_ms - s.disconnected_ms >= config_.reconnect_window_ms) expired.push_back(id);
+      if (now_ms - s.disconnected_ms < config_.reconnect_window_ms || (s.kept && keeping_rooms_.count(s.room))) continue;
+      if (!s.kept && s.played && !s.spectator && keeping_rooms_.count(s.room)) keep.push_back(id);
+      else expired.push_back(id);
       continue;
     }
     if (s.results.due(now_ms, config_.resend_ms) || s.chats.due(now_ms, config_.resend_ms) ||
         now_ms - s.last_send_ms >= config_.heartbeat_ms)
       send_packet(s, {}, true, now_ms);
   }
-  for (auto id : expired) release(id, "reconnect window over");
+  // A departed player of a running match stays that player (set_keeps_departed): past
+  // the window it gives its seat up as after a quit, its progress kept for the match.
+  for (auto id : keep) {
+    Session& s = sessions_.at(id);
+    if (kept_in_room[s.room] >= kMaxKeptPerRoom) {
+      expired.push_back(id);
+      continue;
+    }
+    ++kept_in_room[s.room];
+    s.kept = true;
+    if (!s.quit) {
+      s.quit = true;  // its seat is free; the match parks its ball (ServerEvent::quit)
+      events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator});
+    }
+  }
+  for (auto id : expired) release(id, sessions_.at(id).kept ? "match over" : "reconnect window over");
   for (auto id : never_played) release(id, "timeout");
   // An idle player gives its seat up as if it had quit: what it earned is kept for the
-  // reconnect window (its token takes it back while a seat is free).
+  // reconnect window, and while its room's match runs until it ends (its token takes it
+  // back while a seat is free).
   for (auto id : idle) {
     rejects_.add(Reject::idle);
     Session& s = sessions_.at(id);
     send_packet(s,
                 {make_error(ErrorCode::idle, "no input for " + std::to_string(config_.idle_timeout_ms / 1000) +
-                                             " s: your seat is freed; your progress is kept for the reconnect window")},
+                                             " s: your seat is freed; your progress is kept until the match ends")},
                 false, now_ms);
     s.quit = true;
     drop_connection(s, "idle", now_ms);

@@ -49,6 +49,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.encoding = encoding;
   s.connected = true;
   s.quit = false;
+  s.kept = false;  // back: its reconnect window starts again at its next departure
   s.nonce = hello.nonce;
   s.seal = SealedChannel(keys, SealDirection::server_to_client, SealDirection::client_to_server);
   s.welcomed_as_reconnect = false;

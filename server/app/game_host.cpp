@@ -249,8 +249,19 @@ void GameHost::tick(std::uint64_t now_ms) {
     log_record(spdlog::level::warn, "stall", {{"ms", stalled - stalled_logged_ms_}, {"total_ms", stalled}});
     stalled_logged_ms_ = stalled;
   }
-  // Nobody idles while the players of their room cannot act: lobby, shop, game over.
-  for (const auto& [id, r] : rooms_) endpoint_.set_idle_paused(id, r->match().phase != sim::Phase::playing);
+  // Nobody idles while the players of their room cannot act: lobby, shop, game over; nor
+  // does a player out of lives, who watches. While a match runs (playing, shop) a player
+  // who leaves it is kept for its return until it ends (ServerEndpoint::set_keeps_departed);
+  // once nobody plays it any more (everyone left in it has quit), the reconnect window
+  // frees them as before, so that the match can end for those who watch.
+  for (const auto& [id, r] : rooms_) {
+    const sim::MatchState& m = r->match();
+    const bool played_on = std::any_of(m.players.begin(), m.players.end(),
+                                       [](const sim::Player& p) { return p.in_match() && !p.parked; });
+    endpoint_.set_idle_paused(id, m.phase != sim::Phase::playing);
+    endpoint_.set_keeps_departed(id, (m.phase == sim::Phase::playing || m.phase == sim::Phase::shop) && played_on);
+    for (const sim::Player& p : m.players) endpoint_.set_watching(p.id.value, !p.in_match());
+  }
   // The datagrams received since the last tick: opened on the pool, applied in order.
   pool_.run(endpoint_.inbox_sessions(), [&](std::size_t i) { endpoint_.open_inbox(i); });
   endpoint_.apply_inbox();

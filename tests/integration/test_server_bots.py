@@ -99,6 +99,11 @@ hunt
 wait shop
 wait ticks 1000000
 """
+STAY = """
+timeout 120
+wait connected
+wait ticks 100000000
+"""
 RECONNECT_AGAIN = """
 timeout 30
 wait connected
@@ -107,8 +112,11 @@ expect coins == 36
 
 
 def test_reconnect():
-    """A killed bot started again with its token gets its player and coins back; after
-    the reconnect window the slot is freed and the token refused."""
+    """A killed bot started again with its token gets its player and coins back; gone for
+    longer than the reconnect window while the match runs (a second player plays on), it
+    is still that player (issue 37: it came back as a newcomer with fresh lives and the
+    median coins); once nobody plays the match any more, the window frees it and the
+    token is refused."""
     window_ms = 3000
     with Server("--time-scale", "2", "--config", MANY_LIVES, "--timeout-ms", "1000",
                 "--reconnect-window-ms", str(window_ms), "--log-level", "debug") as srv:
@@ -120,6 +128,8 @@ def test_reconnect():
         wait_for(lambda: os.path.exists(token_file) and open(token_file).read().strip(), 5, "the token file")
         m = re.search(r"connect player=(\d+) name=comeback", srv.text())
         player = m.group(1)
+        # A second player joins the running match and stays (idle, connected): the match goes on.
+        stayer = start_bots("--connect", srv.address, "--name", "stayer", "--script", write_script(STAY))
         first[0].send_signal(signal.SIGKILL)
         first[0].wait()
         rc, report, err = run_bots("--connect", srv.address, "--name", "comeback", "--token-file", token_file,
@@ -127,9 +137,20 @@ def test_reconnect():
         check(rc == 0, f"reconnect failed (exit {rc}): {err.strip()}")
         check(str(report[0]["player_id"]) == player, f"player {report[0]['player_id']} instead of {player}")
         check(f"reconnect player={player}" in srv.text(), "the server did not log the reconnect")
-        # Gone for longer than the window: the slot is released and the token refused.
+        # Gone for longer than the window while the match runs: kept (its seat freed), and
+        # the token takes the same player back with its coins.
+        wait_for(lambda: re.search(rf"disconnect player={player} reason=kept\b", srv.text()),
+                 (window_ms + 5000) / 1000, "the player to be kept past its window")
+        check(not re.search(rf"leave player={player}\b", srv.text()), "the player was freed while its match ran")
+        rc, report, err = run_bots("--connect", srv.address, "--name", "comeback", "--token-file", token_file,
+                                   "--script", write_script(RECONNECT_AGAIN), timeout_s=30)
+        check(rc == 0, f"the kept player did not come back (exit {rc}): {err.strip()}")
+        check(str(report[0]["player_id"]) == player, f"player {report[0]['player_id']} instead of {player}")
+        # The last one playing leaves: nobody plays the match on, the window frees the player.
+        stayer[0].send_signal(signal.SIGINT)
+        finish_bots(stayer, 30)
         wait_for(lambda: re.search(rf"leave player={player}\b", srv.text()), (window_ms + 5000) / 1000,
-                 "the slot to be released")
+                 "the slot to be released once nobody plays")
         rc, report, err = run_bots("--connect", srv.address, "--name", "comeback", "--token-file", token_file,
                                    "--script", write_script(RECONNECT_AGAIN), timeout_s=30)
         check(rc == 1 and "token" in err, f"an expired token was not refused: exit {rc}, {err.strip()}")

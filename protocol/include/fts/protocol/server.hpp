@@ -258,12 +258,27 @@ class ServerEndpoint {
   void set_idle_paused(std::uint32_t room, bool paused) {
     if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
   }
+  // A player out of lives who watches its room's match (the host says so, each tick) is
+  // never dropped for idling: it has nothing to press (issue 37).
+  void set_watching(std::uint32_t player_id, bool watching) {
+    if (auto it = sessions_.find(player_id); it != sessions_.end()) it->second.watching = watching;
+  }
+  // While the room's match runs (the host's playing and shop phases) a player who left
+  // it stays the same player when it comes back, whatever the reconnect window: at the
+  // window's end its session is kept, as after a quit (no seat, progress kept, its token
+  // takes it back while a seat is free), until the match ends (issue 37). At most
+  // kMaxKeptPerRoom a room; over it, the window's end releases as before.
+  static constexpr std::size_t kMaxKeptPerRoom = 32;  // four times a room's 8 seats
+  void set_keeps_departed(std::uint32_t room, bool keep) {
+    if (keep) keeping_rooms_.insert(room); else keeping_rooms_.erase(room);
+  }
   // The tick reported in welcomes (of a reconnect: the admission gives a new player's).
   void set_server_tick(std::uint32_t tick) { set_server_tick(0, tick); }
   void set_server_tick(std::uint32_t room, std::uint32_t tick) { room_ticks_[room] = tick; }
   // A closed room's entries are forgotten.
   void forget_room(std::uint32_t room) {
     idle_paused_rooms_.erase(room);
+    keeping_rooms_.erase(room);
     room_ticks_.erase(room);
   }
 
@@ -330,6 +345,8 @@ class ServerEndpoint {
     std::uint32_t room = 0;
     std::string room_code;
     bool spectator = false;  // no seat; inputs dropped; never idle
+    bool watching = false;   // out of lives (set_watching): never idle
+    bool kept = false;       // past its reconnect window, kept while its room's match runs
   };
 
   struct AddressState {
@@ -385,6 +402,7 @@ class ServerEndpoint {
   std::map<std::string, AddressState, std::less<>> addresses_;  // by host
   std::uint64_t last_forget_ms_ = 0;
   std::set<std::uint32_t> idle_paused_rooms_;
+  std::set<std::uint32_t> keeping_rooms_;  // set_keeps_departed
   std::uint64_t sessions_made_ = 0;
   std::uint32_t next_player_id_ = 1;  // the next new session's (reserve_player_ids)
   std::map<std::uint32_t, std::uint32_t> room_ticks_;
