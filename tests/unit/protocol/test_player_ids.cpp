@@ -28,7 +28,7 @@ TEST_CASE("Player ids: never reused, above every restored id, none past the last
   CHECK(bob == 8);  // was 1, the lowest free
   CHECK_FALSE(h.server.restore_session({7, "ann", std::string(32, 'a'), false}, h.now));  // 7 is in use
   // A released session's id is not given again.
-  h.server.kick(bob, "kicked", "test", h.now);
+  h.server.kick(bob, ErrorCode::kicked, "test", h.now);
   CHECK(join(h, "cy") == 9);
   // Ids only go up; the last one is given, then every new player is refused.
   h.server.reserve_player_ids(3);
