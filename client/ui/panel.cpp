@@ -239,8 +239,8 @@ std::vector<std::string> scoreboard_lines(const Snapshot& s, const ViewState& vi
     return a->lives > b->lives;
   });
   std::vector<std::string> out;
-  out.push_back((final_standings ? "Final standings, game over at level " + std::to_string(s.level)
-                                 : "Standings after level " + std::to_string(s.level)) +
+  // Short enough for the field's width at 80x24 (45 columns).
+  out.push_back((final_standings ? "Final standings at level " : "Standings after level ") + std::to_string(s.level) +
                 ", by coins earned");
   char buf[160];
   std::snprintf(buf, sizeof buf, "%2s %-16s %6s %7s %6s %5s %9s", "#", "Player", "Level", "Earned", "Knocks", "Lives",

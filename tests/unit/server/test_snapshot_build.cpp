@@ -32,6 +32,9 @@ TEST_CASE("Snapshot: a player entry carries spawn protection until its tick", "[
   MatchState s = started(2);
   remove_enemies(s);
   add_enemy(s, {440, 280});
+  // As if both had acted since the level start (which protects everyone, issue 37):
+  // player 1's protection below is its respawn's, player 2 has none.
+  for (Player& p : s.players) p.protected_until_tick = -1;
   ball_of(s, 1).pos = {-1, 100};
   for (int i = 0; i < 400 && find_player(s, 1)->protected_until_tick < 0; ++i) step(s, {});
   const std::int64_t until = find_player(s, 1)->protected_until_tick;
