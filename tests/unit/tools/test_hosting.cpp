@@ -78,8 +78,9 @@ TEST_CASE("Hosting: docs/hosting.md's settings table lists every server option",
   REQUIRE_FALSE(section.empty());
   for (const auto& d : fts::server::option_docs()) {
     INFO("option " << d.flag << " / " << d.env);
-    // One table row per option: flag, variable and default on the same line.
-    const auto at = section.find("`" + d.flag + "`");
+    // One table row per option (a line starting "| `--flag` |"): flag, variable and
+    // default on the same line. The prose may name a flag too.
+    const auto at = section.find("\n| `" + d.flag + "` |");
     REQUIRE(at != std::string::npos);
     const auto line_start = section.rfind('\n', at) + 1;
     const std::string line = section.substr(line_start, section.find('\n', at) - line_start);
