@@ -404,10 +404,10 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
     }
     ++kept_in_room[s.room];
     s.kept = true;
-    if (!s.quit) {
-      s.quit = true;  // its seat is free; the match parks its ball (ServerEvent::quit)
-      events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator});
-    }
+    // Its seat is free; the match parks its ball (a quit, again for one that quit already:
+    // parking is idempotent), and the host logs it as kept.
+    s.quit = true;
+    events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator});
   }
   for (auto id : expired) release(id, sessions_.at(id).kept ? "match over" : "reconnect window over");
   for (auto id : never_played) release(id, "timeout");
