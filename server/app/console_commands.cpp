@@ -295,6 +295,10 @@ Reply console_line(GameHost& host, const std::string& line, std::uint64_t now_ms
   std::string why;
   const auto request = room::parse_json(line, why, kConsoleMaxDepth);
   if (request) return console_command(host, *request, now_ms);
+  // The parser's message quotes the bytes it stopped at, which need not be UTF-8 (found by
+  // fts_fuzz_console): the reply is JSON, so they are shown as '?'.
+  for (char& c : why)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
   const Reply reply = error_reply("not a JSON request: " + why);
   log_record(spdlog::level::warn, "console",
              {{"request", "(refused unread)"}, {"ok", false},
