@@ -26,7 +26,7 @@ using F = Field<M, T, K>;
 using U32 = Int<std::uint32_t>;
 
 // ---- hello (PROTOCOL.md 4.1)
-inline const auto kHelloFields = std::make_tuple(
+inline constexpr auto kHelloFields = std::make_tuple(
     F<Hello, std::string, AnyText>{"name", &Hello::name, {kMaxTextBytes}},
     F<Hello, std::string, Hex>{"token", &Hello::token, {kSealedTokenHex}},
     F<Hello, std::string, Hex>{"cookie", &Hello::cookie, {kCookieHex}},
@@ -37,7 +37,7 @@ inline const auto kHelloFields = std::make_tuple(
     F<Hello, std::string, Hex>{"key", &Hello::key, {kKeyHex}, Presence::nonzero});
 
 // ---- challenge (4.2)
-inline const auto kChallengeFields =
+inline constexpr auto kChallengeFields =
     std::make_tuple(F<Challenge, std::string, Hex>{"cookie", &Challenge::cookie, {kCookieHex, true}},
                     F<Challenge, std::string, Hex>{"key", &Challenge::key, {kKeyHex, true}});
 
@@ -54,20 +54,20 @@ struct ConfigNum : Num {
   }
 };
 
-// An optional key of the configuration: written only when it is not the default (what
-// an older server's welcome lacks reads as that default).
+// A key of the configuration as the welcome writes it: always (`always`), or only when it
+// is not the default (what an older server's welcome lacks reads as that default).
 template <class K, class T>
 struct UnlessDefault : K {
   T fallback;
-  bool present(const T& v) const { return !(v == fallback); }
+  bool always;
+  constexpr bool present(const T& v) const { return always || !(v == fallback); }
 };
 
-enum class ConfigKey : std::uint8_t { required, optional };  // config_fields.hpp's presence
-
-// The welcome's row of a field of the match configuration (config_fields.hpp CLIENT): its
-// own key, its kind from its type, lo..hi its range.
-template <ConfigKey P, class T>
-auto config_row(std::string_view key, T sim::MatchConfig::*member, double lo, double hi) {
+// The welcome's row of a field of the match configuration (a client_row of
+// config_fields.hpp): its own key, its kind from its type, lo..hi its range.
+template <class T>
+constexpr auto config_row(const fields::Field<sim::MatchConfig, T, sim::ClientKey>& row) {
+  const double lo = row.kind.lo, hi = row.kind.hi;
   auto kind = [&] {
     if constexpr (std::is_same_v<T, double>) {
       return ConfigNum{{lo, hi}};
@@ -79,37 +79,38 @@ auto config_row(std::string_view key, T sim::MatchConfig::*member, double lo, do
       return Int<T>{static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)};
     }
   }();
-  using K = decltype(kind);
-  if constexpr (P == ConfigKey::required) {
-    return SubField<Welcome, sim::MatchConfig, T, K>{key, &Welcome::match, member, kind, Presence::required};
-  } else {
-    using O = UnlessDefault<K, T>;
-    return SubField<Welcome, sim::MatchConfig, T, O>{key, &Welcome::match, member, O{kind, sim::MatchConfig{}.*member},
-                                                     Presence::nonzero};
-  }
+  using O = UnlessDefault<decltype(kind), T>;
+  const bool always = row.presence == Presence::required;
+  return SubField<Welcome, sim::MatchConfig, T, O>{row.key, &Welcome::match, row.member,
+                                                   O{kind, sim::MatchConfig{}.*row.member, always}, row.presence};
 }
 
-#define FTS_WELCOME_CLIENT(name, lo, hi, presence) \
-  config_row<ConfigKey::presence>(#name, &sim::MatchConfig::name, lo, hi),
-#define FTS_WELCOME_HOST(name)
-inline const auto kWelcomeFields = std::make_tuple(
-    F<Welcome, std::uint32_t, U32>{"player_id", &Welcome::player_id, {1, kAnyU32}},
-    F<Welcome, std::string, Hex>{"token", &Welcome::token, {kTokenHex}},
-    F<Welcome, std::uint32_t, U32>{"snapshot_rate_hz", &Welcome::snapshot_rate_hz, {0, 10000}},
-    F<Welcome, std::uint32_t, U32>{"max_players", &Welcome::max_players, {0, 64}},
-    F<Welcome, std::uint32_t, U32>{"timeout_ms", &Welcome::timeout_ms, {0, kAnyU32}},
-    F<Welcome, std::uint32_t, U32>{"reconnect_window_ms", &Welcome::reconnect_window_ms, {0, kAnyU32}},
-    F<Welcome, std::uint32_t, U32>{"input_redundancy", &Welcome::input_redundancy, {0, kMaxInputFrames}},
-    F<Welcome, std::uint32_t, U32>{"server_tick", &Welcome::server_tick, {0, kAnyU32}},
-    F<Welcome, bool, Bool>{"reconnected", &Welcome::reconnected, {}},
-    FTS_MATCH_CONFIG_FIELDS(FTS_WELCOME_CLIENT, FTS_WELCOME_HOST)
-    F<Welcome, std::string, Text>{"room", &Welcome::room, {0, kRoomBytes}, Presence::nonzero},
-    F<Welcome, bool, Bool>{"spectator", &Welcome::spectator, {}, Presence::nonzero});
-#undef FTS_WELCOME_HOST
-#undef FTS_WELCOME_CLIENT
+// The welcome's rows of the configuration: one per client_row of kMatchConfigFields.
+template <class Row>
+constexpr auto welcome_config_rows(const Row& row) {
+  if constexpr (sim::is_client_key<decltype(row.kind)>) return std::make_tuple(config_row(row));
+  else return std::tuple<>{};
+}
+inline constexpr auto kWelcomeConfigFields =
+    std::apply([](const auto&... row) { return std::tuple_cat(welcome_config_rows(row)...); }, sim::kMatchConfigFields);
+
+inline constexpr auto kWelcomeFields = std::tuple_cat(
+    std::make_tuple(
+        F<Welcome, std::uint32_t, U32>{"player_id", &Welcome::player_id, {1, kAnyU32}},
+        F<Welcome, std::string, Hex>{"token", &Welcome::token, {kTokenHex}},
+        F<Welcome, std::uint32_t, U32>{"snapshot_rate_hz", &Welcome::snapshot_rate_hz, {0, 10000}},
+        F<Welcome, std::uint32_t, U32>{"max_players", &Welcome::max_players, {0, 64}},
+        F<Welcome, std::uint32_t, U32>{"timeout_ms", &Welcome::timeout_ms, {0, kAnyU32}},
+        F<Welcome, std::uint32_t, U32>{"reconnect_window_ms", &Welcome::reconnect_window_ms, {0, kAnyU32}},
+        F<Welcome, std::uint32_t, U32>{"input_redundancy", &Welcome::input_redundancy, {0, kMaxInputFrames}},
+        F<Welcome, std::uint32_t, U32>{"server_tick", &Welcome::server_tick, {0, kAnyU32}},
+        F<Welcome, bool, Bool>{"reconnected", &Welcome::reconnected, {}}),
+    kWelcomeConfigFields,
+    std::make_tuple(F<Welcome, std::string, Text>{"room", &Welcome::room, {0, kRoomBytes}, Presence::nonzero},
+                    F<Welcome, bool, Bool>{"spectator", &Welcome::spectator, {}, Presence::nonzero}));
 
 // ---- error (4.4)
-inline const auto kErrorFields =
+inline constexpr auto kErrorFields =
     std::make_tuple(F<Error, std::string, Text>{"code", &Error::code, {0, kCodeBytes}},
                     F<Error, std::string, Text>{"msg", &Error::message, {0, kMaxTextBytes}});
 
@@ -118,7 +119,7 @@ inline const auto kErrorFields =
 // Command::fault, so that the command is consumed and answered instead of blocking the
 // reliable channel. Only the rid must read: without it there is nothing to answer. The
 // chat text takes any bytes (the server cleans it).
-inline const auto kCommandFields = std::make_tuple(
+inline constexpr auto kCommandFields = std::make_tuple(
     F<Command, std::uint32_t, U32>{"rid", &Command::rid, {0, kAnyU32}},
     F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 6>>>{
         "op", &Command::op, {{{"buy", "ready", "again", "unknown", "chat", "rooms"}, CommandOp::unknown}}},
@@ -126,7 +127,7 @@ inline const auto kCommandFields = std::make_tuple(
     F<Command, std::string, Tolerant<AnyText>>{"text", &Command::text, {{kMaxTextBytes}}, Presence::nonzero});
 
 // ---- result (4.7)
-inline const auto kResultFields = std::make_tuple(
+inline constexpr auto kResultFields = std::make_tuple(
     F<Result, std::uint32_t, U32>{"rid", &Result::rid, {1, kAnyU32}},
     F<Result, std::uint32_t, U32>{"cmd", &Result::command_rid, {0, kAnyU32}},
     F<Result, bool, Bool>{"ok", &Result::ok, {}},
@@ -134,19 +135,19 @@ inline const auto kResultFields = std::make_tuple(
     F<Result, std::string, Text>{"msg", &Result::message, {0, kMaxTextBytes}});
 
 // ---- chat (4.7b)
-inline const auto kChatFields = std::make_tuple(
+inline constexpr auto kChatFields = std::make_tuple(
     F<Chat, std::uint32_t, U32>{"rid", &Chat::rid, {1, kAnyU32}},
     F<Chat, std::uint32_t, U32>{"from", &Chat::from, {0, kAnyU32}},
     F<Chat, std::string, Text>{"name", &Chat::name, {0, kMaxNameBytes}},
     F<Chat, std::string, Text>{"text", &Chat::text, {0, kMaxTextBytes}});
 
 // ---- ping (4.8): no fields
-inline const std::tuple<> kPingFields{};
+inline constexpr std::tuple<> kPingFields{};
 
 // ---- bye (4.9)
 // A reason that does not read (not text, longer than 200 bytes, not printable) is refused
 // like any other bad field: the datagram is dropped and the session goes on (3, 4.9).
-inline const auto kByeFields =
+inline constexpr auto kByeFields =
     std::make_tuple(F<Bye, std::string, Text>{"reason", &Bye::reason, {0, kMaxTextBytes}});
 
 }  // namespace fts::protocol::wire

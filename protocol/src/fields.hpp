@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fts/sim/field_table.hpp"
 #include "wire_io.hpp"
 
 namespace fts::protocol::wire {
@@ -201,21 +202,10 @@ struct List {
 
 // ---- fields ------------------------------------------------------------------------
 
-enum class Presence : std::uint8_t {
-  required,  // always written, must be present
-  optional,  // a std::optional member: written when set
-  nonzero,   // written unless equal to the default value (0, empty); absent reads as default
-};
-
-template <class M, class T, class K>
-struct Field {
-  std::string_view key;
-  T M::*member;
-  K kind;
-  Presence presence = Presence::required;
-  const T& of(const M& m) const { return m.*member; }
-  T& of(M& m) const { return m.*member; }
-};
+// A row of a table: fts/sim/field_table.hpp's, the one mechanism of every field table
+// (and its check that a table names every member of its struct).
+using ::fts::fields::Field;
+using ::fts::fields::Presence;
 
 // A field of a struct inside the message, written at the message's level (the welcome's
 // shop terms): the same key space, one more member step.
@@ -226,8 +216,8 @@ struct SubField {
   T S::*member;
   K kind;
   Presence presence = Presence::required;
-  const T& of(const M& m) const { return (m.*outer).*member; }
-  T& of(M& m) const { return (m.*outer).*member; }
+  constexpr const T& of(const M& m) const { return (m.*outer).*member; }
+  constexpr T& of(M& m) const { return (m.*outer).*member; }
 };
 
 template <class T>
@@ -335,7 +325,7 @@ struct Synced {
   K kind;
   Presence presence = Presence::optional;
   // The Field view of this row, for write_map / read_map.
-  Field<E, std::optional<T>, K> field() const { return {key, entry, kind, presence}; }
+  constexpr Field<E, std::optional<T>, K> field() const { return {key, entry, kind, presence}; }
 };
 
 // entry = the fields of `now` that differ from `base` (all of them without a base).
@@ -363,7 +353,7 @@ void clamp_all(const std::tuple<R...>& table, S& state) {
 }
 
 template <class... R>
-auto fields_of(const std::tuple<R...>& table) {
+constexpr auto fields_of(const std::tuple<R...>& table) {
   return std::apply([](const auto&... f) { return std::make_tuple(f.field()...); }, table);
 }
 

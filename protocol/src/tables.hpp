@@ -32,9 +32,11 @@ inline constexpr auto kPlayerSynced = std::make_tuple(
     Synced<PlayerState, PlayerEntry, std::uint32_t, Int<std::uint32_t>>{"sp", &PlayerEntry::protected_until_tick, &PlayerState::protected_until_tick, kU32<std::uint32_t>},
     Synced<PlayerState, PlayerEntry, bool, Bool>{"aw", &PlayerEntry::away, &PlayerState::away, {}});
 
-inline const auto kPlayerFields = std::tuple_cat(
+inline constexpr auto kPlayerFields = std::tuple_cat(
     std::make_tuple(Field<PlayerEntry, std::uint32_t, Int<std::uint32_t>>{"i", &PlayerEntry::id, kU32<std::uint32_t>}),
     fields_of(kPlayerSynced));
+static_assert(fields::names_every_member<PlayerEntry>(kPlayerFields));
+static_assert(fields::names_every_member<PlayerState>(kPlayerSynced, &PlayerState::id));  // id: the entry's "i"
 
 // ---- ball entry, a row (PROTOCOL.md 8.2): a motion entry is the first kBallMotionArity
 // A difference of two quantized values, or a position off its prediction (which spans at
@@ -50,6 +52,7 @@ inline constexpr auto kBallRow = std::make_tuple(
     Field<BallEntry, std::int64_t, Int<std::int64_t>>{"mass", &BallEntry::mass, {0, kMaxQuantized}},
     Field<BallEntry, BallKind, Int<BallKind>>{"kind", &BallEntry::kind, {0, 2}},
     Field<BallEntry, std::uint32_t, Int<std::uint32_t>>{"owner", &BallEntry::owner, kU32<std::uint32_t>});
+static_assert(fields::names_every_member<BallEntry>(kBallRow, &BallEntry::full));  // full: the row's length
 inline constexpr std::size_t kBallFullArity = std::tuple_size_v<decltype(kBallRow)>;
 inline constexpr std::size_t kBallMotionArity = 5;
 
@@ -229,6 +232,7 @@ inline constexpr auto kEventRow = std::make_tuple(
     Field<Event, std::uint32_t, Int<std::uint32_t>>{"a", &Event::a, kU32<std::uint32_t>},
     Field<Event, std::uint32_t, Int<std::uint32_t>>{"b", &Event::b, kU32<std::uint32_t>},
     Field<Event, std::int64_t, Int<std::int64_t>>{"value", &Event::value, {-kMaxCoins, kMaxCoins}});
+static_assert(fields::names_every_member<Event>(kEventRow));
 
 template <class M, class Table>
 struct RowOf {
@@ -261,10 +265,10 @@ struct MapOf {
   void get(MsgpackReader& r, M& m) const { read_map(r, m, *table); }
 };
 
-inline const MapOf<PlayerEntry, decltype(kPlayerFields)> kPlayerMap{&kPlayerFields};
+inline constexpr MapOf<PlayerEntry, decltype(kPlayerFields)> kPlayerMap{&kPlayerFields};
 
 // ---- snap (PROTOCOL.md 4.10)
-inline const auto kSnapFields = std::make_tuple(
+inline constexpr auto kSnapFields = std::make_tuple(
     Field<SnapshotMsg, std::uint32_t, Int<std::uint32_t>>{"tick", &SnapshotMsg::tick, kU32<std::uint32_t>},
     Field<SnapshotMsg, std::optional<std::uint32_t>, Int<std::uint32_t>>{"base", &SnapshotMsg::base, kU32<std::uint32_t>, Presence::optional},
     Field<SnapshotMsg, std::uint32_t, Int<std::uint32_t>>{"part", &SnapshotMsg::part, {0, kMaxSnapshotParts}},
@@ -287,8 +291,9 @@ inline constexpr auto kInputFrameRow = std::make_tuple(
     Field<InputFrame, std::int8_t, Int<std::int8_t>>{"move_y", &InputFrame::move_y, {-1, 1}},
     Field<InputFrame, bool, Bit>{"fire", &InputFrame::fire, {}},
     Field<InputFrame, std::uint32_t, Int<std::uint32_t>>{"tick", &InputFrame::tick, kU32<std::uint32_t>});
+static_assert(fields::names_every_member<InputFrame>(kInputFrameRow));
 
-inline const auto kInputFields = std::make_tuple(
+inline constexpr auto kInputFields = std::make_tuple(
     Field<Input, std::uint32_t, Int<std::uint32_t>>{"ack", &Input::snapshot_ack, kU32<std::uint32_t>},
     Field<Input, std::vector<InputFrame>, List<InputFrame, RowOf<InputFrame, decltype(kInputFrameRow)>>>{"f", &Input::frames, {kMaxInputFrames, {&kInputFrameRow, 1}}});
 

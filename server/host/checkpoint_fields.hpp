@@ -1,10 +1,10 @@
-// The field-table machinery of the checkpoint (internal to match_state_json.cpp), after
-// protocol/src/fields.hpp: a struct is one table of fields, each named once with its key
-// and its kind, and the table drives both the writer and the reader. A table is written
-// as a JSON object (keys) or as a positional array (a row: balls and bodies are many).
-// Every member of the struct has a row in its table, those left out of the file included
-// (`Skip`), and names_every_member() checks that at compile time: a member added to a
-// struct and not to its table does not build. nlohmann-json here, not the wire's
+// The checkpoint's kinds (internal to match_state_json.cpp) for the one field-table
+// mechanism (fts/sim/field_table.hpp): a struct is one table of fields, each named once
+// with its key and its kind, and the table drives both the writer and the reader. A table
+// is written as a JSON object (keys) or as a positional array (a row: balls and bodies are
+// many). Every member of the struct has a row in its table, those left out of the file
+// included (`Skip`), and names_every_member() checks that at compile time: a member added
+// to a struct and not to its table does not build. nlohmann-json here, not the wire's
 // byte-driven readers: a checkpoint is a file record (ARCHITECTURE.md).
 #pragma once
 
@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fts/sim/field_table.hpp"
 #include "fts/sim/id.hpp"
 #include "fts/sim/rng.hpp"
 
@@ -30,53 +31,12 @@ namespace fts::host::checkpoint {
 
 using nlohmann::json;
 
-// ---- the member count of an aggregate: the most "anythings" it can be braced from ----
-// Counted down from kMaxMembers: a shorter list would leave members to their defaults,
-// which fails for a member without an implicit default (sim::Rng's is explicit).
-struct Anything {
-  template <class T>
-  operator T() const;  // NOLINT(google-explicit-constructor); declared only: unevaluated use
-};
-
-inline constexpr std::size_t kMaxMembers = 24;
-
-template <class T, std::size_t... I>
-constexpr bool braces_from(std::index_sequence<I...>) {
-  return requires { T{(void(I), Anything{})...}; };
-}
-
-template <class T, std::size_t N = kMaxMembers>
-constexpr std::size_t member_count() {
-  static_assert(std::is_aggregate_v<T>, "a checkpoint table is for an aggregate struct");
-  if constexpr (N == 0) return 0;
-  else if constexpr (braces_from<T>(std::make_index_sequence<N>{})) return N;
-  else return member_count<T, N - 1>();
-}
-
-template <class M, class Table>
-constexpr bool names_every_member(const Table&) {
-  static_assert(member_count<M>() < kMaxMembers, "raise kMaxMembers");
-  return std::tuple_size_v<Table> == member_count<M>();
-}
-
-// ---- a field: key, member, kind -----------------------------------------------------
-
-template <class M, class T, class K>
-struct Field {
-  std::string_view key;
-  T M::*member;
-  K kind;
-  bool may_be_absent = false;  // absent in older checkpoints: keeps the struct's default
-};
-
-template <class M, class T, class K>
-constexpr Field<M, T, K> field(std::string_view key, T M::*member, K kind, bool may_be_absent = false) {
-  return {key, member, kind, may_be_absent};
-}
-
-// A member made again by make_match(config, seed) (the config, the arena, the physics)
-// or not state at all (a step's working memory): named, never written.
-struct Skip {};
+// The rows, the member count and the check are the one field-table mechanism's.
+using ::fts::fields::field;
+using ::fts::fields::names_every_member;
+using ::fts::fields::Presence;
+using ::fts::fields::Skip;  // a member made again by make_match(config, seed) (the config, the
+                     // arena, the physics) or not state at all (a step's memory): never written
 
 // `what` of the value in j, as a message that names the path to it.
 [[noreturn]] inline void rethrow_at(std::string_view where, const std::exception& e) {
@@ -164,8 +124,7 @@ struct RngState {
 
 // ---- tables: object and row -------------------------------------------------------------
 
-template <class K>
-inline constexpr bool is_skip = std::is_same_v<K, Skip>;
+using ::fts::fields::is_skip;
 
 template <class Table>
 struct Splice;
@@ -238,7 +197,7 @@ void read_object(const json& j, M& m, const Table& table) {
   visit_fields(
       table,
       [&](const auto& f) {
-        if (f.may_be_absent && !j.contains(f.key)) return;
+        if (f.presence == Presence::defaulted && !j.contains(f.key)) return;
         reading(f.key, [&] { f.kind.get(j.at(f.key), m.*f.member); });
       },
       [&](const auto& f) { read_object(j, m.*f.member, f.kind.table); });

@@ -40,7 +40,7 @@ constexpr auto kPlayerFields = std::make_tuple(
     field("eco", &sim::Player::eco, Row{kEconomyFields}), field("ready", &sim::Player::ready, Value<bool>{}),
     field("ball", &sim::Player::ball, IdValue{}), field("respawn_tick", &sim::Player::respawn_tick, I64{}),
     // Absent in checkpoints written before spawn protection: not protected.
-    field("protected_until_tick", &sim::Player::protected_until_tick, I64{}, true),
+    field("protected_until_tick", &sim::Player::protected_until_tick, I64{}, Presence::defaulted),
     field("next_fire_tick", &sim::Player::next_fire_tick, I64{}), field("aim", &sim::Player::aim, Row{kVec2Fields}),
     field("connected", &sim::Player::connected, Value<bool>{}), field("parked", &sim::Player::parked, Value<bool>{}));
 static_assert(names_every_member<sim::Player>(kPlayerFields));

@@ -1,6 +1,7 @@
 #include "fts/room/match_config_json.hpp"
 
 #include <cmath>
+#include <type_traits>
 #include <variant>
 
 #include "fts/room/json_fields.hpp"
@@ -10,26 +11,32 @@ namespace fts::room {
 namespace {
 
 using sim::MatchConfig;
-using FieldPtr = std::variant<double MatchConfig::*, std::int64_t MatchConfig::*, int MatchConfig::*,
-                              sim::Model MatchConfig::*>;
-struct FieldDef {
-  const char* name;
-  FieldPtr ptr;
-  bool client;  // the welcome carries it (PROTOCOL.md 4.3)
-};
 
-// One row per field of config_fields.hpp, with its mark: a client needs it (the welcome
-// carries it) or not.
-#define FTS_F_CLIENT(name, ...) FieldDef{#name, &MatchConfig::name, true},
-#define FTS_F_HOST(name) FieldDef{#name, &MatchConfig::name, false},
-const FieldDef kFields[] = {FTS_MATCH_CONFIG_FIELDS(FTS_F_CLIENT, FTS_F_HOST)};
-#undef FTS_F_HOST
-#undef FTS_F_CLIENT
-
-const FieldDef* find_field(std::string_view key) {
-  for (const FieldDef& f : kFields)
-    if (key == f.name) return &f;
-  return nullptr;
+// The value of `key` into its member of cfg, by the member's type; false: no such key.
+bool read_config_key(const Fields& f, const std::string& key, const nlohmann::json& value, MatchConfig& cfg) {
+  bool found = false;
+  fields::for_each(sim::kMatchConfigFields, [&](const auto& row) {
+    if (found || key != row.key) return;
+    found = true;
+    auto& v = cfg.*row.member;
+    using T = std::remove_cvref_t<decltype(v)>;
+    if constexpr (std::is_same_v<T, double>) {
+      v = f.number(key);
+    } else if constexpr (std::is_same_v<T, sim::Model>) {
+      const std::string s = f.string(key);
+      const auto m = sim::parse_model(s);
+      if (!m) f.fail(key, "must be one of seed, discrete, continuous, got \"" + s + "\"");
+      v = *m;
+    } else if constexpr (std::is_same_v<T, int>) {
+      const std::int64_t n = f.integer(key);
+      if (n < INT32_MIN || n > INT32_MAX) f.fail(key, "out of range, got " + value.dump());
+      v = static_cast<int>(n);
+    } else {
+      static_assert(std::is_same_v<T, std::int64_t>, "a reader for this type of config field");
+      v = f.integer(key);
+    }
+  });
+  return found;
 }
 
 }  // namespace
@@ -46,27 +53,7 @@ std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string
       // Named, not bound: clang before 16 cannot capture a structured binding.
       const std::string& key = item.key();
       const nlohmann::json& value = item.value();
-      const FieldDef* def = find_field(key);
-      if (!def) f.fail(key, "unknown key (value " + value.dump() + ")");
-      std::visit(
-          [&](auto ptr) {
-            using T = std::remove_cvref_t<decltype(cfg.*ptr)>;
-            if constexpr (std::is_same_v<T, double>) {
-              cfg.*ptr = f.number(key);
-            } else if constexpr (std::is_same_v<T, sim::Model>) {
-              const std::string s = f.string(key);
-              const auto m = sim::parse_model(s);
-              if (!m) f.fail(key, "must be one of seed, discrete, continuous, got \"" + s + "\"");
-              cfg.*ptr = *m;
-            } else if constexpr (std::is_same_v<T, int>) {
-              const std::int64_t v = f.integer(key);
-              if (v < INT32_MIN || v > INT32_MAX) f.fail(key, "out of range, got " + value.dump());
-              cfg.*ptr = static_cast<int>(v);
-            } else {
-              cfg.*ptr = f.integer(key);
-            }
-          },
-          def->ptr);
+      if (!read_config_key(f, key, value, cfg)) f.fail(key, "unknown key (value " + value.dump() + ")");
     }
     if (const std::string err = sim::validate(cfg); !err.empty()) return "match config: " + err;
     return cfg;
@@ -77,22 +64,19 @@ std::variant<sim::MatchConfig, std::string> parse_match_config(const std::string
 
 nlohmann::json match_config_to_json(const sim::MatchConfig& cfg) {
   nlohmann::json j = nlohmann::json::object();
-  for (const FieldDef& f : kFields) {
-    std::visit(
-        [&](auto ptr) {
-          using T = std::remove_cvref_t<decltype(cfg.*ptr)>;
-          if constexpr (std::is_same_v<T, sim::Model>) j[f.name] = std::string(sim::to_string(cfg.*ptr));
-          else j[f.name] = cfg.*ptr;
-        },
-        f.ptr);
-  }
+  fields::for_each(sim::kMatchConfigFields, [&](const auto& row) {
+    const auto& v = cfg.*row.member;
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(v)>, sim::Model>) j[std::string(row.key)] = std::string(sim::to_string(v));
+    else j[std::string(row.key)] = v;
+  });
   return j;
 }
 
 std::vector<std::string> match_config_client_keys() {
   std::vector<std::string> out;
-  for (const FieldDef& f : kFields)
-    if (f.client) out.emplace_back(f.name);
+  fields::for_each(sim::kMatchConfigFields, [&](const auto& row) {
+    if (sim::is_client_key<decltype(row.kind)>) out.emplace_back(row.key);
+  });
   return out;
 }
 

@@ -1,5 +1,5 @@
 // The welcome and the match configuration (issue 36): every field config_fields.hpp marks
-// CLIENT is a welcome key, no host field is, and PROTOCOL.md 4.3 lists exactly the
+// client_row is a welcome key, no host field is, and PROTOCOL.md 4.3 lists exactly the
 // welcome's keys; a welcome of an older server (without the physics keys) still reads.
 #include <catch2/catch.hpp>
 
@@ -13,6 +13,7 @@
 #include "fts/sim/config_fields.hpp"
 
 using namespace fts::protocol;
+namespace sim = fts::sim;
 
 namespace {
 
@@ -50,11 +51,9 @@ TEST_CASE("Welcome config: the welcome carries every CLIENT field of the match c
           "[protocol][welcome]") {
   const auto keys = welcome_keys();
   std::set<std::string> client, host;
-#define FTS_CLIENT(name, ...) client.insert(#name);
-#define FTS_HOST(name) host.insert(#name);
-  FTS_MATCH_CONFIG_FIELDS(FTS_CLIENT, FTS_HOST)
-#undef FTS_HOST
-#undef FTS_CLIENT
+  fts::fields::for_each(sim::kMatchConfigFields, [&](const auto& row) {
+    (sim::is_client_key<decltype(row.kind)> ? client : host).insert(std::string(row.key));
+  });
   for (const auto& k : {"tick_rate_hz", "model", "substeps", "frame_s", "arena_width_u", "arena_height_u",
                         "friction_per_frame", "friction_cutoff_u_per_s"})
     CHECK(client.count(k) == 1);  // what the step reads for the own ball's motion
