@@ -10,10 +10,17 @@ install -d -m 700 "$keys"
 for type in ed25519 rsa; do
   [[ -f $keys/ssh_host_${type}_key ]] || ssh-keygen -q -t "$type" -N '' -f "$keys/ssh_host_${type}_key"
 done
+# The host keys through a drop-in of sshd_config, so that every sshd that reads the
+# config (fts-ssh-setup's `sshd -t` check included) finds them: the image has none in
+# /etc/ssh, and passing them only on sshd's command line left that check with "no
+# hostkeys available", which ended the container at its first start (issue 37, 9).
+install -d -m 755 /etc/ssh/sshd_config.d
+printf 'HostKey %s\n' "$keys/ssh_host_ed25519_key" "$keys/ssh_host_rsa_key" \
+  >/etc/ssh/sshd_config.d/00-fts-host-keys.conf
 empty=()
 [[ -n ${FTS_SSH_EMPTY_PASSWORD:-} ]] && empty=(--empty-password)
 bash "$here/fts-ssh-setup" --connect "${FTS_SSH_SERVER:-server:7777}" --open "${empty[@]}" \
   --max-sessions "${FTS_SSH_MAX_SESSIONS:-8}" --max-per-key "${FTS_SSH_MAX_PER_KEY:-2}" \
   --idle-exit-s "${FTS_SSH_IDLE_EXIT_S:-600}" install
 install -d -m 755 /run/sshd
-exec /usr/sbin/sshd -D -e -p 2222 -o "HostKey=$keys/ssh_host_ed25519_key" -o "HostKey=$keys/ssh_host_rsa_key"
+exec /usr/sbin/sshd -D -e -p 2222
