@@ -112,7 +112,7 @@ class Link:
         else:
             self.open_down()
             sender, dest, receiver = self.server, self.client_seen, self.client
-        sent, got = {}, []
+        sent_wall, got = {}, []
         self.arrived = {}  # seq -> the kernel's arrival stamp (for rates)
         before = self.relay.stats()[direction]["datagrams_in"]
 
@@ -124,7 +124,8 @@ class Link:
                     return
                 t = time.monotonic()
                 seq = struct.unpack("!I", data[:4])[0]
-                got.append((seq, t - sent[seq], t))
+                # the delay on the kernel's arrival stamp: a busy reader adds nothing
+                got.append((seq, stamp - sent_wall[seq], t))
                 self.arrived[seq] = stamp
 
         next_t = time.monotonic()
@@ -135,7 +136,7 @@ class Link:
                     break
                 select.select([receiver], [], [], next_t - now)
                 drain()
-            sent[i] = time.monotonic()
+            sent_wall[i] = time.time()
             sender.sendto(struct.pack("!I", i).ljust(size, b"."), dest)
             next_t += gap_s
         # The relay is a Python process: on a loaded machine it falls behind, so the wait
