@@ -73,15 +73,13 @@ int main(int argc, char** argv) {
   }
 
   if (!options.replay_path.empty()) {
-    std::ifstream in(options.replay_path);
-    if (!in) return fail("--replay: cannot read " + options.replay_path);
-    auto r = room::replay_record(in);
+    auto r = room::replay_history(options.replay_path);
     if (auto* err = std::get_if<std::string>(&r)) {
       std::cerr << "fts-server: replay of " << options.replay_path << " FAILED: " << *err << "\n";
       return 1;
     }
     const auto& rep = std::get<room::ReplayReport>(r);
-    std::cout << R"({"replay":")" << options.replay_path << R"(","ticks":)" << rep.ticks << R"(,"hashes_checked":)"
+    std::cout << R"({"replay":")" << options.replay_path << R"(","format":")" << rep.format << R"(","ticks":)" << rep.ticks << R"(,"hashes_checked":)"
               << rep.hashes_checked << R"(,"state_hash":")" << room::hex16(rep.final_hash) << "\"}\n";
     return 0;
   }

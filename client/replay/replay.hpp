@@ -19,7 +19,8 @@
 
 namespace fts::client {
 
-// The record's reader is fts_room's, as the server's (one format, one reader).
+// The history's reader is fts_room's, as the server's (a journal or a record, one reader).
+using room::load_history;
 using room::load_tape;
 using room::Tape;
 

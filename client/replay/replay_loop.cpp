@@ -29,12 +29,7 @@ void note(ViewState& view, std::string text, std::uint64_t now) {
 }  // namespace
 
 int run_replay(const std::string& path, bool kitty, std::string& message) {
-  std::ifstream in(path);
-  if (!in) {
-    message = "cannot open the record " + sanitize(path, 200);
-    return 1;
-  }
-  auto loaded = load_tape(in);
+  auto loaded = load_history(path);
   if (auto* err = std::get_if<std::string>(&loaded)) {
     // The reason quotes the file (its version string, the bytes JSON stopped at): a
     // record from elsewhere must not reach the terminal raw (issue 30).
@@ -54,7 +49,7 @@ int run_replay(const std::string& path, bool kitty, std::string& message) {
   term::KeyReader keys;
   term::Painter painter;
   std::uint64_t last = now_ms();
-  note(view, "Replaying " + sanitize(path, 60) + " (seed " + std::to_string(replay.tape().seed) + ").", last);
+  note(view, "Replaying " + sanitize(path, 60) + " (" + replay.tape().format + ", seed " + std::to_string(replay.tape().seed) + ").", last);
   bool mismatch_told = false;
   for (;;) {
     if (term::stop_signal() != 0) break;

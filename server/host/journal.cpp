@@ -59,26 +59,6 @@ void sync_dir(const std::filesystem::path& dir) {
 
 }  // namespace
 
-std::string segment_name(std::uint64_t n) {
-  std::string digits = std::to_string(n);
-  if (digits.size() < 6) digits.insert(0, 6 - digits.size(), '0');
-  return "journal-" + digits + ".jsonl";
-}
-
-std::vector<std::pair<std::uint64_t, std::filesystem::path>> list_segments(const std::filesystem::path& dir) {
-  std::vector<std::pair<std::uint64_t, std::filesystem::path>> out;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    constexpr std::string_view prefix = "journal-", suffix = ".jsonl";
-    if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix)) continue;
-    const auto n = to_integer(name.substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
-    if (n && *n > 0) out.emplace_back(static_cast<std::uint64_t>(*n), entry.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // ----- writer ------------------------------------------------------------------------
 
 JournalWriter::JournalWriter(JournalConfig cfg, const sim::MatchConfig& match_config, const sim::MatchState& state,

@@ -40,11 +40,16 @@
 #include <variant>
 #include <vector>
 
+#include "fts/room/record.hpp"
 #include "fts/sim/match.hpp"
 
 namespace fts::host {
 
-inline constexpr int kJournalFormat = 1;  // "fts_journal" in a segment's header
+// The format, the segments' names and their listing are the history reader's (fts_room),
+// which reads a journal that keeps every segment as a whole match.
+using room::kJournalFormat;
+using room::list_segments;
+using room::segment_name;
 
 struct JournalSession {
   std::uint32_t player = 0;
@@ -181,11 +186,6 @@ class JournalWriter {
 };
 
 // ----- reading (host/journal_read.cpp) -----------------------------------------------------------------------
-
-// The file name of segment n ("journal-000001.jsonl") and the segments in a room's
-// directory, oldest first.
-std::string segment_name(std::uint64_t n);
-std::vector<std::pair<std::uint64_t, std::filesystem::path>> list_segments(const std::filesystem::path& dir);
 
 struct ResumedRoom {
   std::string room;  // the room's code

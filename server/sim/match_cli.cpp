@@ -1,6 +1,7 @@
 #include "sim/match_cli.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -172,25 +173,34 @@ int run_match_cli(const std::vector<std::string>& args) {
 
   std::int64_t hashes_checked = -1;
   if (inputs_path) {
-    std::ifstream in(*inputs_path);
-    if (!in) return usage("cannot read " + *inputs_path);
-    if (in.peek() == '{') {
+    std::error_code ec;
+    const bool journal = std::filesystem::is_directory(*inputs_path, ec);
+    std::ifstream in;
+    if (!journal) {
+      in.open(*inputs_path);
+      if (!in) return usage("cannot read " + *inputs_path);
+    }
+    bool history = journal;
+    if (!journal && in.peek() == '{') {
       std::string first;
       std::getline(in, first);
       in.seekg(0);
-      if (first.find("\"fts_record\"") != std::string::npos) {
-        // A server recording: its own seed and config, every hash checked.
-        auto r = room::replay_record(in);
-        if (auto* err = std::get_if<std::string>(&r)) {
-          std::cerr << "fts-sim: replay of " << *inputs_path << " FAILED: " << *err << "\n";
-          return 1;
-        }
-        auto& rep = std::get<room::ReplayReport>(r);
-        hashes_checked = rep.hashes_checked;
-        s = std::move(rep.state);
-        cfg = s.cfg;
-        max_ticks = s.tick;
+      history = first.find("\"fts_record\"") != std::string::npos;
+    }
+    if (history) {
+      // A server's history (a journal directory or a record): its own seed and config,
+      // every hash checked; the input lines that follow are none.
+      in.setstate(std::ios::eofbit);
+      auto r = room::replay_history(*inputs_path);
+      if (auto* err = std::get_if<std::string>(&r)) {
+        std::cerr << "fts-sim: replay of " << *inputs_path << " FAILED: " << *err << "\n";
+        return 1;
       }
+      auto& rep = std::get<room::ReplayReport>(r);
+      hashes_checked = rep.hashes_checked;
+      s = std::move(rep.state);
+      cfg = s.cfg;
+      max_ticks = s.tick;
     }
     std::string line;
     std::int64_t line_no = 0;

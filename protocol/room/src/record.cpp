@@ -62,6 +62,7 @@ std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_line
   auto cfg = parse_match_config((*head)["config"].dump());
   if (auto* err = std::get_if<std::string>(&cfg)) return "line 1: config: " + *err;
   Tape t;
+  t.format = "record " + std::to_string(kRecordFormat);
   t.seed = (*head)["seed"].get<std::uint64_t>();
   t.config = std::get<sim::MatchConfig>(cfg);
   for (std::size_t no = 2; std::getline(in, line); ++no) {
@@ -82,7 +83,7 @@ std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_line
       if (tick < t.last_tick) return where + "tick " + std::to_string(tick) + " goes back in time";
       if (tick - t.last_tick > kMaxGapTicks)
         return where + "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(t.last_tick);
-      t.hashes.push_back({tick, (*j)["hash"].get<std::string>(), no});
+      t.hashes.push_back({tick, (*j)["hash"].get<std::string>(), no, {}});
     } else {
       auto parsed = input_line_from_json(*j);
       if (auto* err = std::get_if<std::string>(&parsed)) return where + *err;
@@ -101,9 +102,13 @@ std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_line
 std::variant<ReplayReport, std::string> replay_record(std::istream& in) {
   auto loaded = load_tape(in);
   if (auto* err = std::get_if<std::string>(&loaded)) return *err;
-  const Tape& tape = std::get<Tape>(loaded);
+  return replay_tape(std::get<Tape>(loaded));
+}
+
+std::variant<ReplayReport, std::string> replay_tape(const Tape& tape) {
   RoomStepper room(tape.config, tape.seed);
   ReplayReport r;
+  r.format = tape.format;
   std::size_t next_line = 0;
   for (const TapeHash& h : tape.hashes) {
     while (room.match().tick < h.tick) {
@@ -112,7 +117,7 @@ std::variant<ReplayReport, std::string> replay_record(std::istream& in) {
     }
     const std::string got = hex16(sim::match_hash(room.match()));
     if (got != h.hex)
-      return "line " + std::to_string(h.line) + ": hash mismatch at tick " + std::to_string(h.tick) + ": recorded " +
+      return (h.file.empty() ? "" : h.file + " ") + "line " + std::to_string(h.line) + ": hash mismatch at tick " + std::to_string(h.tick) + ": recorded " +
              h.hex + ", replayed " + got;
     ++r.hashes_checked;
   }
