@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "fts/protocol/codes.hpp"
+
 namespace fts::bot {
 namespace {
 
@@ -99,6 +101,8 @@ std::variant<std::vector<Step>, std::string> parse_script(const std::string& tex
       if (w.size() >= 3 && w[1] == "room") {
         s.op = Step::Op::expect_room;
         if (need(4) && w[2] == "refused") {
+          // The code is the wire's (codes.hpp): a misspelt one would never be met.
+          if (!protocol::error_code_of(w[3])) return err("expect room refused: '" + w[3] + "' is no error code (PROTOCOL.md 4.4)");
           s.word = "refused";
           s.cmp = w[3];
         } else if (need(3) && w[2] != "refused") {

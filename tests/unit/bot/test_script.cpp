@@ -80,4 +80,7 @@ TEST_CASE("Bot scripts: expect room CODE | any | refused REASON", "[bot][script]
   CHECK(error_of("expect room\n").rfind("line 1:", 0) == 0);
   CHECK(error_of("expect room refused\n").rfind("line 1: expect room", 0) == 0);
   CHECK_FALSE(error_of("expect room KXBQT extra\n").empty());
+  // The reason is an error code of the wire's table (codes.hpp), not any word.
+  CHECK_THAT(error_of("expect room refused no_such_rom\n"), Catch::Contains("'no_such_rom' is no error code"));
+  CHECK(error_of("expect room refused room_full\n").empty());
 }
