@@ -17,7 +17,7 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: fts-client --connect HOST:PORT --name NAME [options]\n"
-    "       fts-client --replay FILE\n"
+    "       fts-client --replay PATH\n"
     "\n"
     "Plays Fear The Sphere in this terminal against an fts-server.\n"
     "\n"
@@ -34,7 +34,7 @@ constexpr const char* kUsage =
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
     "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
-    "  --replay FILE           play back a server record (fts-server --record FILE):\n"
+    "  --replay PATH           play back a server record (fts-server --record PATH):\n"
     "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
     "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"

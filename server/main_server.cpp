@@ -89,17 +89,14 @@ int main(int argc, char** argv) {
   if (auto* err = std::get_if<std::string>(&resolved)) return fail(*err);
   auto config = std::get<sim::MatchConfig>(resolved);
 
-  std::ofstream record;
-  if (!options.record_path.empty()) {
-    record.open(options.record_path);
-    if (!record) return fail("--record: cannot write " + options.record_path);
-  }
-
-  if (!options.record_dir.empty()) {
+  // A record is a directory (a journal that keeps every segment): made now, so that a
+  // path that cannot be one is said at start.
+  for (const auto& [flag, dir] : {std::pair{"--record", options.record_path}, std::pair{"--record-dir", options.record_dir}}) {
+    if (dir.empty()) continue;
     std::error_code ec;
-    std::filesystem::create_directories(options.record_dir, ec);
-    if (ec || !std::filesystem::is_directory(options.record_dir))
-      return fail("--record-dir: cannot make directory " + options.record_dir + (ec ? ": " + ec.message() : ""));
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+      return fail(std::string(flag) + ": cannot make directory " + dir + (ec ? ": " + ec.message() : ""));
   }
 
   server::init_logging(options.log_level, options.log_format);
@@ -124,7 +121,7 @@ int main(int argc, char** argv) {
   if (auto resumed_cfg = server::resumed_config(reads)) config = *resumed_cfg;
   server::GameHost host(options, config, protocol::random_key());
   if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
-  if (record.is_open()) host.record_to(record, FTS_VERSION);
+  if (!options.record_path.empty()) host.record_to(options.record_path, FTS_VERSION);
   if (journal_root) {
     host::JournalConfig jc;
     jc.dir = options.journal_dir;
@@ -141,6 +138,6 @@ int main(int argc, char** argv) {
                         {"sessions", sum.sessions}, {"threads", std::thread::hardware_concurrency()}, {"ms", ms},
                         {"cpu_ms", process_cpu_ms() - resume_cpu0}});
   }
-  const int rc = server::run_udp_server(options, host, record.is_open() ? &record : nullptr);
+  const int rc = server::run_udp_server(options, host);
   return rc;
 }

@@ -62,10 +62,10 @@ GameHost::GameHost(const Options& options, const sim::MatchConfig& config, const
       no_match_(sim::make_match(config, options.seed)),
       pool_(options.threads) {}
 
-void GameHost::record_to(std::ostream& out, const std::string& version) {
-  first_record_ = &out;
+void GameHost::record_to(const std::string& dir, const std::string& version) {
+  first_record_ = dir;
   version_ = version;
-  if (auto it = rooms_.find(1); it != rooms_.end()) it->second->record_to(out, version);
+  if (auto it = rooms_.find(1); it != rooms_.end()) it->second->record_to(dir, version);
 }
 
 void GameHost::record_dir(const std::string& dir, const std::string& version) {
@@ -122,13 +122,11 @@ std::size_t GameHost::rooms_made_by(const std::string& host) const {
 Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
                           const sim::MatchConfig& config) {
   auto room = std::make_unique<Room>(id, code, is_private, seed, options_, config);
-  if (!record_dir_.empty()) {
-    const std::string path = (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id) + ".jsonl")).string();
-    if (!room->record_to(path, version_))
-      log_record(spdlog::level::err, "record_failed", {{"room", id}, {"path", path}});
-  } else if (id == 1 && first_record_) {
-    room->record_to(*first_record_, version_);
-  }
+  const std::string record = !record_dir_.empty() ? (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id))).string()
+                             : id == 1                ? first_record_
+                                                      : std::string();
+  if (!record.empty() && !room->record_to(record, version_))
+    log_record(spdlog::level::err, "record_failed", {{"room", id}, {"path", record}});
   ++rooms_made_;
   room->count_into(&stats_.totals);
   log_record(spdlog::level::info, "room_open",

@@ -56,9 +56,9 @@ class GameHost {
  public:
   GameHost(const Options& options, const sim::MatchConfig& config, const protocol::ServerKey& key);
 
-  // Writes the input log and hashes of the first room (id 1) to `out` (--record).
-  void record_to(std::ostream& out, const std::string& version);
-  // Writes each room's input log to dir/room-<id>.jsonl (--record-dir).
+  // Records the first room (id 1) into the directory `dir` (--record; Room::record_to).
+  void record_to(const std::string& dir, const std::string& version);
+  // Records each room into dir/room-<id>/ (--record-dir).
   void record_dir(const std::string& dir, const std::string& version);
 
   void receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
@@ -168,7 +168,7 @@ class GameHost {
   std::optional<host::JournalConfig> journal_base_;  // journal_rooms(): dir is the root
   std::vector<std::unique_ptr<host::JournalWriter>> closing_journals_;
   Bans bans_;
-  std::ostream* first_record_ = nullptr;
+  std::string first_record_;  // --record: room 1's record directory
   std::string record_dir_;
   std::string version_;
   std::uint64_t stalled_logged_ms_ = 0;

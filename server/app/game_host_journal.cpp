@@ -52,6 +52,7 @@ GameHost::JournalHealth GameHost::journal_health() const {
 
 void GameHost::finish_journal(Room& r) {
   if (auto j = r.finish_journal()) closing_journals_.push_back(std::move(j));
+  if (auto j = r.finish_record()) closing_journals_.push_back(std::move(j));
 }
 
 bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_ms) {

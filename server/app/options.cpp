@@ -153,8 +153,8 @@ const std::vector<OptionDoc>& option_docs() {
       {"--model", "FTS_MODEL", "continuous", "physics model: seed, discrete or continuous"},
       {"--seed", "FTS_SEED", "1", "seed of the match's random generator"},
       {"--config", "FTS_CONFIG", "", "match configuration JSON (docker/server-config.example.json)"},
-      {"--record", "FTS_RECORD", "", "write the input log of the first room (id 1) to this file (not with --record-dir)"},
-      {"--replay", "FTS_REPLAY", "", "re-run a recorded input log, check every hash, exit"},
+      {"--record", "FTS_RECORD", "", "record the first room (id 1) into this directory, a journal keeping every segment (not with --record-dir)"},
+      {"--replay", "FTS_REPLAY", "", "re-run a record (a journal directory, or a record file of format 1), check every hash, exit"},
       {"--log-level", "FTS_LOG_LEVEL", "info", "trace, debug, info, warn, error or off"},
       {"--log-format", "FTS_LOG_FORMAT", "text", "text or json (one JSON record per line)"},
       {"--timeout-ms", "FTS_TIMEOUT_MS", "10000", "silence after which a client is dropped (ms)"},
@@ -176,7 +176,7 @@ const std::vector<OptionDoc>& option_docs() {
       {"--threads", "FTS_THREADS", "0", "threads that step the rooms; 0: every core the process may use (0..256)"},
       {"--room-idle-ms", "FTS_ROOM_IDLE_MS", "60000", "a room with nobody connected this long is closed (ms)"},
       {"--max-spectators", "FTS_MAX_SPECTATORS", "8", "spectators per room (0..64)"},
-      {"--record-dir", "FTS_RECORD_DIR", "", "write each room's input log to DIR/room-<id>.jsonl (not with --record)"},
+      {"--record-dir", "FTS_RECORD_DIR", "", "record each room into DIR/room-<id>/, a journal keeping every segment (not with --record)"},
       {"--console-socket", "FTS_CONSOLE_SOCKET", "", "serve the host's console on this UNIX socket (mode 0600)"},
   };
   return docs;
@@ -248,10 +248,10 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   }
   if (o.resume && o.journal_dir.empty()) return OptionError{"--resume: needs --journal-dir DIR (where the journals are)"};
   // Refused rather than honoured: room 1 would need two recorders, and --record-dir
-  // already writes room 1 (DIR/room-1.jsonl). Checked before any file is opened.
+  // already records room 1 (DIR/room-1/). Checked before any directory is made.
   if (!o.record_path.empty() && !o.record_dir.empty())
-    return OptionError{"--record FILE and --record-dir DIR (or FTS_RECORD and FTS_RECORD_DIR) cannot be used together: "
-                       "--record-dir already records room 1 as DIR/room-1.jsonl; give one of them"};
+    return OptionError{"--record PATH and --record-dir DIR (or FTS_RECORD and FTS_RECORD_DIR) cannot be used together: "
+                       "--record-dir already records room 1 as DIR/room-1; give one of them"};
   if (!o.metrics_address.empty() &&
       o.metrics_address.substr(o.metrics_address.rfind(':') + 1) == std::to_string(o.port))
     return OptionError{"--metrics: must not be the game port " + std::to_string(o.port) + ", got \"" +

@@ -44,16 +44,32 @@ Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t se
   ticks_per_snapshot_ = std::max<std::uint32_t>(1, options.tick_rate_hz / std::max<std::uint32_t>(1, options.snapshot_rate_hz));
 }
 
-bool Room::record_to(const std::string& path, const std::string& version) {
-  record_file_.open(path);
-  if (!record_file_) return false;
-  record_path_ = path;
-  record_to(record_file_, version);
+bool Room::record_to(const std::string& dir, const std::string& version) {
+  std::error_code ec;
+  for (const auto& [n, path] : host::list_segments(dir)) std::filesystem::remove(path, ec);  // a record starts afresh
+  host::JournalConfig c;
+  c.dir = dir;
+  c.room = code_;
+  c.room_id = id_;
+  c.is_private = private_;
+  c.version = version;
+  c.seed = seed_;
+  c.keep_all = true;
+  recorder_ = std::make_unique<host::JournalWriter>(std::move(c), stepper_.match().cfg, stepper_.match(),
+                                                    stepper_.event_seq(), std::vector<host::JournalSession>{});
+  if (!recorder_->stats().error.empty()) {
+    recorder_.reset();
+    return false;
+  }
+  record_path_ = dir;
   return true;
 }
 
-void Room::record_to(std::ostream& out, const std::string& version) {
-  recorder_ = std::make_unique<room::RecordWriter>(out, seed_, stepper_.match().cfg, version);
+std::unique_ptr<host::JournalWriter> Room::finish_record() {
+  if (!recorder_) return nullptr;
+  recorder_->hash_now(stepper_.match(), stepper_.event_seq());
+  recorder_->finish();
+  return std::move(recorder_);
 }
 
 std::string Room::shown_name(std::uint32_t player_id, const std::string& fallback) const {
@@ -235,7 +251,7 @@ void Room::step(std::uint64_t now_ms) {
   if (recorder_) recorder_->inputs(stepper_.match().tick, in);
   if (journal_) journal_->inputs(stepper_.match().tick, in);
   stepped_ = stepper_.step(in);
-  if (recorder_) recorder_->stepped(stepper_.match());
+  if (recorder_) recorder_->stepped(stepper_.match(), stepper_.event_seq());
   if (journal_) journal_->stepped(stepper_.match(), stepper_.event_seq());
 }
 
@@ -258,7 +274,7 @@ void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<
 }
 
 void Room::seal() {
-  if (recorder_ && stepper_.match().tick % room::kRecordHashEvery != 0) recorder_->hash_line(stepper_.match());
+  if (recorder_) recorder_->hash_now(stepper_.match(), stepper_.event_seq());
   flush();
 }
 

@@ -50,9 +50,13 @@ class Room {
   Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t seed, const Options& options,
        const sim::MatchConfig& config);
 
-  // Writes the input log and hashes to `path` from now on (false: cannot open it).
-  bool record_to(const std::string& path, const std::string& version);
-  void record_to(std::ostream& out, const std::string& version);
+  // Records the match from now on into the directory `dir`: a journal that keeps every
+  // segment (host/journal.hpp), written by its own thread, never by the tick; segments
+  // of an earlier record there are removed first. False: the directory cannot be used.
+  bool record_to(const std::string& dir, const std::string& version);
+  // The room closes: the record's last hash line (the state it ends on), then its writer,
+  // finishing on its own thread (nullptr without a record).
+  std::unique_ptr<host::JournalWriter> finish_record();
 
   // What the endpoint reported for this room's sessions since the last tick.
   void on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
@@ -132,9 +136,8 @@ class Room {
   sim::TickInputs pending_;  // connection events and commands for the next step
   std::map<std::uint32_t, Held> held_;
   InputTiming timing_;
-  std::ofstream record_file_;
   std::string record_path_;
-  std::unique_ptr<room::RecordWriter> recorder_;
+  std::unique_ptr<host::JournalWriter> recorder_;
   std::uint32_t ticks_per_snapshot_ = 5;
   RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
   std::unique_ptr<host::JournalWriter> journal_;

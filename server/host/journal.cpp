@@ -142,6 +142,7 @@ void JournalWriter::checkpoint(const sim::MatchState& state, std::uint32_t event
     ++pushed_;
   }
   next_checkpoint_tick_ = state.tick + cfg_.checkpoint_every_ticks;
+  last_hash_tick_ = state.tick;
   wake_.notify_one();
 }
 
@@ -169,7 +170,13 @@ void JournalWriter::stepped(const sim::MatchState& state, std::uint32_t event_se
     again = dropping_ || stats_.failing;
   }
   if (state.tick >= next_checkpoint_tick_ || again) return checkpoint(state, event_seq);
-  if (state.tick % cfg_.hash_every_ticks == 0) push(Hash{state.tick, sim::match_hash(state), event_seq});
+  if (state.tick % cfg_.hash_every_ticks == 0) hash_now(state, event_seq);
+}
+
+void JournalWriter::hash_now(const sim::MatchState& state, std::uint32_t event_seq) {
+  if (state.tick == last_hash_tick_) return;
+  last_hash_tick_ = state.tick;
+  push(Hash{state.tick, sim::match_hash(state), event_seq});
 }
 
 void JournalWriter::finish() {
@@ -251,6 +258,7 @@ void JournalWriter::remove_journal() {
 }
 
 void JournalWriter::remove_old_segments() {
+  if (cfg_.keep_all) return;
   const auto segments = list_segments(cfg_.dir);
   if (segments.size() <= cfg_.keep_segments) return;
   std::uint64_t removed = 0;
@@ -417,7 +425,7 @@ void JournalWriter::run() {
     std::lock_guard lock(mu_);
     finish = finish_;
   }
-  if (finish) remove_journal();
+  if (finish && !cfg_.keep_all) remove_journal();
   {
     std::lock_guard lock(mu_);
     exited_ = true;

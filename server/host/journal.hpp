@@ -21,6 +21,8 @@
 // the room to the last record before the drop. A new segment is a checkpoint; once it is
 // durable, segments older than the newest keep_segments are removed, so the disk holds
 // about keep_segments x checkpoint_every_ticks of play per room, whatever the match length.
+// A record (keep_all, --record / --record-dir) is the same journal keeping every segment
+// and its directory: the room's whole history, which fts-server --replay reads.
 // A room that closes finishes its journal (finish()): the directory is renamed to
 // <dir>.closed (one atomic step: a crash before it resumes the room, after it does not)
 // and removed.
@@ -71,6 +73,7 @@ struct JournalConfig {
   std::int64_t hash_every_ticks = 10;           // a hash line (also the resume's rollback points)
   std::size_t max_queued = 16384;               // records waiting for the writer; full: dropped
   std::size_t keep_segments = 2;                // >= 1
+  bool keep_all = false;  // a record: every segment kept, and the directory when the room closes
 };
 
 struct JournalStats {
@@ -110,6 +113,9 @@ class JournalWriter {
   void released(std::int64_t tick, std::uint32_t player);
   // After a step: the hash line when due, the checkpoint (a new segment) when due.
   void stepped(const sim::MatchState& state, std::uint32_t event_seq);
+  // A hash line of the state now, whatever its tick, unless one was written for it (a room
+  // that closes ends its record with it, so a replay ends on the hash the room ended on).
+  void hash_now(const sim::MatchState& state, std::uint32_t event_seq);
   // Blocks until everything queued so far is written and synced (tests, shutdown).
   void flush();
   // The room closed: nothing more is journaled; the writer thread writes what is queued,
@@ -162,6 +168,7 @@ class JournalWriter {
   // Tick thread.
   std::map<std::uint32_t, JournalSession> sessions_;
   std::int64_t next_checkpoint_tick_ = 0;
+  std::int64_t last_hash_tick_ = -1;  // the tick of the newest hash line or checkpoint
   bool dropping_ = false;  // the queue overflowed: nothing is queued until the next checkpoint
   // Shared.
   mutable std::mutex mu_;

@@ -27,8 +27,8 @@ std::int64_t now_ns() {
 
 class Loop {
  public:
-  Loop(const Options& o, GameHost& host, std::ostream* record)
-      : options_(o), host_(host), record_(record), socket_(io_), tick_timer_(io_), stats_timer_(io_),
+  Loop(const Options& o, GameHost& host)
+      : options_(o), host_(host), socket_(io_), tick_timer_(io_), stats_timer_(io_),
         // SIGHUP (the terminal closed, or a supervisor's stop) ends the server like
         // SIGTERM: clients are told. It does not reload the configuration.
         signals_(io_, SIGINT, SIGTERM, SIGHUP),
@@ -103,7 +103,6 @@ class Loop {
     log_record(spdlog::level::info, "shutdown", {{"reason", "drained"}});
     host_.shutdown(now_ms());
     flush();
-    if (record_) record_->flush();
     io_.stop();
   }
 
@@ -126,7 +125,6 @@ class Loop {
     log_record(spdlog::level::info, "shutdown", why);
     host_.shutdown(now_ms());
     flush();
-    if (record_) record_->flush();
     io_.stop();
   }
 
@@ -232,7 +230,6 @@ class Loop {
 
   const Options& options_;
   GameHost& host_;
-  std::ostream* record_;
   asio::io_context io_;
   UdpSocket socket_;
   asio::steady_timer tick_timer_;
@@ -251,8 +248,8 @@ class Loop {
 
 }  // namespace
 
-int run_udp_server(const Options& options, GameHost& host, std::ostream* record) {
-  Loop loop(options, host, record);
+int run_udp_server(const Options& options, GameHost& host) {
+  Loop loop(options, host);
   return loop.run();
 }
 

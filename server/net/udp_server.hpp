@@ -11,6 +11,7 @@ namespace fts::server {
 
 // Binds, logs the ready line, runs until SIGINT/SIGTERM/SIGHUP, tells the clients, returns 0.
 // Returns 1 (after logging why) when the address cannot be bound.
-int run_udp_server(const Options& options, GameHost& host, std::ostream* record);
+// The rooms' records are flushed by the host's shutdown (their journals' writers).
+int run_udp_server(const Options& options, GameHost& host);
 
 }  // namespace fts::server

@@ -15,7 +15,7 @@ usage: FTS_BIN_DIR=build python3 tests/integration/soak_matrix.py [CELL ...|all]
   CELL: clean loss5 loss20 reorder30 dup jitter link_down (default: FTS_SOAK_CELLS, a comma
   list, or all). --out appends one row per cell to CSV. Exit 1 if any cell lost anything.
 """
-import argparse, csv, json, os, re, select, signal, statistics, subprocess, sys, tempfile, time
+import argparse, csv, json, os, re, select, shutil, signal, statistics, subprocess, sys, tempfile, time
 from datetime import datetime
 
 from harness import BIN, HERE, Failure, Server, check, finish_bots, start_bots, wait_for
@@ -137,10 +137,13 @@ def server_book(text):
 
 
 def applied_commands(record_dir):
-    """Per player: the commands its room's match was given (the input records)."""
+    """Per player: the commands its room's match was given (the input records: one journal
+    directory per room, keeping every segment)."""
     applied = {}
-    for name in os.listdir(record_dir):
-        with open(os.path.join(record_dir, name)) as f:
+    segments = [os.path.join(record_dir, room, seg) for room in sorted(os.listdir(record_dir))
+                for seg in sorted(os.listdir(os.path.join(record_dir, room))) if seg.endswith(".jsonl")]
+    for path in segments:
+        with open(path) as f:
             for line in f:
                 if '"cmd"' not in line:
                     continue
@@ -295,9 +298,7 @@ def run_cell(name, minutes, seed, rss_log=None):
         found = audit_bot(b, book, applied)
         mismatched += bool(found)
         problems += [f"{b['name']} (player {b['player_id']}): {p}" for p in found]
-    for f in os.listdir(record_dir):
-        os.unlink(os.path.join(record_dir, f))
-    os.rmdir(record_dir)
+    shutil.rmtree(record_dir)
     purchases = sum(1 for p in players for e in book.get(p, []) if e[2] == "buy")
     earned = sum(e[1] for p in players for e in book.get(p, []) if e[2] == "earn")
     if purchases == 0 or earned == 0:

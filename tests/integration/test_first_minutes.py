@@ -36,7 +36,7 @@ def test_record_flags():
     """--record FILE with --record-dir DIR (flags, or a flag and a variable) exits 2 at
     startup with a message naming both flags; neither FILE nor DIR is made."""
     d = tempfile.mkdtemp(prefix="fts-recflags-")
-    record, record_dir = os.path.join(d, "room1.jsonl"), os.path.join(d, "rooms")
+    record, record_dir = os.path.join(d, "room1"), os.path.join(d, "rooms")
     forms = [(["--record", record, "--record-dir", record_dir], {}),
              (["--record-dir", record_dir], {"FTS_RECORD": record}),
              (["--record", record], {"FTS_RECORD_DIR": record_dir})]
@@ -50,9 +50,9 @@ def test_record_flags():
         check("--record " in p.stderr and "--record-dir" in p.stderr, f"{args} {env}: message {p.stderr.strip()!r}")
         check(not os.path.exists(record) and not os.path.exists(record_dir),
               f"{args} {env}: a refused start wrote {os.listdir(d)}")
-    # Each alone still records (room 1 to FILE; every room under DIR).
-    for args, path in ((["--record", record], record),
-                       (["--record-dir", record_dir], os.path.join(record_dir, "room-1.jsonl"))):
+    # Each alone still records (room 1 into PATH; every room under DIR), as journals.
+    for args, path in ((["--record", record], os.path.join(record, "journal-000001.jsonl")),
+                       (["--record-dir", record_dir], os.path.join(record_dir, "room-1", "journal-000001.jsonl"))):
         with Server(*args) as srv:
             finish_bots(start_bots("--connect", srv.address, "--name", "rec", "--behavior", "idle",
                                    "--duration", "1"), 20)

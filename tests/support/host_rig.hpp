@@ -4,6 +4,9 @@
 // their own steps.
 #pragma once
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -14,6 +17,19 @@
 #include "fts/protocol/client.hpp"
 
 namespace fts::test {
+
+// A room's record directory (GameHost::record_to), removed at the end of the test.
+struct RecordDir {
+  std::filesystem::path path;
+  explicit RecordDir(const std::string& name)
+      : path(std::filesystem::temp_directory_path() / ("fts-record-" + std::to_string(::getpid()) + "-" + name)) {
+    std::filesystem::remove_all(path);
+  }
+  ~RecordDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
 
 struct HostRig {
   server::Options options;

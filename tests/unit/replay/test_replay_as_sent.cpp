@@ -28,8 +28,8 @@ TEST_CASE("Replay: every snapshot a client was sent is the one the replay builds
   test::HostRig rig;
   rig.options.seed = 21;
   rig.start();
-  std::stringstream record;
-  rig.host->record_to(record, "test");
+  test::RecordDir record("as-sent");
+  rig.host->record_to(record.path.string(), "test");
   auto& a = rig.add("ann");
   auto& b = rig.add("bob");
   REQUIRE(rig.connect_all());
@@ -68,8 +68,8 @@ TEST_CASE("Replay: every snapshot a client was sent is the one the replay builds
   REQUIRE(received.size() > 300);
   REQUIRE(events_seen > 0);
 
-  std::stringstream record_copy(record.str());
-  auto tape = client::load_tape(record);
+  rig.host.reset();  // the record's writer thread writes what is queued, then stops
+  auto tape = client::load_history(record.path);
   REQUIRE(std::holds_alternative<client::Tape>(tape));
   client::Replay replay(std::move(std::get<client::Tape>(tape)));
   std::size_t compared = 0, with_events = 0;
@@ -97,7 +97,7 @@ TEST_CASE("Replay: every snapshot a client was sent is the one the replay builds
   // The late joiner's full snapshot carries the recent window: the replay's, exactly.
   REQUIRE(late_first.tick > 0);
   CHECK_FALSE(late_first.events.empty());
-  client::Replay again(std::move(std::get<client::Tape>(client::load_tape(record_copy))));
+  client::Replay again(std::move(std::get<client::Tape>(client::load_history(record.path))));
   again.run_to(late_first.tick);
   CHECK(full_bytes(protocol::quantize(again.snapshot())) == full_bytes(late_first));
   CHECK(replay.mismatch().empty());

@@ -45,7 +45,7 @@ TEST_CASE("Server options: bad values name the flag or variable and the value", 
   CHECK(error_of({"--port"}) == "--port: needs a value");
   CHECK(error_of({"stray"}) == R"(unexpected argument "stray" (see --help))");
   // Issue 26: both recorders at once left FILE empty without a word.
-  CHECK_THAT(error_of({"--record", "a.jsonl", "--record-dir", "d"}), Catch::StartsWith("--record FILE and --record-dir DIR"));
+  CHECK_THAT(error_of({"--record", "a.jsonl", "--record-dir", "d"}), Catch::StartsWith("--record PATH and --record-dir DIR"));
   CHECK_THAT(error_of({"--record-dir", "d"}, {{"FTS_RECORD", "a.jsonl"}}), Catch::Contains("cannot be used together"));
 }
 

@@ -5,7 +5,9 @@
 //   a journal (server/host/journal.hpp): a directory of segments, each a header and a
 //     checkpoint, then input, hash (every 10 ticks) and session lines; one that keeps
 //     every segment from the first is a whole history;
-//   the record of format 1 (one file, below), written by RecordWriter.
+//   the record of format 1 (one file, below), which servers wrote before issue 38.
+// The one writer is the journal's (server/host/journal.hpp, a record keeps every segment);
+// RecordWriter writes format 1 only so that tests can make such files.
 //
 //   {"fts_record":1,"version":"0.1.0","seed":7,"config":{...MatchConfig...}}
 //   {"tick":0,"joins":[{"player":1,"name":"ann"}]}
