@@ -16,10 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-// A journal's ticks come in order and close together (a hash line every few ticks): a
-// jump beyond this is a damaged file, not hours of empty ticks to simulate.
-constexpr std::int64_t kMaxGapTicks = 10'000'000;
-
 std::string dump_head(const json& head) { return head.contains("config") ? head.at("config").dump() : ""; }
 
 // Reads one segment's lines into the tape; "" or what is wrong, naming the line.
@@ -51,26 +47,11 @@ std::string read_segment(std::istream& in, const std::string& file, bool first, 
         continue;
       }
       if (j->contains("session") || j->contains("released")) continue;  // a resume's, not the match's
-      const bool hash = j->contains("hash");
-      std::int64_t tick = 0;
-      if (hash) {
-        tick = j->at("tick").get<std::int64_t>();
-        if (first && no == 2 && tick != 0)
-          return where + "the first checkpoint is at tick " + std::to_string(tick) +
-                 ", not 0: the journal does not hold the match from its start";
-        if (tick < t.last_tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-        t.hashes.push_back({tick, j->at("hash").get<std::string>(), no, file});
-      } else {
-        auto parsed = input_line_from_json(*j);
-        if (auto* err = std::get_if<std::string>(&parsed)) return where + *err;
-        auto& il = std::get<InputLine>(parsed);
-        tick = il.tick;
-        if (tick < t.last_tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-        t.lines.push_back({il.tick, std::move(il.inputs)});
-      }
-      if (tick - t.last_tick > kMaxGapTicks)
-        return where + "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(t.last_tick);
-      t.last_tick = std::max(t.last_tick, tick + (hash ? 0 : 1));
+      if (first && no == 2 && j->at("tick").get<std::int64_t>() != 0)
+        return where + "the first checkpoint is at tick " + j->at("tick").dump() +
+               ", not 0: the journal does not hold the match from its start";
+      // A checkpoint or hash line (its hash, its tick), or an input line.
+      if (auto err = append_line(t, *j, no, file); !err.empty()) return where + err;
     } catch (const std::exception& e) {
       return where + e.what();
     }

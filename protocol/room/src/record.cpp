@@ -12,8 +12,8 @@
 namespace fts::room {
 
 namespace {
-// A record's ticks come in order and close together (a hash line every 100 ticks): a
-// jump beyond this is a damaged file, not hours of empty ticks to simulate.
+// A history's ticks come in order and close together (a hash line every 10 or 100
+// ticks): a jump beyond this is a damaged file, not hours of empty ticks to simulate.
 constexpr std::int64_t kMaxGapTicks = 10'000'000;
 }  // namespace
 
@@ -74,29 +74,33 @@ std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_line
     // "hash" took a player named hash for a hash line.)
     auto j = parse_json(line, why);
     if (!j) return where + "invalid JSON: " + why;
-    std::int64_t tick = 0;
-    const bool hash = j->is_object() && j->contains("hash");
-    if (hash) {
-      if (j->size() != 2 || !j->contains("tick") || !(*j)["tick"].is_number_integer() || !(*j)["hash"].is_string())
-        return where + "a hash line needs an integer tick and a string hash, and nothing else";
-      tick = (*j)["tick"].get<std::int64_t>();
-      if (tick < t.last_tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-      if (tick - t.last_tick > kMaxGapTicks)
-        return where + "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(t.last_tick);
-      t.hashes.push_back({tick, (*j)["hash"].get<std::string>(), no, {}});
-    } else {
-      auto parsed = input_line_from_json(*j);
-      if (auto* err = std::get_if<std::string>(&parsed)) return where + *err;
-      auto& il = std::get<InputLine>(parsed);
-      tick = il.tick;
-      if (tick < t.last_tick) return where + "tick " + std::to_string(tick) + " goes back in time";
-      if (tick - t.last_tick > kMaxGapTicks)
-        return where + "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(t.last_tick);
-      t.lines.push_back({il.tick, std::move(il.inputs)});
-    }
-    t.last_tick = std::max(t.last_tick, tick + (hash ? 0 : 1));
+    if (j->is_object() && j->contains("hash") &&
+        (j->size() != 2 || !j->contains("tick") || !(*j)["tick"].is_number_integer() || !(*j)["hash"].is_string()))
+      return where + "a hash line needs an integer tick and a string hash, and nothing else";
+    if (auto err = append_line(t, *j, no, ""); !err.empty()) return where + err;
   }
   return t;
+}
+
+std::string append_line(Tape& t, const nlohmann::json& j, std::size_t line, const std::string& file) {
+  std::int64_t tick = 0;
+  const bool hash = j.is_object() && j.contains("hash");
+  InputLine il;
+  if (hash) {
+    tick = j.at("tick").get<std::int64_t>();
+  } else {
+    auto parsed = input_line_from_json(j);
+    if (auto* err = std::get_if<std::string>(&parsed)) return *err;
+    il = std::move(std::get<InputLine>(parsed));
+    tick = il.tick;
+  }
+  if (tick < t.last_tick) return "tick " + std::to_string(tick) + " goes back in time";
+  if (tick - t.last_tick > kMaxGapTicks)
+    return "tick " + std::to_string(tick) + " is too far ahead of " + std::to_string(t.last_tick);
+  if (hash) t.hashes.push_back({tick, j.at("hash").get<std::string>(), line, file});
+  else t.lines.push_back({il.tick, std::move(il.inputs)});
+  t.last_tick = std::max(t.last_tick, tick + (hash ? 0 : 1));
+  return {};
 }
 
 std::variant<ReplayReport, std::string> replay_record(std::istream& in) {

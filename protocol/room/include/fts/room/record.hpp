@@ -24,6 +24,8 @@
 #include <variant>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "fts/sim/match.hpp"
 
 namespace fts::room {
@@ -81,6 +83,9 @@ struct Tape {
 // Reads a whole record; an error names the line (and a record of another format its
 // format). Bounded: at most max_lines lines.
 std::variant<Tape, std::string> load_tape(std::istream& in, std::size_t max_lines = 5'000'000);
+// Adds one line of a history to the tape, in tick order: a line with "hash" (its tick and
+// hash) or an input line. "" or why not (the caller names the line).
+std::string append_line(Tape& t, const nlohmann::json& j, std::size_t line, const std::string& file);
 // Reads a history: a journal directory (every segment from the first; a torn last line,
 // a crash's, ends it) or a record file. An error names the file and line.
 std::variant<Tape, std::string> load_history(const std::filesystem::path& path, std::size_t max_lines = 5'000'000);
