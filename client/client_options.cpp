@@ -9,6 +9,7 @@
 #include "fts/io/address.hpp"
 #include "fts/protocol/constants.hpp"
 #include "ui/sanitize.hpp"
+#include "ui/screen.hpp"
 
 namespace fts::client {
 namespace proto = fts::protocol;
@@ -34,7 +35,14 @@ constexpr const char* kUsage =
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
     "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
-    "  --replay PATH           play back a server record (fts-server --record PATH):\n"
+    "  --glyphs auto|braille|ascii  the field in braille dots (finer: needs UTF-8 and
+"
+    "                          colour) or in ASCII; auto (default) picks braille when the
+"
+    "                          locale is UTF-8 and TERM is not dumb, linux or vt*
+"
+    "  --replay PATH           play back a server record (fts-server --record PATH):
+"
     "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
     "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"
@@ -80,6 +88,11 @@ bool idle_over(const Options& o, std::uint64_t idle_ms) {
 
 std::string idle_text(const Options& o) { return "no key for " + std::to_string(o.idle_exit_s) + " s: goodbye"; }
 
+bool fine_field(const Options& o) {
+  if (o.glyphs != "auto") return o.glyphs == "braille";
+  return braille_wanted(std::getenv("LC_ALL"), std::getenv("LC_CTYPE"), std::getenv("LANG"), std::getenv("TERM"));
+}
+
 int parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"", "fts-client"};
   app.set_help_flag();
@@ -93,7 +106,7 @@ int parse_options(int argc, char** argv, Options& o) {
   const CLI::Option* create = app.add_flag("--create");
   const CLI::Option* no_predict = app.add_flag("--no-predict");
   for (const char* flag : {"--connect", "--name", "--encoding", "--interp-delay-ms", "--fps", "--replay", "--join", "--spectate",
-                           "--stats-file", "--name-file", "--idle-exit-s"})
+                           "--stats-file", "--name-file", "--idle-exit-s", "--glyphs"})
     app.add_option(flag);
   try {
     app.parse(argc, argv);
@@ -152,6 +165,11 @@ int parse_options(int argc, char** argv, Options& o) {
       return usage_error(std::string(num.flag) + " is " + std::to_string(num.min) + ".." + std::to_string(num.max) +
                          ", got '" + *v + "'");
     num.store(o, static_cast<int>(n));
+  }
+  if (const auto v = value("--glyphs")) {
+    if (*v != "auto" && *v != "braille" && *v != "ascii")
+      return usage_error("--glyphs is auto, braille or ascii, got '" + *v + "'");
+    o.glyphs = *v;
   }
   if (const auto v = value("--name-file")) {
     if (v->empty()) return usage_error("--name-file needs a path");

@@ -31,7 +31,13 @@ struct Options {
   // --idle-exit-s N: with no key for N s (at a prompt or in the game) the client ends
   // with kIdleExitCode; 0: never (the server's own idle kick is another matter).
   int idle_exit_s = 0;
+  // --glyphs auto|braille|ascii: the field in braille dots or in ASCII; auto asks the
+  // locale and TERM (braille_wanted).
+  std::string glyphs = "auto";
 };
+
+// Whether the field is drawn in braille dots for --glyphs and the environment.
+bool fine_field(const Options& o);
 
 // fts-client's exit status after --idle-exit-s ran out (0 quit, 1 error, 2 bad option).
 inline constexpr int kIdleExitCode = 3;

@@ -53,6 +53,7 @@ class Game {
         store_(state_dir(std::getenv("XDG_STATE_HOME"), std::getenv("HOME")), opts_.host + ":" + opts_.port),
         conn_(connection_config(opts_, opts_.fresh ? std::nullopt : store_.load()), /*resume_when_lost=*/true) {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
+    view_.fine = fine_field(opts_);
     net_ = NetTiming(opts_.predict);
     conn_.connect(now_ms());
     last_rx_ms_ = now_ms();
@@ -220,6 +221,7 @@ class Game {
           const std::uint32_t rid = conn_.endpoint().send_command(proto::CommandOp::buy, a.item, now);
           pending_buys_[rid] = a.item;
           view_.shop_result = std::string("Buying ") + a.item + "...";
+          view_.shop_result_ms = now;
         }
         break;
       case ActionKind::ready:
@@ -325,6 +327,7 @@ class Game {
       const std::string msg = sanitize(r.message, 120);
       view_.shop_result = r.ok ? (msg.empty() ? std::string("Bought ") + it->second + "." : msg)
                                : "Cannot buy: " + refusal_text(r.code, r.message, it->second, me) + ".";
+      view_.shop_result_ms = now;
       pending_buys_.erase(it);
     }
     for (const auto& c : endpoint.take_chats()) push_log(chat_log_line(c, now, kChatMaxChars));
@@ -380,7 +383,10 @@ class Game {
       tally_event(view_.scores, e);
       const std::string line = describe_event(e, s, view_.my_player_id, &view_.names);
       if (!line.empty()) note(line);
-      if (e.kind == proto::EventKind::purchase && e.a == view_.my_player_id) view_.shop_result = line;
+      if (e.kind == proto::EventKind::purchase && e.a == view_.my_player_id) {
+        view_.shop_result = line;
+        view_.shop_result_ms = now_ms();
+      }
       if (e.kind == proto::EventKind::level_started) view_.shop_result.clear();
     }
   }

@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   if (const int code = parse_options(argc, argv, opts); code >= 0) return code;
   if (!opts.replay.empty()) {
     std::string message;
-    const int code = run_replay(opts.replay, opts.kitty, message);
+    const int code = run_replay(opts.replay, opts.kitty, fine_field(opts), message);
     if (!message.empty()) std::cerr << "fts-client: " << message << "\n";
     return code;
   }
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   if (opts.name.empty()) return 1;
   // The start screen: asked in the plain terminal, before the game takes it over.
   while (!opts.room) {
-    std::cout << start_menu_text() << "> " << std::flush;
+    std::cout << start_menu_text(term::size().cols) << "> " << std::flush;
     std::string line;
     if (!read_line(line, opts.idle_exit_s, timed_out)) return timed_out ? idle_end() : 1;
     const auto choice = parse_start_choice(line);

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "fts/room/text.hpp"
+#include "ui/hud.hpp"
 #include "ui/panel.hpp"
 
 namespace fts::client {
@@ -17,6 +18,8 @@ void Replay::restart() {
   next_hash_ = 0;
   carry_ticks_ = 0;
   fresh_.clear();
+  recent_.clear();
+  scores_.clear();
 }
 
 void Replay::step_once() {
@@ -25,7 +28,13 @@ void Replay::step_once() {
   const sim::TickInputs* in = &none;
   while (next_line_ < tape_.lines.size() && tape_.lines[next_line_].tick < state.tick) ++next_line_;
   if (next_line_ < tape_.lines.size() && tape_.lines[next_line_].tick == state.tick) in = &tape_.lines[next_line_++].inputs;
+  const std::size_t before = fresh_.size();
   room_.step(*in, &fresh_);
+  for (std::size_t i = before; i < fresh_.size(); ++i) {
+    tally_event(scores_, fresh_[i]);
+    recent_.push_back(fresh_[i]);
+    if (recent_.size() > kLogKeep) recent_.pop_front();
+  }
   if (fresh_.size() > 4 * room::kRecentEvents) fresh_.erase(fresh_.begin(), fresh_.end() - room::kRecentEvents);
   while (next_hash_ < tape_.hashes.size() && tape_.hashes[next_hash_].tick <= state.tick) {
     const room::TapeHash& h = tape_.hashes[next_hash_++];
@@ -44,8 +53,9 @@ void Replay::seek_level(std::int64_t level) {
   if (level <= 0) level = 1;
   if (state().level >= level) restart();
   while (!at_end() && !(state().level >= level && state().phase == sim::Phase::playing)) step_once();
-  fresh_.clear();  // a seek does not flood the log
+  fresh_.clear();  // a seek does not flood the log: replay_log shows the position's last lines
   carry_ticks_ = 0;
+  seeked_ = true;
 }
 
 void Replay::advance(std::uint64_t elapsed_ms) {
@@ -59,6 +69,22 @@ void Replay::advance(std::uint64_t elapsed_ms) {
 protocol::Snapshot Replay::snapshot() const { return room_.snapshot(); }
 
 std::vector<protocol::Event> Replay::take_events() { return std::exchange(fresh_, {}); }
+
+void replay_log(Replay& r, const protocol::Snapshot& snap, ViewState& view, std::uint64_t now_ms) {
+  const auto note = [&](std::string text) {
+    view.messages.push_back(LogLine{std::move(text), now_ms});
+    if (view.messages.size() > kLogKeep) view.messages.erase(view.messages.begin());
+  };
+  std::vector<protocol::Event> events = r.take_events();
+  if (r.take_seeked()) {
+    view.messages.clear();
+    events.assign(r.recent().begin(), r.recent().end());
+  }
+  view.scores = r.scores();
+  for (const auto& e : events)
+    if (std::string line = describe_event(e, snap, 0, &view.names); !line.empty()) note(std::move(line));
+  for (const auto& p : snap.players) view.names[p.id] = p.name;
+}
 
 namespace {
 

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <deque>
 #include <istream>
+#include <map>
+#include <utility>
 #include <string>
 #include <variant>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "fts/room/record.hpp"
 #include "fts/room/stepper.hpp"
 #include "fts/sim/match.hpp"
+#include "ui/view.hpp"
 
 namespace fts::client {
 
@@ -52,6 +55,12 @@ class Replay {
   protocol::Snapshot snapshot() const;
   // Events since the last call (for the message log and the scoreboard), oldest first.
   std::vector<protocol::Event> take_events();
+  // True once after each seek: the log starts again from the new position.
+  bool take_seeked() { return std::exchange(seeked_, false); }
+  // The score book up to the position (every event since the match's start tallied).
+  const std::map<std::uint32_t, Score>& scores() const { return scores_; }
+  // The last kLogKeep events up to the position, oldest first (the log after a seek).
+  const std::deque<protocol::Event>& recent() const { return recent_; }
   // "" or the first hash that differed ("tick 300: recorded ..., replayed ...").
   const std::string& mismatch() const { return mismatch_; }
 
@@ -67,8 +76,16 @@ class Replay {
   bool paused_ = false;
   double carry_ticks_ = 0;
   std::vector<protocol::Event> fresh_;
+  std::deque<protocol::Event> recent_;
+  std::map<std::uint32_t, Score> scores_;
+  bool seeked_ = false;
   std::string mismatch_;
 };
+
+// The replay's events into the view, each frame: the log and the score book follow the
+// position; after a seek the log is the position's latest lines, not the old ones
+// (issue 37: after `9` the log said "Level 1 started.").
+void replay_log(Replay& r, const protocol::Snapshot& snap, ViewState& view, std::uint64_t now_ms);
 
 // The footer of the replay screen: position, speed and the keys.
 std::string replay_footer(const Replay& r, int cols);

@@ -28,7 +28,7 @@ void note(ViewState& view, std::string text, std::uint64_t now) {
 
 }  // namespace
 
-int run_replay(const std::string& path, bool kitty, std::string& message) {
+int run_replay(const std::string& path, bool kitty, bool fine, std::string& message) {
   auto loaded = load_history(path);
   if (auto* err = std::get_if<std::string>(&loaded)) {
     // The reason quotes the file (its version string, the bytes JSON stopped at): a
@@ -43,6 +43,7 @@ int run_replay(const std::string& path, bool kitty, std::string& message) {
   }
   ViewState view;
   view.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
+  view.fine = fine;
   view.arena_width_u = replay.tape().config.arena_width_u;
   view.arena_height_u = replay.tape().config.arena_height_u;
   view.tick_rate_hz = replay.tape().config.tick_rate_hz;
@@ -75,12 +76,7 @@ int run_replay(const std::string& path, bool kitty, std::string& message) {
     replay.advance(now - last);
     last = now;
     protocol::Snapshot snap = replay.snapshot();
-    for (const auto& e : replay.take_events()) {
-      tally_event(view.scores, e);
-      const std::string line = describe_event(e, snap, 0, &view.names);
-      if (!line.empty()) note(view, line, now);
-    }
-    for (const auto& p : snap.players) view.names[p.id] = p.name;
+    replay_log(replay, snap, view, now);
     if (!replay.mismatch().empty() && !mismatch_told) {
       note(view, "The record differs from this build's match: " + replay.mismatch(), now);
       mismatch_told = true;

@@ -41,14 +41,10 @@ void Painter::paint(const Screen& screen, bool color) {
   std::string out;
   if (clear_) {
     out += "\x1b[0m\x1b[2J";
-    last_frame_.clear();
+    last_rows_.clear();
     clear_ = false;
   }
-  const std::string frame = to_ansi(screen, color);
-  if (frame != last_frame_) {
-    out += frame;
-    last_frame_ = frame;
-  }
+  out += repaint(screen, last_rows_, color);
   if (!out.empty()) write_all(out);
 }
 

@@ -29,7 +29,8 @@ class KeyReader {
 
 class Painter {
  public:
-  // Writes the frame unless it equals the last one; clears first after a resize.
+  // Writes the rows of the frame that differ from the last one's (all of them after a
+  // resize, which clears first): a ball moving a dot rewrites its rows, not the screen.
   void paint(const Screen& screen, bool color);
   // The size to draw the next frame at (noting a resize).
   TerminalSize size();
@@ -37,7 +38,7 @@ class Painter {
  private:
   TerminalSize size_{0, 0};
   bool clear_ = true;
-  std::string last_frame_;
+  std::vector<std::string> last_rows_;
 };
 
 }  // namespace fts::client::term

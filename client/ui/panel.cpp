@@ -19,6 +19,8 @@ namespace {
 constexpr Style kDim{Color::gray, Color::none, false, false, false};
 constexpr int kLegendTopMaxRows = 3;
 constexpr int kTopLogRows = 3;
+constexpr int kRoomyRows = 30;         // from this many rows the top layout's log keeps 3 rows
+constexpr int kSideMinFieldCols = 64;  // the side panel leaves the platform at least this wide
 constexpr int kShopMinCols = 58;  // the widest line of the shop's slide, with its margin
 
 std::string fit_name(const std::string& name, int width) {
@@ -80,6 +82,51 @@ std::vector<std::string> wrap(const std::string& text, int cols) {
   }
   out.push_back(rest);
   return out;
+}
+
+namespace {
+
+bool is_group_start(const std::string& line) {
+  return line.rfind("Level ", 0) == 0 || line.rfind("Current ", 0) == 0 ||
+         line.rfind("Bank Purchased", 0) == 0 || line.rfind("Press Enter", 0) == 0;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> shop_variants(const PlayerState& me, std::uint32_t level,
+                                                    const sim::ShopTerms& terms, int width) {
+  std::vector<std::string> lines;
+  for (const auto& l : shop_screen_lines(me, level, terms))
+    for (auto& part : wrap(l, width)) lines.push_back(std::move(part));
+  // The slide from the most spacious to the most compact: with blank lines between the
+  // groups; without them; without the Level/Coins/Lives lines the HUD repeats; without
+  // the items' explanations.
+  std::vector<std::vector<std::string>> variants(1);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (i > 0 && is_group_start(lines[i])) variants[0].emplace_back();
+    variants[0].push_back(lines[i]);
+  }
+  variants.push_back(lines);
+  variants.push_back(lines);
+  variants.back().erase(variants.back().begin(), variants.back().begin() + std::min<std::ptrdiff_t>(3, std::ssize(lines)));
+  variants.push_back(variants.back());
+  std::erase_if(variants.back(),
+                [](const std::string& l) { return l.rfind("Increases", 0) == 0 || l.rfind("Earns", 0) == 0; });
+  return variants;
+}
+
+int shop_rows_needed(const Snapshot& snap, const ViewState& view, int cols) {
+  const std::size_t board = scoreboard_lines(snap, view, false).size();
+  const PlayerState* me = find_player(snap, view.my_player_id);
+  constexpr int kResultAndReady = 2;
+  if (me == nullptr || (me->lives <= 0 && !me->alive)) return 4 + static_cast<int>(board) + kResultAndReady;
+  const std::vector<std::string> slide = shop_variants(*me, snap.level, view.shop_terms, std::max(cols - 3, 10)).front();
+  std::size_t text_w = 0;
+  for (const auto& line : slide) text_w = std::max(text_w, line.size());
+  const std::size_t board_w = scoreboard_lines(snap, view, false)[1].size();
+  const bool beside = 2 + text_w + 4 + board_w <= static_cast<std::size_t>(cols);
+  const std::size_t under = beside ? 0 : 1 + board;
+  return static_cast<int>(std::max(slide.size() + under, beside ? board : 0)) + kResultAndReady;
 }
 
 std::string hud_fit(const Snapshot& s, const ViewState& view, int cols) {
@@ -305,23 +352,31 @@ std::string footer_text(const Snapshot& s, const ViewState& view, int cols) {
     return "Say: " + draft + keys;
   }
   if (!view.replay_footer.empty()) return view.replay_footer;
-  std::string text;
+  // The footer in words, then in short, each with the runs of spaces squeezed: the first
+  // that fits. What the state adds (mouse steering, out of lives) stays in every form.
+  std::vector<std::string> forms;
   const PlayerState* me = find_player(s, view.my_player_id);
   const bool out = me != nullptr && me->lives <= 0 && !me->alive;
   if (s.phase == Phase::play && watching(s, view)) {
     const PlayerState* f = find_player(s, followed(s, view));
-    text = std::string("Watching ") + (f != nullptr ? sanitize(f->name, 16) : "the match") +
-           "   Tab: next player   Chat: t   Quit: q";
-    if (out) text += "   Out of lives: you play again when this match ends";
+    const std::string who = f != nullptr ? sanitize(f->name, 16) : "the match";
+    forms.push_back("Watching " + who + "   Tab: next player   Chat: t   Quit: q" +
+                    (out ? "   Out of lives: you play again when this match ends" : ""));
+    forms.push_back("Watching " + who + "  Tab: next  Chat: t  Quit: q" + (out ? "  Out of lives: next match" : ""));
   } else if (s.phase == Phase::shop && out) {
     // The shop is the others': nothing to buy, nothing to ready (GAME_RULES: a player
     // with no lives left is out and watches until every player is out).
-    text = "Out of lives: you play again when this match ends (all out)   Chat: t   Quit: q";
+    forms.push_back("Out of lives: you play again when this match ends (all out)   Chat: t   Quit: q");
+    forms.push_back("Out of lives: you play again next match  Chat: t  Quit: q");
   } else {
-    text = help_line(s.phase);
-    if (s.phase == Phase::play && view.mouse_steering) text += "   (mouse steering)";
+    const std::string steering = s.phase == Phase::play && view.mouse_steering ? "(mouse steering)" : "";
+    forms.push_back(help_line(s.phase) + (steering.empty() ? "" : "   " + steering));
+    if (s.phase == Phase::play) forms.push_back("Move: arrows/WASD/mouse  Fire: space  Chat: t  Quit: q" +
+                                                (steering.empty() ? "" : "  " + steering));
   }
-  return fit_footer(std::move(text), cols);
+  for (const auto& form : forms)
+    if (std::string fitted = fit_footer(form, cols); std::ssize(fitted) <= cols) return fitted;
+  return fit_footer(forms.back(), cols);
 }
 
 std::string fit_footer(std::string text, int cols) {
@@ -340,22 +395,28 @@ FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapsho
     L.too_small = true;
     return L;
   }
-  // Top layout: HUD, the wrapped legend, the arena, three log rows (one in the shop,
-  // whose slide needs the rows), the footer.
+  // Top layout: HUD, the wrapped legend, the arena, the log rows, the footer. The log
+  // keeps two rows on a short terminal (80x24, the ssh terminal: every row given to it is
+  // three columns of platform fewer), three from kRoomyRows rows; in the shop it takes
+  // the rows the slide leaves (shop_rows_needed), at least one.
   const bool shop = snap.phase == Phase::shop;
-  const int log_rows = shop ? 1 : kTopLogRows;
   const int legend_rows =
       std::max<int>(1, static_cast<int>(legend_lines(snap, view, cols, false, kLegendTopMaxRows).size()));
-  const int top_area_rows = rows - 1 - legend_rows - log_rows - 1;
+  const int play_log_rows = rows >= kRoomyRows ? kTopLogRows : kTopLogRows - 1;
+  const int free_rows = rows - 1 - legend_rows - 1;  // between the legend and the footer
+  const int log_rows =
+      shop ? std::clamp(free_rows - shop_rows_needed(snap, view, cols), 1, std::max(1, free_rows / 2)) : play_log_rows;
+  const int top_area_rows = free_rows - log_rows;
   const Viewport top =
       fit_arena(1, 1 + legend_rows + 1, cols - 2, top_area_rows - 2, view.arena_width_u, view.arena_height_u);
   // Side layout: HUD, the arena on the left, the panel (legend, then log) on the right.
   const int panel_cols = std::clamp(cols / 4, 32, 44);
   const int side_cols = cols - panel_cols - 1;
   const Viewport side = fit_arena(1, 2, side_cols - 2, rows - 4, view.arena_width_u, view.arena_height_u);
-  // The panel when it costs the platform at most a fifth of its width (and leaves the
-  // shop's slide its width).
-  L.side = side.cols * 5 >= top.cols * 4 && (!shop || side_cols >= kShopMinCols);
+  // The panel when the platform beside it keeps kSideMinFieldCols columns and three
+  // quarters of the top layout's width (120x40 has it; at 80x24 it would shrink the
+  // platform to 45 columns), and leaves the shop's slide its width.
+  L.side = side.cols >= kSideMinFieldCols && side.cols * 4 >= top.cols * 3 && (!shop || side_cols >= kShopMinCols);
   if (L.side) {
     L.panel_col0 = cols - panel_cols;
     L.panel_cols = panel_cols;

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "fts/protocol/snapshot.hpp"
+#include "fts/sim/economy.hpp"
+#include "ui/hud.hpp"
 #include "ui/layout.hpp"
 #include "ui/screen.hpp"
 #include "ui/view.hpp"
@@ -70,6 +72,15 @@ std::vector<std::string> wrap(const std::string& text, int cols);
 
 // The ranking: coins this level and in total, enemies knocked off, lives; by total coins.
 std::vector<std::string> scoreboard_lines(const protocol::Snapshot& s, const ViewState& view, bool final_standings);
+
+// The shop's slide for `me` wrapped to `width`, from the most spacious to the most
+// compact: with blank lines between its groups; without them; without the Level, Coins
+// and Lives lines the HUD repeats; without the items' explanations.
+std::vector<std::vector<std::string>> shop_variants(const PlayerState& me, std::uint32_t level,
+                                                    const sim::ShopTerms& terms, int width);
+// The rows the shop needs at `cols` columns to show its most spacious slide, the
+// standings and the result and ready lines (the top layout gives the log the rest).
+int shop_rows_needed(const protocol::Snapshot& snap, const ViewState& view, int cols);
 
 // A footer line that fits `cols` where it can: wider than that, the runs of spaces
 // between key groups become single spaces.

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ui/field_cells.hpp"
+#include "ui/fine_field.hpp"
 #include "ui/hud.hpp"
 #include "ui/interpolate.hpp"
 #include "ui/palette.hpp"
@@ -42,7 +43,7 @@ BallLook look_of(const BallState& b, std::uint32_t me) {
   return {'?', {}, 0};
 }
 
-void draw_frame(Screen& s, const Viewport& v) {
+void draw_frame(Screen& s, const Viewport& v, bool fine) {
   const int left = v.col0 - 1, right = v.col0 + v.cols, top = v.row0 - 1, bottom = v.row0 + v.rows;
   for (int c = left; c <= right; ++c) {
     const char ch = (c == left || c == right) ? '+' : '-';
@@ -54,7 +55,7 @@ void draw_frame(Screen& s, const Viewport& v) {
     s.set(right, r, '|', kDimStyle);
   }
   for (int r = v.row0; r < bottom; ++r)
-    for (int c = v.col0; c < right; ++c) s.set(c, r, kPlatformChar, kDimStyle);
+    for (int c = v.col0; c < right; ++c) s.set(c, r, fine ? ' ' : kPlatformChar, kDimStyle);
 }
 
 // A ball covers the cells of the platform and its frame whose centres lie in its disc
@@ -122,13 +123,20 @@ void draw_name(Screen& s, FieldCells& cells, int index, const BallState& b, cons
 }
 
 void draw_arena(Screen& s, const Snapshot& snap, const Viewport& v, const ViewState& view) {
-  draw_frame(s, v);
+  const bool fine = view.fine && view.color;  // dots need colour to tell the balls apart
+  draw_frame(s, v, fine);
   std::vector<std::pair<BallLook, const BallState*>> order;
   for (const auto& b : snap.balls) order.emplace_back(look_of(b, view.my_player_id), &b);
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& x, const auto& y) { return x.first.layer < y.first.layer; });
   FieldCells cells(v);
-  for (std::size_t i = 0; i < order.size(); ++i) draw_ball(s, v, cells, static_cast<int>(i), *order[i].second, order[i].first);
+  if (fine) {
+    std::vector<FineBall> balls;
+    for (const auto& [look, b] : order) balls.push_back({b, look.style, b->kind != BallKind::rocket});
+    draw_balls_fine(s, v, cells, balls);
+  } else {
+    for (std::size_t i = 0; i < order.size(); ++i) draw_ball(s, v, cells, static_cast<int>(i), *order[i].second, order[i].first);
+  }
   // The own ball's exhaust: one cell behind it against its thrust, drawn the frame the key
   // is pressed (the ball's first cell of motion takes the physics up to ~0.3 s from rest;
   // the exhaust shows at once that it is thrusting).
@@ -184,11 +192,6 @@ void put_centred(Screen& s, int row, const std::string& text, Style style, const
   s.put(col, row, cut, style);
 }
 
-bool is_group_start(const std::string& line) {
-  return line.rfind("Level ", 0) == 0 || line.rfind("Current ", 0) == 0 ||
-         line.rfind("Bank Purchased", 0) == 0 || line.rfind("Press Enter", 0) == 0;
-}
-
 void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const FrameLayout& L) {
   const PlayerState* me = find_player(snap, view.my_player_id);
   const int first = L.area_row0;
@@ -203,25 +206,8 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
       s.put(2, first + 4 + static_cast<int>(i), board[i].substr(0, static_cast<std::size_t>(width)),
             i == 0 ? kTitleStyle : Style{});
   } else {
-    std::vector<std::string> raw = shop_screen_lines(*me, snap.level, view.shop_terms);
-    std::vector<std::string> lines;
-    for (const auto& l : raw)
-      for (auto& part : wrap(l, width)) lines.push_back(std::move(part));
+    const std::vector<std::vector<std::string>> variants = shop_variants(*me, snap.level, view.shop_terms, width);
     const int room = last - first + 1;
-    // The slide from the most spacious to the most compact: with blank lines between the
-    // groups; without them; without the Level/Coins/Lives lines the HUD repeats; without
-    // the items' explanations.
-    std::vector<std::vector<std::string>> variants(1);
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-      if (i > 0 && is_group_start(lines[i])) variants[0].emplace_back();
-      variants[0].push_back(lines[i]);
-    }
-    variants.push_back(lines);
-    variants.push_back(lines);
-    variants.back().erase(variants.back().begin(), variants.back().begin() + std::min<std::ptrdiff_t>(3, std::ssize(lines)));
-    variants.push_back(variants.back());
-    std::erase_if(variants.back(),
-                  [](const std::string& l) { return l.rfind("Increases", 0) == 0 || l.rfind("Earns", 0) == 0; });
     const int board_w = static_cast<int>(board[1].size());
     const auto text_w = [](const std::vector<std::string>& v) {
       std::size_t w = 0;
@@ -270,7 +256,7 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
     }
   }
   const int cut = std::max(L.area_cols - 2, 1);
-  if (!view.shop_result.empty()) s.put(2, last + 1, view.shop_result.substr(0, static_cast<std::size_t>(cut)), kMessageStyle);
+  if (!view.shop_result.empty() && view.now_ms < view.shop_result_ms + kShopResultShowMs) s.put(2, last + 1, view.shop_result.substr(0, static_cast<std::size_t>(cut)), kMessageStyle);
   std::string ready;
   if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
     ready = "Next level in " + std::to_string(left) + " s.   ";

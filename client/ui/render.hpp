@@ -21,6 +21,10 @@ inline constexpr char kExhaustSide = '=';
 inline constexpr char kExhaustUpDown = '"';
 inline constexpr char kExhaustDiagonal = '%';
 
+// A purchase's result ("Cannot buy: ...") stays this long in the shop, then goes: a
+// stale refusal must not read as the answer to the next key (issue 37).
+inline constexpr std::uint64_t kShopResultShowMs = 6000;
+
 // A name written on the field is cut to this many characters.
 inline constexpr int kNameOnFieldChars = 10;
 

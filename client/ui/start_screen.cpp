@@ -1,5 +1,8 @@
 #include "ui/start_screen.hpp"
 
+#include "ui/panel.hpp"
+
+#include <algorithm>
 #include <sstream>
 #include <vector>
 
@@ -17,13 +20,30 @@ bool is_code(std::string& code) {
 
 }  // namespace
 
-std::string start_menu_text() {
-  return "Fear The Sphere: pick a room\n"
-         "  1 (or Enter)  quick play: the fullest open room, or a new one\n"
-         "  2             create a private room (friends join with its code)\n"
-         "  3 CODE        join a room by its code, e.g. 3 KXBQT\n"
-         "  4 CODE        spectate a room\n"
-         "Once connected, the message log lists the public rooms (code, players, level, phase).\n";
+std::string start_menu_text(int cols) {
+  static constexpr const char* kLines[] = {
+      "Fear The Sphere: pick a room",
+      "  1 (or Enter)  quick play: the fullest open room, or a new one",
+      "  2             create a private room (friends join with its code)",
+      "  3 CODE        join a room by its code, e.g. 3 KXBQT",
+      "  4 CODE        spectate a room",
+      "Once connected, the message log lists the public rooms (code, players, level, phase).",
+  };
+  // Each line wrapped at spaces to the terminal's width (a word is never broken where
+  // it fits on a row), a choice's continuation under its description.
+  std::string out;
+  for (const std::string line : kLines) {
+    const std::size_t indent = line.rfind("  ", 0) == 0 ? 16 : 0;
+    const int width = std::max(cols, 20);
+    std::vector<std::string> rows = wrap(line, width);
+    if (indent > 0 && rows.size() > 1) {
+      const std::string rest = line.substr(rows.front().size() + 1);
+      rows.resize(1);
+      for (auto& part : wrap(rest, width - static_cast<int>(indent))) rows.push_back(std::string(indent, ' ') + part);
+    }
+    for (const auto& row : rows) out += row + "\n";
+  }
+  return out;
 }
 
 std::variant<RoomChoice, std::string> parse_start_choice(const std::string& line) {

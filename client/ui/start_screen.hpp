@@ -16,8 +16,8 @@ struct RoomChoice {
   bool operator==(const RoomChoice&) const = default;
 };
 
-// The menu shown before connecting.
-std::string start_menu_text();
+// The menu shown before connecting, its lines wrapped to `cols` (the terminal's width).
+std::string start_menu_text(int cols = 80);
 
 // One typed line -> the choice, or a sentence saying what is wrong (ask again).
 // "1" or "q" or "" (Enter): quick play; "2" or "c": create; "3 CODE" or "j CODE": join;

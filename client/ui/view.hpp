@@ -31,6 +31,7 @@ struct Score {
   std::int64_t coins_level = 0;  // coins from enemies knocked off this level
   std::int64_t coins_total = 0;  // the same, over the whole match
   std::int64_t knocks_level = 0, knocks_total = 0;
+  bool operator==(const Score&) const = default;
 };
 
 struct ViewState {
@@ -44,7 +45,9 @@ struct ViewState {
   std::vector<LogLine> messages;  // the message log, newest last (bounded by the client)
   std::uint64_t now_ms = 0;       // for the ages of the log lines
   std::string shop_result;   // the outcome of the last purchase (already sanitised)
+  std::uint64_t shop_result_ms = 0;  // when it came (shown kShopResultShowMs, ui/render.hpp)
   bool color = true;
+  bool fine = false;  // the field in braille dots (ui/fine_field.hpp), with colour only
   sim::ShopTerms shop_terms;  // the server's, from its welcome
   double tick_rate_hz = 100;  // the server's, from its welcome (countdowns)
   std::map<std::uint32_t, std::string> names;  // every player seen (names of those who left)

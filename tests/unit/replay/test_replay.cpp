@@ -152,3 +152,39 @@ TEST_CASE("the replay footer fits the terminal and keeps quit", "[client][replay
     CHECK(at100.find(key) != std::string::npos);
   }
 }
+
+// Issue 37: after a seek (`9`, `n`) the log still said "Level 1 started.". The log and
+// the score book follow the replay's position.
+TEST_CASE("after a seek the replay's log is the position's", "[client][replay]") {
+  sim::MatchState live;
+  auto rec = record_of(1200, live);
+  Replay r(tape_of(rec));
+  client::ViewState view;
+  const auto last_line = [&] { return view.messages.empty() ? std::string() : view.messages.back().text; };
+  const auto has = [&](const std::string& text) {
+    for (const auto& m : view.messages)
+      if (m.text == text) return true;
+    return false;
+  };
+  r.seek_level(1);
+  client::replay_log(r, r.snapshot(), view, 1000);
+  CHECK(last_line() == "Level 1 started.");
+  // Play on: whatever happens after the start is logged as it comes.
+  r.run_to(1200);
+  client::replay_log(r, r.snapshot(), view, 2000);
+  const auto later = view.messages;
+  REQUIRE(later.size() >= 2);
+  CHECK(later.back().text != "Level 1 started.");
+  // Back to level 1: the log is the log at level 1's start, nothing from later.
+  view.messages.push_back(client::LogLine{"a line from before the seek", 2500});
+  r.seek_level(1);
+  client::replay_log(r, r.snapshot(), view, 3000);
+  CHECK(last_line() == "Level 1 started.");
+  CHECK_FALSE(has("a line from before the seek"));
+  CHECK_FALSE(has(later.back().text));
+  // To the end (`9` in a record that never reaches level 9): the end's lines.
+  r.seek_level(9);
+  client::replay_log(r, r.snapshot(), view, 4000);
+  CHECK(last_line() == later.back().text);
+  CHECK(view.scores == r.scores());
+}
