@@ -4,7 +4,9 @@
 fts-server (and, if asked, idle bots in the same room) on loopback, fts-client in a
 private tmux pane, optionally through tests/integration/relay.py. Once a level is being
 played, each trial: wait until the own ball ('@' cells and its mass label, inside the
-platform's frame) has
+platform's frame; with
+--glyphs braille the dots of the cells in the own colour, read from a capture with
+escapes, the mass label on that colour counted as full cells) has
 been still for --rest-ms, send an arrow key with `tmux send-keys`, then capture the pane
 as fast as tmux answers (≈2 ms a capture here) until the ball's drawn cells change. The
 latency is the middle of the capture that first shows the change minus the middle of the
@@ -34,8 +36,13 @@ usage: FTS_BIN_DIR=build python3 tests/bench/input_latency.py [--trials 20]
                         --burst-len N (Gilbert-Elliott bursts of mean N datagrams giving X %
                         loss each way), --dup P, --relay-seed S, --relay-args "..." (any
                         other relay.py flags). Any of them, or --relay, puts the relay in.
+The client runs with TERM=xterm-256color and LANG=C.UTF-8 (so --glyphs auto picks braille:
+name the glyphs in each variant). What the client writes to its terminal is piped out of
+the pane (tmux pipe-pane) and counted: bytes_per_s over the trials (mostly a ball at
+rest), then moving_bytes_per_s over 3 s of taps every 150 ms.
 Output: one CSV row per trial (stdout, or --csv), then per variant a line
   summary variant=NAME n=N p50_ms=.. p99_ms=.. mean_ms=.. min_ms=.. max_ms=.. timeouts=..
+  ... bytes_per_s=.. moving_bytes_per_s=..
 and with --json FILE the summaries and the relay's counters per variant.
 """
 import argparse, csv, json, os, re, shlex, shutil, signal, statistics, subprocess, sys, tempfile, time
@@ -62,7 +69,7 @@ class Tmux:
         return p.stdout
 
     def capture(self, target):
-        return self.run("capture-pane", "-p", "-t", target, check=False)
+        return self.run("capture-pane", "-p", "-e", "-t", target, check=False)
 
     def kill(self):
         self.run("kill-server", check=False)
@@ -85,11 +92,81 @@ def platform(lines):
     return None
 
 
+SGR = re.compile(r"\x1b\[([0-9;]*)m")
+BRAILLE0 = 0x2800
+# A braille pattern's dot bits by (x, y): U+2800's dots 1-8.
+BRAILLE_BITS = {(0, 0): 0x01, (0, 1): 0x02, (0, 2): 0x04, (1, 0): 0x08, (1, 1): 0x10, (1, 2): 0x20, (0, 3): 0x40,
+                (1, 3): 0x80}
+
+
+def styled_grid(text):
+    """A pane captured with escapes (capture-pane -e) as rows of (char, fg, bg); colours as
+    SGR numbers (30-37, 90-97 for fg; 40-47, 100-107 for bg), None for the default."""
+    rows = []
+    for line in text.split("\n"):
+        row, fg, bg, pos = [], None, None, 0
+        for m in SGR.finditer(line + "\x1b[m"):
+            row += [(ch, fg, bg) for ch in line[pos:m.start()] if ch != "\x1b"]
+            pos = m.end()
+            params = [int(p) if p else 0 for p in m.group(1).split(";")] if m.group(1) else [0]
+            k = 0
+            while k < len(params):
+                n = params[k]
+                if n == 0:
+                    fg = bg = None
+                elif 30 <= n <= 37 or 90 <= n <= 97:
+                    fg = n
+                elif n == 39:
+                    fg = None
+                elif 40 <= n <= 47 or 100 <= n <= 107:
+                    bg = n
+                elif n == 49:
+                    bg = None
+                elif n in (38, 48):  # 256 or true colour: not ours; skip its arguments
+                    k += 2 if k + 1 < len(params) and params[k + 1] == 5 else 4
+                k += 1
+        rows.append(row)
+    return rows
+
+
+def own_colour(grid):
+    """The own ball's colour: the fg of the legend's '@' marker ("@ name")."""
+    for row in grid:
+        for k in range(len(row) - 1):
+            if row[k][0] == "@" and row[k + 1][0] == " " and row[k][1] is not None:
+                return row[k][1]
+    return None
+
+
 def own_ball(text):
-    """The own ball's cells inside the frame and the frame, or (None, None): its '@' cells
-    and its mass label (digits next to them). With the label left out, the label moving
-    one cell over with the ball's centre would look like a move the other way."""
+    """The own ball's cells inside the frame and the frame, or (None, None). In ASCII: its
+    '@' cells and its mass label (digits next to them); with the label left out, the label
+    moving one cell over with the ball's centre would look like a move the other way. In
+    braille dots (--glyphs braille; text captured with escapes): the lit dots of the cells
+    in the own colour, as (row, col) in cell units, the label's cells (on the own colour)
+    counted as full."""
+    grid = styled_grid(text) if "\x1b[" in text else None
+    if grid is not None:
+        text = "\n".join("".join(c for c, _, _ in row) for row in grid)
     lines = text.split("\n")
+    if grid is not None and any(BRAILLE0 <= ord(ch) <= BRAILLE0 + 0xFF for ch in text):
+        box = platform(lines)
+        if box is None:
+            return None, None
+        top, bottom, left, right = box
+        own = own_colour(grid)
+        dots = set()
+        for r in range(top, bottom + 1):
+            for c in range(left, min(right + 1, len(grid[r]))):
+                ch, fg, bg = grid[r][c]
+                if BRAILLE0 <= ord(ch) <= BRAILLE0 + 0xFF and fg == own:
+                    bits = ord(ch) - BRAILLE0
+                elif bg is not None and bg == own + 10:
+                    bits = 0xFF
+                else:
+                    continue
+                dots.update((r + (y + 0.5) / 4, c + (x + 0.5) / 2) for (x, y), bit in BRAILLE_BITS.items() if bits & bit)
+        return (frozenset(dots) or None), box
     box = platform(lines)
     if box is None:
         return None, None
@@ -175,13 +252,18 @@ class Session:
     def __init__(self, tmux, name, client, port, extra, work, size):
         self.tmux, self.name = tmux, name
         state = os.path.join(work, f"state-{name}")
-        cmd = (f"TERM=xterm-256color XDG_STATE_HOME={shlex.quote(state)} {shlex.quote(client)} "
+        cmd = (f"TERM=xterm-256color LANG=C.UTF-8 XDG_STATE_HOME={shlex.quote(state)} {shlex.quote(client)} "
                f"--connect 127.0.0.1:{port} --name lat --no-kitty --create {extra}; "
                f"echo CLIENT_EXIT=$?; sleep 600")
         tmux.run("new-session", "-d", "-s", name, "-x", str(size[0]), "-y", str(size[1]), cmd)
 
     def pane(self):
+        """The pane with its colours (escape sequences)."""
         return self.tmux.capture(self.name)
+
+    def text(self):
+        """The pane as plain text."""
+        return SGR.sub("", self.pane())
 
     def exited(self, text):
         m = re.search(r"CLIENT_EXIT=(\d+)", text)
@@ -189,15 +271,15 @@ class Session:
 
     def start_level(self):
         def connected():
-            t = self.pane()
+            t = self.text()
             if self.exited(t):
                 raise Failure(f"the client exited ({self.exited(t)}):\n{t.strip()}")
             return "@ lat" in t
         wait_for(connected, 15, "the client to join its room")
         self.tmux.run("send-keys", "-t", self.name, "Enter")  # ready: the match starts
-        wait_for(lambda: re.search(r"^Level: \d+ ", self.pane(), re.M) and own_ball(self.pane())[0], 20,
+        wait_for(lambda: re.search(r"^Level:? \d+ ", self.text(), re.M) and own_ball(self.pane())[0], 20,
                  "a level with the own ball on screen")
-        m = re.search(r"Room ([A-Z0-9]{4,})", self.pane())
+        m = re.search(r"Room ([A-Z0-9]{4,})", self.text())
         return m.group(1) if m else None
 
     def kill(self):
@@ -254,7 +336,13 @@ def run_variant(a, tmux, work, port, name, extra, out, summaries):
                                      "--name", "b", "--count", str(a.bots), "--behavior", a.bot_behavior,
                                      "--duration", "3600", "--room", room, "--report", os.devnull],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            wait_for(lambda: session.pane().count(" b1 ") >= 1, 15, "the bots in the room")
+            wait_for(lambda: session.text().count(" b1 ") >= 1, 15, "the bots in the room")
+        # What the client writes to its terminal (the frames' bytes, as an ssh link would
+        # carry them): the pane's output piped to a file, counted over the trials.
+        out_path = os.path.join(work, f"out-{session.name}")
+        tmux.run("pipe-pane", "-o", "-t", session.name, f"cat >> {shlex.quote(out_path)}")
+        wait_for(lambda: os.path.exists(out_path), 5, "the pane's output file")
+        b0, t0 = os.path.getsize(out_path), time.monotonic()
         lat, timeouts, skipped, wrong = [], 0, 0, 0
         go_right = True
         for i in range(a.trials):
@@ -286,14 +374,25 @@ def run_variant(a, tmux, work, port, name, extra, out, summaries):
                           f"{dcol:+.2f}", f"{drow:+.2f}", status])
             if a.csv:
                 out_file.flush()
-        s = {"variant": name, "client_args": extra, "n": len(lat), "p50_ms": percentile(lat, 0.5),
+        bytes_per_s = (os.path.getsize(out_path) - b0) / (time.monotonic() - t0)
+        # Then the ball kept moving: a tap every 150 ms for 3 s, right then left.
+        b1, t1 = os.path.getsize(out_path), time.monotonic()
+        k = 0
+        while time.monotonic() - t1 < 3:
+            session.tmux.run("send-keys", "-t", session.name, "Right" if (k // 10) % 2 == 0 else "Left")
+            k += 1
+            time.sleep(0.15)
+        moving_bytes_per_s = (os.path.getsize(out_path) - b1) / (time.monotonic() - t1)
+        s = {"variant": name, "client_args": extra, "bytes_per_s": bytes_per_s, "moving_bytes_per_s": moving_bytes_per_s,
+             "n": len(lat), "p50_ms": percentile(lat, 0.5),
              "p99_ms": percentile(lat, 0.99), "mean_ms": statistics.mean(lat) if lat else float("nan"),
              "min_ms": min(lat, default=float("nan")), "max_ms": max(lat, default=float("nan")),
              "timeouts": timeouts, "wrong_direction": wrong, "not_at_rest": skipped}
         summaries.append(s)
         print(f"summary variant={name} n={s['n']} p50_ms={s['p50_ms']:.1f} p99_ms={s['p99_ms']:.1f} "
               f"mean_ms={s['mean_ms']:.1f} min_ms={s['min_ms']:.1f} max_ms={s['max_ms']:.1f} "
-              f"timeouts={timeouts} wrong_direction={wrong} not_at_rest={skipped}", file=sys.stderr, flush=True)
+              f"timeouts={timeouts} wrong_direction={wrong} not_at_rest={skipped} bytes_per_s={bytes_per_s:.0f} "
+              f"moving_bytes_per_s={moving_bytes_per_s:.0f}", file=sys.stderr, flush=True)
         return s
     finally:
         if bots:

@@ -42,6 +42,19 @@ def test_parse():
     gone, box2 = il.own_ball(PANE.replace("@@@@@", ".....").replace("@@40@", "..40."))
     check(gone is None and box2 == box, "no ball on the platform must read as none")
     check(il.own_ball("Connecting...\n")[0] is None, "a pane without the platform has no ball")
+    # Braille dots (--glyphs braille), captured with escapes: the dots in the own colour
+    # (the legend's '@'), the label on the own colour as full cells; red dots are another ball.
+    y, red, lbl, off = "\x1b[1;33m", "\x1b[1;31m", "\x1b[0;1;30;43m", "\x1b[0m"
+
+    def fine(row):
+        return "\n".join(["Level: 1   Coins: 0", f"{y}@{off} lat", "+--------+", f"|{row}{off}|", "+--------+"])
+    dots, fbox = il.own_ball(fine(f"{y}\u28ff{lbl}12{y}\u2847{off}  {red}\u28ff{off} "))
+    check(fbox == (2, 4, 0, 9), f"the frame is {fbox}")
+    check(dots is not None and len(dots) == 8 + 16 + 4, f"{len(dots or ())} own dots")
+    right, _ = il.own_ball(fine(f" {y}\u28ff{lbl}12{y}\u2847{off} {red}\u28ff{off} "))
+    check(right != dots and il.centre(right)[0] > il.centre(dots)[0], "a move right in dots")
+    nudged, _ = il.own_ball(fine(f"{y}\u28fe{lbl}12{y}\u2847{off}  {red}\u28ff{off} "))
+    check(nudged != dots, "one dot fewer is a change")
     v = [float(x) for x in range(1, 101)]
     check(il.percentile(v, 0.5) == 50.5 and abs(il.percentile(v, 0.99) - 99.01) < 1e-9, "percentiles")
     check(il.percentile([7.0], 0.99) == 7.0, "one value is every percentile")
