@@ -35,14 +35,10 @@ constexpr const char* kUsage =
     "  --fps N                 frames drawn per second (default 60)\n"
     "  --no-kitty              do not ask the terminal for key release events\n"
     "  --no-mouse              do not steer with the mouse (no mouse reporting)\n"
-    "  --glyphs auto|braille|ascii  the field in braille dots (finer: needs UTF-8 and
-"
-    "                          colour) or in ASCII; auto (default) picks braille when the
-"
-    "                          locale is UTF-8 and TERM is not dumb, linux or vt*
-"
-    "  --replay PATH           play back a server record (fts-server --record PATH):
-"
+    "  --glyphs auto|braille|ascii  the field in braille dots (finer: needs UTF-8 and\n"
+    "                          colour) or in ASCII; auto (default) picks braille when the\n"
+    "                          locale is UTF-8 and TERM is not dumb, linux or vt*\n"
+    "  --replay PATH           play back a server record (fts-server --record PATH):\n"
     "                          Space pauses, - and + set the speed (x0.5 to x8), n/p go\n"
     "                          to the next/previous level, 1-9 to a level, e to the end\n"
     "  --new                   start a new player (default: take back the player of the\n"

@@ -24,7 +24,8 @@ class DotGrid {
   int i_of(double x) const { return index_of(x / (v_.units_per_col() / kDotsPerCol)) + kDotsPerCol; }
   int j_of(double y) const { return index_of((v_.height_u - y) / (v_.units_per_row() / kDotsPerRow)) + kDotsPerRow; }
   bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < cols_ && j < rows_; }
-  int& at(int i, int j) { return owner_[static_cast<std::size_t>(j) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(i)]; }
+  int& set(int i, int j) { return owner_[static_cast<std::size_t>(j) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(i)]; }
+  // The ball owning the dot, -1 for none or outside.
   int at(int i, int j) const {
     return inside(i, j) ? owner_[static_cast<std::size_t>(j) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(i)] : -1;
   }
@@ -59,12 +60,12 @@ void draw_balls_fine(Screen& s, const Viewport& v, FieldCells& cells, const std:
       for (int i = i0; i <= i1; ++i) {
         const double dx = grid.x_of(i) - b.x, dy = grid.y_of(j) - b.y;
         if (dx * dx + dy * dy <= r * r) {
-          grid.at(i, j) = static_cast<int>(k);
+          grid.set(i, j) = static_cast<int>(k);
           any = true;
         }
       }
     const int ci = grid.i_of(b.x), cj = grid.j_of(b.y);
-    if (!any && grid.inside(ci, cj)) grid.at(ci, cj) = static_cast<int>(k);  // even a tiny ball shows
+    if (!any && grid.inside(ci, cj)) grid.set(ci, cj) = static_cast<int>(k);  // even a tiny ball shows
   }
   // Apart: a dot beside a dot of a ball drawn later stays empty, so balls that touch (or
   // overlap) show a gap of one dot; the later ball keeps its whole shape.

@@ -20,7 +20,7 @@ constexpr Style kDim{Color::gray, Color::none, false, false, false};
 constexpr int kLegendTopMaxRows = 3;
 constexpr int kTopLogRows = 3;
 constexpr int kRoomyRows = 30;         // from this many rows the top layout's log keeps 3 rows
-constexpr int kSideMinFieldCols = 64;  // the side panel leaves the platform at least this wide
+constexpr int kSideMinFieldCols = 64;   // the side panel leaves the platform at least this wide
 constexpr int kShopMinCols = 58;  // the widest line of the shop's slide, with its margin
 
 std::string fit_name(const std::string& name, int width) {
@@ -414,9 +414,9 @@ FrameLayout frame_layout(TerminalSize size, const ViewState& view, const Snapsho
   const int side_cols = cols - panel_cols - 1;
   const Viewport side = fit_arena(1, 2, side_cols - 2, rows - 4, view.arena_width_u, view.arena_height_u);
   // The panel when the platform beside it keeps kSideMinFieldCols columns and three
-  // quarters of the top layout's width (120x40 has it; at 80x24 it would shrink the
+  // fifths of the top layout's width (100x30 has it; at 80x24 it would shrink the
   // platform to 45 columns), and leaves the shop's slide its width.
-  L.side = side.cols >= kSideMinFieldCols && side.cols * 4 >= top.cols * 3 && (!shop || side_cols >= kShopMinCols);
+  L.side = side.cols >= kSideMinFieldCols && side.cols * 5 >= top.cols * 4 && (!shop || side_cols >= kShopMinCols);
   if (L.side) {
     L.panel_col0 = cols - panel_cols;
     L.panel_cols = panel_cols;

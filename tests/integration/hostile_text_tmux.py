@@ -93,6 +93,11 @@ class Pane:
 
 
 def main():
+    # The watcher draws its field in ASCII (a UTF-8 locale would give braille dots, bytes
+    # >= 0x80 of the client's own): what is checked here is the text others sent.
+    os.environ["LANG"] = "C"
+    for var in ("LC_ALL", "LC_CTYPE"):
+        os.environ.pop(var, None)
     if len(sys.argv) != 3:
         print(__doc__.splitlines()[-1])
         return 2

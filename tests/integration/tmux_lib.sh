@@ -10,6 +10,10 @@
 # A failed check calls fail, which prints the panes and the server log's tail and exits 1.
 
 tmux_setup() {
+  # The panes' clients draw the field in ASCII ('@', 'O', '#', which these tests read):
+  # under a UTF-8 locale --glyphs auto would draw braille dots.
+  export LANG=C
+  unset LC_ALL LC_CTYPE
   WORK=$(mktemp -d "/tmp/fts-$1.XXXXXX")
   SOCK="fts-$1-$$"  # a private tmux server: never touches the user's sessions
   SERVER_PID=""

@@ -198,3 +198,27 @@ TEST_CASE("a frame rewrites only the rows that changed", "[client][fine]") {
   CHECK(moved.size() * 4 < all.size());  // the ball's rows only
   CHECK(moved.find("\x1b[1;1H") == std::string::npos);  // not the HUD's row
 }
+
+TEST_CASE("Fine field: balls on the edges, past them and odd sizes stay on the field", "[client][fine]") {
+  // Read beyond the dots of the frame once (the e2e run's heap overflow, under ASan).
+  const ViewState view = fine_view();
+  for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{60, 20}}) {
+    Snapshot s = test::seed_snapshot(Phase::play);
+    std::uint32_t id = 1;
+    for (const double x : {-40.0, 0.0, 0.01, 250.0, 499.99, 500.0, 540.0})
+      for (const double y : {-40.0, 0.0, 0.01, 150.0, 299.99, 300.0, 340.0})
+      {
+        ++id;
+        s.balls.push_back(ball(id, x, y, id % 2 == 0 ? BallKind::enemy : BallKind::player, 1 + id % 3, 1 + id % 30));
+      }
+    s.balls.push_back(ball(id++, 250, 150, BallKind::enemy, 0, 1e9));
+    s.balls.push_back(ball(id++, 250, 150, BallKind::rocket, 1, 0));
+    const Screen screen = render(s, s, 0, size, view);
+    const Viewport v = arena_viewport(size, view, s);
+    // Dots only on the platform and its frame.
+    for (int row = 0; row < screen.rows(); ++row)
+      for (int col = 0; col < screen.cols(); ++col)
+        if (screen.at(col, row).braille())
+          CHECK((col >= v.col0 - 1 && col <= v.col0 + v.cols && row >= v.row0 - 1 && row <= v.row0 + v.rows));
+  }
+}

@@ -97,12 +97,12 @@ TEST_CASE("80x24: the field takes the rows between the legend and the log", "[cl
   }
 }
 
-TEST_CASE("120x40: the side panel shows, as the docs say", "[client][layout]") {
+TEST_CASE("100x30: the side panel shows, as the docs say", "[client][layout]") {
   for (const int n : {1, 2, 4, 8}) {
     INFO(n << " players");
     for (const Phase phase : {Phase::lobby, Phase::play, Phase::shop}) {
       const Snapshot s = players(n, phase);
-      const FrameLayout L = frame_layout({120, 40}, me(), s);
+      const FrameLayout L = frame_layout({100, 30}, me(), s);
       CHECK(L.side);
       CHECK(L.log_rows >= 10);
     }
