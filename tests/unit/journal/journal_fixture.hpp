@@ -13,25 +13,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "../../support/temp_dir.hpp"
 #include "host/journal.hpp"
 #include "fts/room/snapshot_build.hpp"
 
 namespace fts::test {
-
-// A fresh directory, removed at the end of the test.
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    static int n = 0;
-    path = std::filesystem::temp_directory_path() / ("fts-journal-test-" + std::to_string(::getpid()) + "-" + std::to_string(++n));
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
 
 // The wire events of a step, numbered as the server's rooms number them (fts_room).
 inline std::uint32_t count_events(std::int64_t tick, const sim::TickOutput& out) {

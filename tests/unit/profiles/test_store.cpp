@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../../support/temp_dir.hpp"
 #include "pg_rig.hpp"
 #include "profiles/store.hpp"
 
@@ -15,17 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char tmpl[] = "/tmp/fts-profiles-XXXXXX";
-    path = ::mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using fts::test::TempDir;
 
 std::unique_ptr<Store> open_ok(const std::string& url) {
   auto r = Store::open(url);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <future>
 
+#include "../../support/temp_dir.hpp"
 #include "pg_rig.hpp"
 #include "profiles/writer.hpp"
 
@@ -14,17 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char tmpl[] = "/tmp/fts-writer-XXXXXX";
-    path = ::mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using fts::test::TempDir;
 
 MatchResult result(int i, const std::string& fp) {
   MatchResult r;
