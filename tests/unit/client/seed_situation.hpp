@@ -1,7 +1,10 @@
 // The seed's shop slide: level 3 complete, 286 coins, 1 life, multiplier 1.06, no bank.
 #pragma once
 
+#include <cstdint>
+
 #include "fts/protocol/snapshot.hpp"
+#include "ui/render.hpp"
 
 namespace fts::client::test {
 
@@ -18,6 +21,28 @@ inline protocol::PlayerState seed_player() {
   p.prices = {35, 100, 150, 1'000'000, 522, 100, 500};
   p.alive = true;
   return p;
+}
+
+// The view of player 1 on a terminal without colour.
+inline ViewState plain_view() {
+  ViewState v;
+  v.my_player_id = 1;
+  v.color = false;
+  return v;
+}
+
+// A ball of a snapshot for the renderer's tests: its mass and radius as given.
+inline protocol::BallState make_ball(std::uint32_t id, double x, double y, protocol::BallKind kind,
+                                     std::uint32_t owner, double mass, double radius) {
+  protocol::BallState b;
+  b.id = id;
+  b.x = x;
+  b.y = y;
+  b.kind = kind;
+  b.owner = owner;
+  b.mass = mass;
+  b.radius = radius;
+  return b;
 }
 
 inline protocol::Snapshot seed_snapshot(protocol::Phase phase) {

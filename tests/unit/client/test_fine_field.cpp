@@ -21,15 +21,7 @@ using fts::protocol::Snapshot;
 namespace {
 
 BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner, double radius, double mass = 40) {
-  BallState b;
-  b.id = id;
-  b.x = x;
-  b.y = y;
-  b.kind = kind;
-  b.owner = owner;
-  b.radius = radius;
-  b.mass = mass;
-  return b;
+  return test::make_ball(id, x, y, kind, owner, mass, radius);
 }
 
 ViewState fine_view() {

@@ -20,15 +20,8 @@ using fts::protocol::Snapshot;
 namespace {
 
 BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner = 0) {
-  BallState b;
-  b.id = id;
-  b.x = x;
-  b.y = y;
-  b.kind = kind;
-  b.owner = owner;
-  b.mass = kind == BallKind::enemy ? 34 : 40;
-  b.radius = kind == BallKind::enemy ? 15 : 16;
-  return b;
+  const bool enemy = kind == BallKind::enemy;
+  return test::make_ball(id, x, y, kind, owner, enemy ? 34 : 40, enemy ? 15 : 16);
 }
 
 // Six players (lower-case names: any letter on a ball or the frame is a name) and four
@@ -52,13 +45,6 @@ Snapshot crowded() {
   return s;
 }
 
-ViewState me1() {
-  ViewState v;
-  v.my_player_id = 1;
-  v.color = false;
-  return v;
-}
-
 bool ball_char(char c) {
   return c == kMyBallChar || c == kPlayerBallChar || c == kEnemyBallChar || c == kRocketChar ||
          std::isdigit(static_cast<unsigned char>(c));
@@ -72,8 +58,8 @@ TEST_CASE("names never cover a ball or the frame", "[client][render][labels]") {
   const Snapshot s = crowded();
   for (const TerminalSize size : {TerminalSize{60, 20}, TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{200, 60}}) {
     INFO(size.cols << "x" << size.rows);
-    const Screen screen = render(s, s, 0, size, me1());
-    const Viewport v = arena_viewport(size, me1(), s);
+    const Screen screen = render(s, s, 0, size, test::plain_view());
+    const Viewport v = arena_viewport(size, test::plain_view(), s);
     for (const auto& b : s.balls) {
       for (const auto& [col, row] : test::disc_cells(v, b)) {
         INFO("ball " << b.id << " cell " << col << "," << row << ": " << screen.line(row));
@@ -100,8 +86,8 @@ TEST_CASE("names never cover a ball or the frame", "[client][render][labels]") {
 TEST_CASE("a name sits next to its own ball, at the edges too", "[client][render][labels]") {
   const Snapshot s = crowded();
   for (const TerminalSize size : {TerminalSize{60, 20}, TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{200, 60}}) {
-    const Screen screen = render(s, s, 0, size, me1());
-    const Viewport v = arena_viewport(size, me1(), s);
+    const Screen screen = render(s, s, 0, size, test::plain_view());
+    const Viewport v = arena_viewport(size, test::plain_view(), s);
     for (const auto& b : s.balls) {
       if (b.kind != BallKind::player) continue;
       const std::string name = s.players[b.owner - 1].name;
@@ -136,7 +122,7 @@ TEST_CASE("at 60x20 your ball keeps its '@' and the HUD its room code", "[client
     p.name = name;
     s.players.push_back(p);
   }
-  ViewState view = me1();
+  ViewState view = test::plain_view();
   view.ping_ms = 123;
   view.loss_percent = 12.5;
   view.room = "Room KXBQT";
@@ -164,7 +150,7 @@ TEST_CASE("at 60x20 your ball keeps its '@' and the HUD its room code", "[client
   CHECK(render(s, s, 0, size, view).line(0).find("Watching KXBQT") != std::string::npos);
   for (int cols = 60; cols <= 200; ++cols) {
     INFO(cols);
-    const std::string hud = hud_fit(s, me1(), cols);
+    const std::string hud = hud_fit(s, test::plain_view(), cols);
     CHECK(static_cast<int>(hud.size()) <= cols);
   }
 }
@@ -173,8 +159,8 @@ TEST_CASE("a tiny ball of yours is '@' and shows no mass over it", "[client][ren
   Snapshot s = crowded();
   s.balls[0].radius = 3;  // one or two cells at 80x24
   const TerminalSize size{80, 24};
-  const Viewport v = arena_viewport(size, me1(), s);
-  const Screen screen = render(s, s, 0, size, me1());
+  const Viewport v = arena_viewport(size, test::plain_view(), s);
+  const Screen screen = render(s, s, 0, size, test::plain_view());
   bool marked = false;
   for (const auto& [col, row] : test::disc_cells(v, s.balls[0])) marked = marked || screen.at(col, row).ch == kMyBallChar;
   CHECK(marked);
