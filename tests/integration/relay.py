@@ -175,12 +175,25 @@ class Link:
         return due
 
 
+# A socket's receive buffer: 4 MiB (the kernel caps it at net.core.rmem_max). With the
+# default ~200 KiB a relay starved of CPU (a loaded machine) lost datagrams in the kernel
+# before it could read them: loss that no flag asked for, and a count the tests could
+# never reach.
+RCVBUF_BYTES = 1 << 22
+
+
+def relay_socket():
+    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, RCVBUF_BYTES)
+    return s
+
+
 def main():
     a, cfgs = parse_args()
     host, port = a.server.rsplit(":", 1)
     server = (host, int(port))
     links = {d: Link(d, cfgs[d], a.seed) for d in DIRECTIONS}
-    front = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    front = relay_socket()
     front.bind(("127.0.0.1", a.listen))
     uplinks = {}   # client address -> socket towards the server
     owner = {}     # uplink socket -> client address
@@ -239,7 +252,7 @@ def main():
                 if s is front:
                     up = uplinks.get(addr)
                     if up is None:
-                        up = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+                        up = relay_socket()
                         up.bind(("127.0.0.1", 0))
                         uplinks[addr] = up
                         owner[up] = addr

@@ -198,7 +198,13 @@ def test_garbage():
             check(b["snapshots_received"] >= 60, f"{b['name']}: {b['snapshots_received']} snapshots in 6 s")
         stats = [json.loads(l) for l in srv.text().splitlines() if '"event":"stats"' in l]
         check(stats, "no stats lines")
-        check(all(s["ticks_skipped_total"] == 0 for s in stats), f"ticks were skipped: {stats[-1]}")
+        # The flood must not cost ticks; a machine that starves the server (a CPU hog beside
+        # the suite) may cost a few, so the bound is 1 % of the ticks (at least 10): a server
+        # that the garbage overwhelmed skips ticks every second, hundreds in 6 s.
+        last = stats[-1]
+        allowed = max(10, last["tick"] // 100)
+        check(last["ticks_skipped_total"] <= allowed,
+              f"{last['ticks_skipped_total']} ticks skipped of {last['tick']} (at most {allowed}): {last}")
         dropped = sum(sum(s["drops"].values()) for s in stats)
         check(sent[0] > 1000 and dropped > 0, f"sent {sent[0]} garbage datagrams, {dropped} counted as drops")
 
