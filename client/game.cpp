@@ -1,7 +1,7 @@
 // fts-client's game loop: drives the protocol's client endpoint over one UDP socket,
 // reads keys from the raw terminal, and draws at its own frame rate (its own ball
 // predicted, the others a jitter buffer's delay behind the server). With main_client.cpp
-// the only translation units of the client with Asio in them (through fts_net's socket).
+// the only translation units of the client with Asio in them (through fts_io's socket).
 #include "game.hpp"
 
 #include <array>
@@ -15,20 +15,20 @@
 #include <string>
 
 #include "fts/protocol/connection.hpp"
+#include "net/interpolate.hpp"
+#include "net/link_meters.hpp"
+#include "net/net_timing.hpp"
+#include "net/session_store.hpp"
 #include "term/io.hpp"
 #include "term/keys.hpp"
 #include "term/terminal.hpp"
 #include "ui/chat_line.hpp"
 #include "ui/game_frame.hpp"
 #include "ui/hud.hpp"
-#include "ui/interpolate.hpp"
-#include "ui/link_meters.hpp"
-#include "ui/net_timing.hpp"
 #include "ui/panel.hpp"
 #include "ui/pointer_steer.hpp"
 #include "ui/render.hpp"
 #include "ui/sanitize.hpp"
-#include "ui/session_store.hpp"
 #include "ui/welcome_view.hpp"
 
 namespace asio = fts::io::asio;
@@ -44,8 +44,8 @@ std::uint64_t now_ms() {
 }
 
 // The game loop: keys in, commands and input out through the connection, snapshots in,
-// a frame drawn. The socket is fts_net's, the reconnect rule the protocol's
-// ClientConnection, and the loss meter, event feed and input pacing are ui/ pieces.
+// a frame drawn. The socket is fts_io's, the reconnect rule and the input pacing the
+// protocol's (ClientConnection), and the loss meter and event feed are net/ pieces.
 class Game {
  public:
   Game(asio::io_context& io, Options o, udp::endpoint server)
@@ -53,6 +53,7 @@ class Game {
         store_(state_dir(std::getenv("XDG_STATE_HOME"), std::getenv("HOME")), opts_.host + ":" + opts_.port),
         conn_(connection_config(opts_, opts_.fresh ? std::nullopt : store_.load()), /*resume_when_lost=*/true) {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
+    view_.guest = !opts_.identity.has_value();
     view_.fine = fine_field(opts_);
     net_ = NetTiming(opts_.predict);
     conn_.connect(now_ms());
@@ -299,18 +300,46 @@ class Game {
              (w.spectator ? "." : ": friends join with --join " + sanitize(w.room, 8)));
         rooms_rid_ = endpoint.send_command(proto::CommandOp::rooms, 0, now);
       }
+      top_rid_ = 0;  // a new session: its rids start again
+      ask_board(now);
       std::string why;
       if (!store_.save(w.token, why)) note("Cannot keep the session for a restart: " + sanitize(why, 100));
     }
     for (auto& s : endpoint.take_snapshots()) {
       if (s.phase == proto::Phase::shop && phase() != proto::Phase::shop) shop_opened_ms_ = now;
+      // The match's end is recorded before a board asked after it is read (PROTOCOL.md
+      // 4.7c): the waiting screen and the next level-end show the new best.
+      if ((s.phase == proto::Phase::over || s.phase == proto::Phase::lobby) && s.phase != phase()) ask_board(now);
       for (const auto& p : s.players)
         if (view_.names.size() < kMaxNames || view_.names.count(p.id) > 0) view_.names[p.id] = p.name;
       net_.on_snapshot(s, view_.my_player_id, now);  // and the loss meter
       read_events(s);
       buffer_.push(std::move(s));
     }
+    for (auto& b : endpoint.take_boards()) {
+      if (b.cmd != top_rid_ || top_rid_ == 0) continue;  // an older request's
+      view_.board = std::move(b);
+      view_.board_note.clear();
+      top_rid_ = 0;
+    }
+    // A board answered `ok` but lost on the way (it is not resent): asked again.
+    if (top_rid_ != 0 && top_ok_ms_ != 0 && now - top_ok_ms_ > kBoardWaitMs) {
+      top_rid_ = 0;
+      if (top_tries_ < kBoardTries) ask_board(now, top_tries_ + 1);
+    }
     for (const auto& r : endpoint.take_results()) {
+      if (r.command_rid == top_rid_ && top_rid_ != 0) {
+        if (r.ok) {
+          top_ok_ms_ = now;
+        } else {
+          top_rid_ = 0;
+          // A server without profiles has no board: the waiting screen stays as it was.
+          view_.board_note = r.code == proto::to_string(proto::ResultCode::no_profiles)
+                                 ? std::string()
+                                 : "Leaderboard: " + refusal_text(r.code, r.message, 0, nullptr) + ".";
+        }
+        continue;
+      }
       if (r.command_rid == rooms_rid_ && rooms_rid_ != 0) {
         note("Public rooms: " + (r.message.empty() ? std::string("none") : sanitize(r.message, 200)));
         rooms_rid_ = 0;
@@ -371,6 +400,14 @@ class Game {
     view_.loss_percent = net_.loss_percent();
   }
 
+  // Asks for the leaderboard (PROTOCOL.md 4.7c), unless a request is on its way.
+  void ask_board(std::uint64_t now, int tries = 0) {
+    if (top_rid_ != 0 || conn_.state() != proto::ClientState::connected) return;
+    top_rid_ = conn_.endpoint().send_command(proto::CommandOp::top, 0, now);
+    top_ok_ms_ = 0;
+    top_tries_ = tries;
+  }
+
   void note(std::string line) { push_log(LogLine{std::move(line), now_ms()}); }
 
   void push_log(LogLine line) {
@@ -421,6 +458,11 @@ class Game {
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120, kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
+  std::uint32_t top_rid_ = 0;      // the leaderboard asked for and not come yet
+  std::uint64_t top_ok_ms_ = 0;    // when its result said ok (the board follows)
+  int top_tries_ = 0;
+  static constexpr std::uint64_t kBoardWaitMs = 1500;
+  static constexpr int kBoardTries = 3;
   std::uint64_t last_rx_ms_ = 0, back_until_ms_ = 0;  // back_until_ms_: "welcome back" shown until
   std::uint64_t connect_ms_ = 0;  // when the current connection attempt began
   bool idle_ = false;             // kicked as idle: waiting for a key to come back

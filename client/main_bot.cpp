@@ -7,9 +7,9 @@
 #include <memory>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
-
 #include "bot/bot.hpp"
+#include "net/identity_store.hpp"
+#include "option_checks.hpp"
 #include "fts/io/address.hpp"
 #include "fts/io/udp.hpp"
 
@@ -18,129 +18,178 @@ namespace {
 namespace asio = fts::io::asio;
 using fts::io::udp;
 
-constexpr const char* kUsage =
-    "usage: fts-bot --connect HOST:PORT [--name N] [--count K] [--behavior idle|wander|hunter|shopper]\n"
-    "               [--script FILE] [--duration S] [--encoding json|msgpack] [--seed S]\n"
-    "               [--token T] [--token-file F] [--report FILE|-] [--room CODE|quick|create] [--spectate CODE]\n"
-    "--room: quick (default) plays in the fullest open public room or a new one; create makes a private\n"
-    "room for all K bots (the first creates it, the others join its code); CODE joins that room.\n"
-    "--spectate CODE: watch that room (no ball, no seat).\n"
-    "--predict: predict the own ball as fts-client does and stamp frames with their tick (PROTOCOL.md\n"
-    "4.5.1); the report then has the corrections (load tests cover the client's CPU).\n"
-    "--token-file F: read the session token from F if it exists, and write it there once welcomed\n"
-    "(so a killed bot started again takes its player back within the reconnect window).\n"
-    "       fts-bot --probe HOST:PORT      connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s\n"
-    "With --count K the bots are named N1..NK. The report (default: stdout) is a JSON array, one object per bot.\n"
-    "Exit status: 0 when every bot succeeded, 1 when one failed (a failed expect, a deadline, a refusal), 2 on bad usage.\n";
-
-int usage(const std::string& m) {
-  std::cerr << "fts-bot: " << m << "\n" << kUsage;
-  return 2;
-}
-
 struct Args {
-  std::string host, port, name = "bot", script_path, report = "-", token, token_file;
+  std::string connect, probe_address;  // --connect / --probe HOST:PORT
+  std::string name = "bot", script_path, report = "-", token, token_file, identity_file;
   std::uint16_t protocol_version = 0;
   int count = 1;
   double duration_s = 0;  // 0: until the script ends (or forever without one)
   fts::bot::Behavior behavior = fts::bot::Behavior::hunter;
   fts::protocol::Encoding encoding = fts::protocol::Encoding::msgpack;
   std::uint64_t seed = 1;
-  bool probe = false;
   bool predict = false;
-  std::string join, room;  // Hello::join and Hello::room
+  bool predict_own_only = false;
+  fts::client::RemotePlayers predict_remote = fts::client::kDefaultRemotePlayers;
+  std::string room_arg, spectate;  // --room, --spectate
+  // Made from the above: the server, whether this is a probe, Hello::join and Hello::room.
+  std::string host, port;
+  bool probe = false;
+  std::string join, room;
 };
 
+bool parse_name(const std::string& text, std::string& out) {
+  if (text.empty() || text.size() > 12) return false;
+  out = text;
+  return true;
+}
+bool parse_behavior(const std::string& text, fts::bot::Behavior& out) {
+  const auto b = fts::bot::parse_behavior(text);
+  if (b) out = *b;
+  return b.has_value();
+}
+std::string show_behavior(const fts::bot::Behavior& b) {
+  constexpr const char* names[] = {"idle", "wander", "hunter", "shopper"};
+  return names[static_cast<int>(b)];
+}
+bool parse_duration(const std::string& text, double& out) {
+  double v = 0;
+  if (!fts::cli::parse_real(text, v) || !(v > 0)) return false;
+  out = v;
+  return true;
+}
+std::string show_duration(const double& v) { return v > 0 ? fts::cli::show_real(v) : "0 (until the script ends)"; }
+bool parse_room(const std::string& text, std::string& out) {
+  if (text != "quick" && text != "create" && text.size() != 5) return false;
+  out = text;
+  return true;
+}
+bool parse_remote(const std::string& text, fts::client::RemotePlayers& out) {
+  if (text == "held") out = fts::client::RemotePlayers::held;
+  else if (text == "coast") out = fts::client::RemotePlayers::coast;
+  else if (text == "off") out = fts::client::RemotePlayers::off;
+  else return false;
+  return true;
+}
+std::string show_remote(const fts::client::RemotePlayers& r) {
+  return r == fts::client::RemotePlayers::held ? "held" : r == fts::client::RemotePlayers::coast ? "coast" : "off";
+}
+bool parse_code(const std::string& text, std::string& out) {
+  if (text.size() != 5) return false;
+  out = text;
+  return true;
+}
+
+using fts::cli::Int, fts::cli::Text, fts::cli::Custom;
+using fts::client::show_text;
+constexpr Custom<std::string> kName{parse_name, show_text, "1..12 characters"};
+constexpr Custom<fts::bot::Behavior> kBehavior{parse_behavior, show_behavior, "idle, wander, hunter, shopper"};
+constexpr Custom<double> kDuration{parse_duration, show_duration, "seconds > 0"};
+constexpr Custom<std::string> kRoom{parse_room, show_text, "quick, create, a 5-letter code"};
+constexpr Custom<std::string> kCode{parse_code, show_text, "a 5-letter code"};
+constexpr Custom<fts::client::RemotePlayers> kRemote{parse_remote, show_remote, "held, coast, off"};
+
+inline constexpr auto kOptionTable = std::tuple{
+    fts::cli::value("--connect", "", &Args::connect, fts::client::kHostPort, "needs HOST:PORT", "the server",
+                    "HOST:PORT"),
+    fts::cli::value("--probe", "", &Args::probe_address, fts::client::kHostPort, "needs HOST:PORT",
+                    "health check: connect, wait for one snapshot, exit 0 (or 1 with the reason) within 2 s",
+                    "HOST:PORT"),
+    fts::cli::value("--name", "", &Args::name, kName, "needs 1..12 characters",
+                    "the bot's name; with --count K the bots are named N1..NK", "N"),
+    fts::cli::value("--count", "", &Args::count, Int<int>{1, 256}, "must be 1..256", "bots in this process (K sockets)",
+                    "K"),
+    fts::cli::value("--behavior", "", &Args::behavior, kBehavior, "must be idle, wander, hunter or shopper",
+                    "how the bots play", "idle|wander|hunter|shopper"),
+    fts::cli::value("--script", "", &Args::script_path, Text{}, "needs a file",
+                    "a script of steps and expectations (docs/testing.md)", "FILE"),
+    fts::cli::value("--duration", "", &Args::duration_s, kDuration, "must be seconds > 0",
+                    "stop after this long (s)", "S"),
+    fts::cli::value("--encoding", "", &Args::encoding, fts::client::kEncoding, "must be json or msgpack",
+                    "wire encoding", "json|msgpack"),
+    fts::cli::value("--seed", "", &Args::seed, Int<std::uint64_t>{0, UINT64_MAX}, "needs a number",
+                    "the first bot's random seed (bot i: seed + i)", "S"),
+    fts::cli::value("--token", "", &Args::token, Text{}, "needs a value", "the first bot's session token", "T"),
+    fts::cli::value("--token-file", "", &Args::token_file, Text{}, "needs a file",
+                    "read the session token from F if it exists, and write it there once welcomed (so a killed bot "
+                    "started again takes its player back within the reconnect window)",
+                    "F"),
+    fts::cli::value("--identity", "", &Args::identity_file, Text{}, "needs a file",
+                    "play with the identity in F (PROTOCOL.md 5.8; made if missing, mode 0600); with --count K, bot "
+                    "k > 1 uses F.k. Without it a bot is a guest",
+                    "F"),
+    fts::cli::value("--report", "", &Args::report, Text{true}, "needs a file or -",
+                    "where the report goes: a JSON array, one object per bot (-: stdout)", "FILE"),
+    fts::cli::value("--room", "", &Args::room_arg, kRoom, "must be quick, create or a 5-letter room code",
+                    "quick (the default) plays in the fullest open public room or a new one; "
+                    "create makes a private room for all K bots (the first creates it, the others join its code); "
+                    "CODE joins that room",
+                    "CODE|quick|create"),
+    fts::cli::value("--spectate", "", &Args::spectate, kCode, "needs a 5-letter room code",
+                    "watch that room (no ball, no seat)", "CODE"),
+    fts::cli::on("--predict", "", &Args::predict,
+                 "predict the own ball as fts-client does and stamp frames with their tick (PROTOCOL.md 4.5.1); the "
+                 "report then has the corrections (load tests cover the client's CPU)"),
+    fts::cli::on("--predict-own-only", "", &Args::predict_own_only,
+                 "with --predict, step the own ball alone (no collisions predicted; the prediction before issue 37, "
+                 "for benchmarks against it)"),
+    fts::cli::value("--predict-remote", "", &Args::predict_remote, kRemote, "must be held, coast or off",
+                    "with --predict, other players' balls near ours: stepped with the thrust their last snapshots "
+                    "show held, coasting (the default, as fts-client), or left out",
+                    "held|coast|off"),
+    fts::cli::value("--protocol-version", "", &Args::protocol_version, Int<std::uint16_t>{0, 65535}, "needs a number",
+                    "the protocol version the hello claims (0: this build's), for tests of the server's refusal", "N"),
+};
+static_assert(fts::fields::names_every_member<Args>(kOptionTable, &Args::host, &Args::port, &Args::probe, &Args::join,
+                                                    &Args::room),
+              "a member of Args has no row in kOptionTable");
+
+constexpr fts::cli::Program kProgram{
+    "fts-bot",
+    "usage: fts-bot --connect HOST:PORT [options]\n"
+    "       fts-bot --probe HOST:PORT\n",
+    "Exit status: 0 when every bot succeeded, 1 when one failed (a failed expect, a deadline, a refusal), 2 on bad "
+    "usage.\n",
+    fts::cli::Wording{false, ""},
+    false,
+    false,
+};
+
+const std::vector<fts::cli::RowInfo>& rows() {
+  static const std::vector<fts::cli::RowInfo> r = fts::cli::infos(kOptionTable);
+  return r;
+}
+
+int usage(const std::string& m) {
+  std::cerr << "fts-bot: " << m << "\n" << fts::cli::help_text(kProgram, rows());
+  return 2;
+}
+
+// "help" and "markdown" for those flags.
 std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
-  // Each value flag and the message for a missing value.
-  const std::pair<const char*, const char*> flags[] = {
-      {"--connect", "--connect needs HOST:PORT"}, {"--probe", "--probe needs HOST:PORT"},
-      {"--name", "--name needs 1..12 characters"}, {"--count", "--count needs a number"},
-      {"--behavior", "--behavior needs a value"}, {"--script", "--script needs a file"},
-      {"--duration", "--duration needs seconds"}, {"--encoding", "--encoding must be json or msgpack"},
-      {"--seed", "--seed needs a number"}, {"--token", "--token needs a value"},
-      {"--token-file", "--token-file needs a file"},
-      {"--room", "--room needs CODE, quick or create"}, {"--spectate", "--spectate needs a room code"},
-      {"--protocol-version", "--protocol-version needs a number"},  // for tests of the server's version refusal
-      {"--report", "--report needs a file or -"}};
-  CLI::App app{"", "fts-bot"};
-  app.set_help_flag();
-  app.allow_extras();
-  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  const CLI::Option* help = app.add_flag("-h,--help");
-  const CLI::Option* predict = app.add_flag("--predict");
-  for (const auto& f : flags) app.add_option(f.first);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ArgumentMismatch&) {
-    // Only a flag at the very end lacks its value (any next argument is taken).
-    const std::string flag = std::string(argv[argc - 1]).substr(0, std::string(argv[argc - 1]).find('='));
-    for (const auto& [name, message] : flags)
-      if (flag == name) return std::string(message);
-    return flag + " needs a value";
-  } catch (const CLI::ParseError& e) {
-    return std::string(e.what());
-  }
-  if (help->count() > 0) return std::string("help");
-  a.predict = predict->count() > 0;
-  if (!app.remaining().empty()) return "unknown flag " + app.remaining().front();
-  auto value = [&](const std::string& flag) -> std::optional<std::string> {
-    const CLI::Option* o = app.get_option(flag);
-    if (o->count() == 0) return std::nullopt;
-    return o->results().back();
-  };
-  for (const char* flag : {"--connect", "--probe"}) {
-    const auto v = value(flag);
-    if (!v) continue;
-    const auto hp = fts::io::parse_host_port(*v);
-    if (!hp) return std::string(flag) + " needs HOST:PORT";
+  auto parsed = fts::cli::parse(kProgram, kOptionTable, a, std::vector<std::string>(argv + 1, argv + argc));
+  if (const auto* e = std::get_if<fts::cli::Error>(&parsed)) return e->message;
+  const auto& p = std::get<fts::cli::Parsed>(parsed);
+  if (p.help) return std::string("help");
+  if (p.markdown) return std::string("markdown");
+  // --probe wins over --connect, as before.
+  for (const bool probe : {false, true}) {
+    const std::string& v = probe ? a.probe_address : a.connect;
+    if (v.empty()) continue;
+    const auto hp = fts::io::parse_host_port(v);
     a.host = hp->host;
     a.port = hp->port;
-    a.probe = std::string(flag) == "--probe";
+    a.probe = probe;
   }
-  if (const auto v = value("--name")) {
-    if (v->empty() || v->size() > 12) return std::string("--name needs 1..12 characters");
-    a.name = *v;
+  if (p.given.contains("room")) {
+    // "quick" is five letters too: the words first, then a code.
+    const bool word = a.room_arg == "quick" || a.room_arg == "create";
+    a.join = word ? a.room_arg : "join";
+    if (!word) a.room = a.room_arg;
   }
-  if (const auto v = value("--count")) {
-    a.count = std::atoi(v->c_str());
-    if (a.count < 1 || a.count > 256) return "--count must be 1..256, got " + *v;
-  }
-  if (const auto v = value("--behavior")) {
-    auto b = fts::bot::parse_behavior(*v);
-    if (!b) return "--behavior must be idle, wander, hunter or shopper, got " + *v;
-    a.behavior = *b;
-  }
-  if (const auto v = value("--script")) a.script_path = *v;
-  if (const auto v = value("--duration")) {
-    char* end = nullptr;
-    a.duration_s = std::strtod(v->c_str(), &end);
-    if (*end || a.duration_s <= 0) return "--duration must be seconds > 0, got " + *v;
-  }
-  if (const auto v = value("--encoding")) {
-    if (*v != "json" && *v != "msgpack") return std::string("--encoding must be json or msgpack");
-    a.encoding = *v == "json" ? fts::protocol::Encoding::json : fts::protocol::Encoding::msgpack;
-  }
-  if (const auto v = value("--seed")) a.seed = std::strtoull(v->c_str(), nullptr, 10);
-  if (const auto v = value("--token")) a.token = *v;
-  if (const auto v = value("--token-file")) a.token_file = *v;
-  if (const auto v = value("--protocol-version")) a.protocol_version = static_cast<std::uint16_t>(std::atoi(v->c_str()));
-  if (const auto v = value("--report")) a.report = *v;
-  if (const auto v = value("--room")) {
-    if (*v == "quick" || *v == "create") {
-      a.join = *v;
-    } else if (v->size() == 5) {
-      a.join = "join";
-      a.room = *v;
-    } else {
-      return "--room must be quick, create or a 5-letter room code, got " + *v;
-    }
-  }
-  if (const auto v = value("--spectate")) {
+  if (p.given.contains("spectate")) {
     if (!a.join.empty()) return std::string("--spectate and --room exclude each other");
-    if (v->size() != 5) return "--spectate needs a 5-letter room code, got " + *v;
     a.join = "spectate";
-    a.room = *v;
+    a.room = a.spectate;
   }
   if (a.host.empty()) return std::string("--connect HOST:PORT (or --probe HOST:PORT) is required");
   return std::nullopt;
@@ -159,8 +208,11 @@ struct Slot {
 int main(int argc, char** argv) {
   Args a;
   if (auto err = parse_args(argc, argv, a)) {
-    if (*err == "help") {
-      std::cout << kUsage;
+    if (*err == "help" || *err == "markdown") {
+      std::cout << (*err == "help" ? fts::cli::help_text(kProgram, rows())
+                                   : "# fts-bot flags\n\n<!-- Generated by `fts-bot --help-markdown` from "
+                                     "client/main_bot.cpp; the test flags_docs fails when it differs. -->\n\n" +
+                                         fts::cli::markdown(kProgram, rows(), "fts-bot"));
       return 0;
     }
     return usage(*err);
@@ -197,6 +249,18 @@ int main(int argc, char** argv) {
     return static_cast<std::uint64_t>(
         std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count());
   };
+  // Each bot's identity (--identity), read or made before the first connects.
+  std::vector<std::optional<fts::protocol::Identity>> identities(static_cast<std::size_t>(a.count));
+  if (!a.identity_file.empty()) {
+    for (int i = 0; i < a.count; ++i) {
+      const std::string path = i == 0 ? a.identity_file : a.identity_file + "." + std::to_string(i + 1);
+      identities[static_cast<std::size_t>(i)] = fts::client::load_or_create_identity(path, why);
+      if (!identities[static_cast<std::size_t>(i)]) {
+        std::cerr << "fts-bot: " << why << "\n";
+        return 2;
+      }
+    }
+  }
   std::vector<std::unique_ptr<Slot>> slots;
   // --room create: the first bot makes the room, the others join its code once known.
   const int first_wave = a.join == "create" ? 1 : (a.probe ? 1 : a.count);
@@ -210,9 +274,12 @@ int main(int argc, char** argv) {
     o.token = i == 0 ? a.token : "";
     o.probe = a.probe;
     o.predict = a.predict;
+    o.predict_own_only = a.predict_own_only;
+    o.predict_remote = a.predict_remote;
     o.protocol_version = a.protocol_version;
     o.join = join;
     o.room = room;
+    o.identity = identities.at(static_cast<std::size_t>(i));
     slots.push_back(std::make_unique<Slot>(io, std::move(o)));
     slots.back()->bot.start(now_ms());
   };

@@ -1,18 +1,24 @@
-// fts-client: the program. Options, the replay mode, the server's address, the name
-// (--name-file) and the start screen in the plain terminal, then the game (game.cpp) in
-// the raw one, and at the end the terminal given back and --stats-file written.
+// fts-client: the program. Options, the replay mode, --forget-me (forget_me.cpp), the
+// server's address, the name (--name-file) and the start screen in the plain terminal,
+// then the game (game.cpp) in the raw one, and at the end the terminal given back and
+// --stats-file written.
 #include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <variant>
 
 #include "client_options.hpp"
+#include "forget_me.hpp"
 #include "game.hpp"
+#include "net/identity_store.hpp"
+#include "net/session_store.hpp"
 #include "replay/replay_loop.hpp"
 #include "term/terminal.hpp"
 #include "ui/sanitize.hpp"
@@ -80,6 +86,28 @@ int main(int argc, char** argv) {
     std::cerr << "\nfts-client: " << idle_text(opts) << "\n";
     return kIdleExitCode;
   };
+  // The identity: read, or made on the first run (PROTOCOL.md 5.8); --guest: none.
+  std::string identity_path;
+  if (!opts.guest) {
+    const std::string path = !opts.identity_file.empty()
+                                 ? opts.identity_file
+                                 : default_identity_path(state_dir(std::getenv("XDG_STATE_HOME"), std::getenv("HOME")));
+    identity_path = path;
+    // --forget-me erases an identity's profile: one that does not exist has none.
+    if (opts.forget_me && (path.empty() || !std::filesystem::exists(path))) {
+      std::cerr << "fts-client: no identity" << (path.empty() ? std::string() : " at " + path)
+                << ": nothing to forget (--identity FILE names another)\n";
+      return 1;
+    }
+    if (!path.empty()) {
+      opts.identity = load_or_create_identity(path, why);
+      if (!opts.identity) {
+        std::cerr << "fts-client: " << why << " (--guest plays without an identity)\n";
+        return 1;
+      }
+    }
+  }
+  if (opts.forget_me) return forget_me(io, opts, *server, identity_path);
   if (opts.name.empty()) opts.name = name_from_file(opts.name_file, opts.idle_exit_s, timed_out);
   if (timed_out) return idle_end();
   if (opts.name.empty()) return 1;

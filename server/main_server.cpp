@@ -15,6 +15,7 @@
 #include "app/log.hpp"
 #include "app/match_settings.hpp"
 #include "app/options.hpp"
+#include "app/profile_setup.hpp"
 #include "app/room_journals.hpp"
 #include "fleet/fleet_names.hpp"
 #include "host/journal.hpp"
@@ -61,6 +62,10 @@ int main(int argc, char** argv) {
   auto options = std::get<server::Options>(parsed);
   if (options.help) {
     std::cout << server::usage_text();
+    return 0;
+  }
+  if (options.markdown) {
+    std::cout << server::markdown_text();
     return 0;
   }
   if (options.version) {
@@ -117,9 +122,41 @@ int main(int argc, char** argv) {
                   "): start with --resume to bring them back, or remove them");
     if (options.resume) reads = server::read_room_journals(options.journal_dir, codes, std::thread::hardware_concurrency());
   }
+  // Profiles (issue 41): a SQLite file that is not ours (corrupt, foreign, newer) is
+  // refused now, with what is wrong; a PostgreSQL that does not answer yet is only said:
+  // the writer keeps trying, and spools meanwhile.
+  std::unique_ptr<profiles::Writer> profile_writer;
+  const auto place = server::profile_place(options.profiles, std::getenv("XDG_STATE_HOME"), std::getenv("HOME"));
+  if (!place.error.empty()) return fail(place.error);
+  if (!place.off) {
+    auto first = profiles::Store::open(place.url);
+    if (auto* why = std::get_if<std::string>(&first)) {
+      if (!profiles::is_postgresql_url(place.url)) return fail("--profiles: " + *why);
+      server::log_record(spdlog::level::warn, "profiles_unreachable", {{"error", *why}});
+    }
+    profiles::WriterConfig wc;
+    wc.url = place.url;
+    wc.spool_dir = place.spool_dir;
+    profile_writer = std::make_unique<profiles::Writer>(wc);
+    if (!profile_writer->spool_error().empty()) return fail("--profiles: " + profile_writer->spool_error());
+    server::log_record(spdlog::level::info, "profiles",
+                       {{"where", profile_writer->stats().where}, {"spool", place.spool_dir},
+                        {"adopted", profile_writer->stats().adopted}});
+  }
   // The journals' matches go on: their config wins over the flags.
   if (auto resumed_cfg = server::resumed_config(reads)) config = *resumed_cfg;
   server::GameHost host(options, config, protocol::random_key());
+  if (profile_writer) {
+    // The wall clock of profiles; FTS_TEST_CLOCK_OFFSET_S moves it (tests: "a day later").
+    const char* offset_env = std::getenv("FTS_TEST_CLOCK_OFFSET_S");
+    const std::int64_t offset = offset_env ? std::strtoll(offset_env, nullptr, 10) : 0;
+    host.use_profiles(profile_writer.get(), [offset] {
+      return static_cast<std::int64_t>(std::chrono::duration_cast<std::chrono::seconds>(
+                                           std::chrono::system_clock::now().time_since_epoch())
+                                           .count()) +
+             offset;
+    });
+  }
   if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
   if (!options.record_path.empty()) host.record_to(options.record_path, FTS_VERSION);
   if (journal_root) {

@@ -1,6 +1,7 @@
 #include "bot/bot.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -68,6 +69,7 @@ protocol::ClientConfig connection_config(const BotOptions& o) {
   if (o.protocol_version) c.version = o.protocol_version;
   c.join = o.join;
   c.room = o.room;
+  c.identity = o.identity;
   return c;
 }
 
@@ -76,7 +78,12 @@ protocol::ClientConfig connection_config(const BotOptions& o) {
 // A bot (not a probe) resumes a lost connection with its token, like the client does.
 Bot::Bot(BotOptions options)
     : options_(std::move(options)), conn_(connection_config(options_), /*resume_when_lost=*/!options_.probe),
-      rng_(options_.seed), net_(options_.predict) {}
+      rng_(options_.seed), net_(options_.predict, [&] {
+        client::PredictionTuning t;
+        t.others = !options_.predict_own_only;
+        t.remote = options_.predict_remote;
+        return t;
+      }()) {}
 
 void Bot::start(std::uint64_t now_ms) { conn_.connect(now_ms); }
 
@@ -131,6 +138,12 @@ std::string snapshot_digest(const protocol::Snapshot& s) {
   return text;
 }
 
+// A sample kept for a percentile (the newest 100 000).
+void keep_sample(std::vector<double>& v, double x) {
+  if (v.size() >= 100000) v.erase(v.begin(), v.begin() + 50000);
+  v.push_back(x);
+}
+
 }  // namespace
 
 std::string Bot::room() const {
@@ -140,7 +153,11 @@ std::string Bot::room() const {
 
 void Bot::on_snapshot(const protocol::Snapshot& s) {
   tally_.on_snapshot(s);
-  if (options_.predict) net_.on_snapshot(s, player_id_, now_ms_);
+  if (options_.predict) {
+    const auto t0 = std::chrono::steady_clock::now();
+    net_.on_snapshot(s, player_id_, now_ms_);
+    keep_sample(predict_snapshot_us_, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+  }
   digests_.emplace_back(s.tick, snapshot_digest(s));
   while (digests_.size() > 200) digests_.pop_front();
   // Each event once, by its seq (snapshots repeat them; PROTOCOL.md 8.4).
@@ -301,7 +318,11 @@ void Bot::update(std::uint64_t now_ms) {
     // what went out, and the ball is predicted as the client would draw it (its CPU counts).
     if (net_.predicting()) f.tick = net_.stamp(net_.own_tick(now_ms, conn_.endpoint().stats().rtt_ms));
     if (conn_.endpoint().hold_input(f, now_ms) != 0) net_.sent(f);  // on change, with a keep-alive (lean uplink)
-    if (net_.predicting()) (void)net_.own_ball(now_ms);
+    if (net_.predicting()) {
+      const auto t0 = std::chrono::steady_clock::now();
+      (void)net_.own_ball(now_ms);
+      keep_sample(predict_frame_us_, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    }
   }
 }
 
@@ -349,6 +370,14 @@ nlohmann::ordered_json Bot::report() const {
                        {"free_corrections", p.free_sizes_radii.size()},
                        {"free_correction_p50_radii", client::percentile(p.free_sizes_radii, 50)},
                        {"free_correction_p99_radii", client::percentile(p.free_sizes_radii, 99)},
+                       {"contact_correction_p50_radii", client::percentile(p.contact_sizes_radii, 50)},
+                       {"contact_correction_p99_radii", client::percentile(p.contact_sizes_radii, 99)},
+                       {"others", !options_.predict_own_only},
+                       {"balls_per_tick_stepped", p.ticks_stepped ? static_cast<double>(p.balls_stepped) / static_cast<double>(p.ticks_stepped) : 0.0},
+                       {"frame_us_p50", client::percentile(predict_frame_us_, 50)},
+                       {"frame_us_p99", client::percentile(predict_frame_us_, 99)},
+                       {"snapshot_us_p50", client::percentile(predict_snapshot_us_, 50)},
+                       {"snapshot_us_p99", client::percentile(predict_snapshot_us_, 99)},
                        {"lead_ticks", net_.lead_ticks()}, {"jitter_ms", net_.jitter_ms()}};
   }
   r["errors"] = errors_;

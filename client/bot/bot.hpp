@@ -16,8 +16,8 @@
 #include "bot/tally.hpp"
 #include "fts/protocol/connection.hpp"
 #include "fts/sim/rng.hpp"
-#include "ui/link_stats.hpp"
-#include "ui/net_timing.hpp"
+#include "net/link_stats.hpp"
+#include "net/net_timing.hpp"
 
 namespace fts::bot {
 
@@ -35,6 +35,9 @@ struct BotOptions {
   std::string join;  // Hello::join: "" (quick), "quick", "create", "join", "spectate"
   std::string room;  // the room code for join and spectate
   bool predict = false;  // predict the own ball and stamp frames with their tick (issue 28)
+  bool predict_own_only = false;  // --predict-own-only: the own ball alone (no collisions; before issue 37)
+  client::RemotePlayers predict_remote = client::kDefaultRemotePlayers;  // --predict-remote
+  std::optional<protocol::Identity> identity;  // none: a guest (PROTOCOL.md 5.8)
 };
 
 // Where a bot is in its script, and what the script holds it to.
@@ -126,8 +129,11 @@ class Bot {
   // (tick, digest of the snapshot's balls and players) of the latest snapshots: a
   // spectator and a player of one room report the same digests for the same ticks.
   std::deque<std::pair<std::uint32_t, std::string>> digests_;
-  // --predict: what fts-client runs for its own ball (ui/prediction.hpp).
+  // --predict: what fts-client runs for its own ball (predict/prediction.hpp).
   client::NetTiming net_;
+  // Wall time spent in the prediction (the snapshot's reconciliation and each frame's
+  // prediction), microseconds per call, for the report.
+  std::vector<double> predict_frame_us_, predict_snapshot_us_;
   std::uint64_t now_ms_ = 0;
 };
 

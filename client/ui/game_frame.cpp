@@ -25,6 +25,9 @@ Screen game_frame(const SnapshotBuffer& buffer, NetTiming& net, ViewState& view,
     protocol::Snapshot a = *f.a, b = *f.b;
     place_own_ball(a, view.my_player_id, *own);
     place_own_ball(b, view.my_player_id, *own);
+    const auto near = net.near_balls();  // the balls it may hit, in its time (issue 37)
+    place_near_balls(a, near, *own);
+    place_near_balls(b, near, *own);
     return render(a, b, f.alpha, size, view);
   }
   for (const auto& ball : f.b->balls)  // what the screen shows of our ball's motion

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <optional>
 
-#include "ui/interpolate.hpp"
-#include "ui/net_timing.hpp"
+#include "net/interpolate.hpp"
+#include "net/net_timing.hpp"
 #include "ui/screen.hpp"
 #include "ui/view.hpp"
 

@@ -145,7 +145,8 @@ std::string refusal_text(const std::string& code, const std::string& server_mess
     if (item != 0 && d.key == item) def = &d;
   const std::string what = def != nullptr ? std::string(def->name) : std::string("that");
   using protocol::ResultCode;
-  switch (protocol::result_code_of(code).value_or(ResultCode::count_)) {
+  const ResultCode rc = protocol::result_code_of(code).value_or(ResultCode::count_);
+  switch (rc) {
     case ResultCode::coins:
       if (me != nullptr && def != nullptr)
         return "not enough coins: " + what + " costs " + sim::with_thousands(me->prices[sim::index_of(def->item)]) +
@@ -159,8 +160,12 @@ std::string refusal_text(const std::string& code, const std::string& server_mess
     case ResultCode::dead: return "you are out of the match: watching";
     case ResultCode::item: return "there is no such item in the shop";
     case ResultCode::op: return "this server does not know that command";
-    case ResultCode::rate: return "too many chat lines: wait a moment";
-    case ResultCode::empty: return "nothing to say";
+    case ResultCode::rate:
+    case ResultCode::empty:
+    case ResultCode::busy:
+    case ResultCode::no_profiles:
+    case ResultCode::unavailable:
+    case ResultCode::guest: return std::string(protocol::result_sentence(rc));
     case ResultCode::ok:
     case ResultCode::field:
     case ResultCode::spectator:

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <string>
 
+#include "net/interpolate.hpp"
+#include "ui/board.hpp"
 #include "ui/field_cells.hpp"
 #include "ui/fine_field.hpp"
 #include "ui/hud.hpp"
-#include "ui/interpolate.hpp"
 #include "ui/palette.hpp"
 #include "ui/panel.hpp"
 #include "ui/sanitize.hpp"
@@ -25,6 +26,7 @@ constexpr Style kDimStyle{Color::gray, Color::none, false, false, false};
 constexpr Style kStatusStyle{Color::red, Color::none, true, false, false};
 constexpr Style kMessageStyle{Color::cyan, Color::none, false, false, false};
 constexpr Style kTitleStyle{Color::yellow, Color::none, true, false, false};
+constexpr Style kMineStyle{Color::green, Color::none, true, false, false};
 
 struct BallLook {
   char fill;
@@ -198,8 +200,13 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
   const int last = L.area_row0 + L.area_rows - 3;  // leave the result and ready lines
   const int width = std::max(L.area_cols - 3, 10);
   const std::vector<std::string> board = scoreboard_lines(snap, view, false);
+  // The player's best (ui/board.hpp): beside the slide's title, else on the result line.
+  const std::string best = best_line(view, snap.level);
+  bool best_shown = best.empty();
   if (me == nullptr || (me->lives <= 0 && !me->alive)) {
+    best_shown = true;
     s.put(2, first, "Level " + std::to_string(snap.level) + " Complete", kTitleStyle);
+    if (me != nullptr && !best.empty()) s.put(2, first + 1, best.substr(0, static_cast<std::size_t>(width)), kMineStyle);
     s.put(2, first + 2, me == nullptr ? "You are watching: the players are shopping."
                                       : "You are out: watching the others shop.");
     for (std::size_t i = 0; i < board.size() && first + 4 + static_cast<int>(i) <= last; ++i)
@@ -240,9 +247,15 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
     for (const auto& line : spaced) {
       if (row > last) break;
       Style style;
-      if (line.rfind("Level ", 0) == 0 && line.find("Complete") != std::string::npos) style = kTitleStyle;
+      const bool title = line.rfind("Level ", 0) == 0 && line.find("Complete") != std::string::npos;
+      if (title) style = kTitleStyle;
       else if (line.rfind("To ", 0) == 0 || line.rfind("Press ", 0) == 0) style.bold = true;
-      s.put(2, row++, line, style);
+      s.put(2, row, line, style);
+      if (title && !best_shown && line.size() + 4 + best.size() <= static_cast<std::size_t>(std::max(text_w(spaced), 0))) {
+        s.put(2 + static_cast<int>(line.size()) + 4, row, best, kMineStyle);
+        best_shown = true;
+      }
+      ++row;
     }
     // The standings after the level: beside the offers when the terminal is wide enough,
     // else under them.
@@ -257,6 +270,7 @@ void draw_shop(Screen& s, const Snapshot& snap, const ViewState& view, const Fra
   }
   const int cut = std::max(L.area_cols - 2, 1);
   if (!view.shop_result.empty() && view.now_ms < view.shop_result_ms + kShopResultShowMs) s.put(2, last + 1, view.shop_result.substr(0, static_cast<std::size_t>(cut)), kMessageStyle);
+  else if (!best_shown) s.put(2, last + 1, best.substr(0, static_cast<std::size_t>(cut)), kMineStyle);
   std::string ready;
   if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
     ready = "Next level in " + std::to_string(left) + " s.   ";
@@ -293,6 +307,42 @@ void draw_standings(Screen& s, const Snapshot& snap, const ViewState& view, cons
     s.put(col, row++, line, i == 0 ? kTitleStyle : kHudStyle);
   }
   s.put(col, row + 1, std::string(" Press Enter to play again, q to quit ").substr(0, static_cast<std::size_t>(v.cols)), kHudStyle);
+  // Your place on the server's board, with this match counted (asked for at game over).
+  const std::string own = view.board ? own_board_line(view) : std::string();
+  if (!own.empty() && row + 3 < v.row0 + v.rows)
+    put_centred(s, row + 3, " " + own + " ", view.board->rank != 0 ? kMineStyle : kHudStyle, v);
+}
+
+// The waiting screen: what to press, who is ready, the countdown, and the leaderboard
+// under them (ui/board.hpp) with the player's own place; without a board, the three lines
+// in the middle as before it.
+void draw_lobby(Screen& s, const Snapshot& snap, const ViewState& view, const Viewport& v) {
+  const int left = countdown_s(snap, view.tick_rate_hz);
+  const std::vector<BoardLine> board = board_lines(view, v.cols - 2, v.rows - 5);
+  if (board.empty()) {
+    const int mid = v.row0 + v.rows / 2;
+    put_centred(s, mid, " Waiting for the match: press Enter when ready ", kTitleStyle, v);
+    if (!snap.players.empty()) put_centred(s, mid + 2, " " + ready_line(snap) + " ", kHudStyle, v);
+    if (left >= 0) put_centred(s, mid + 4, " The match starts in " + std::to_string(left) + " s, ready or not ", kHudStyle, v);
+    return;
+  }
+  // The board's lines share one left edge and a cleared box, centred on the platform.
+  int width = 0;
+  for (const auto& l : board) width = std::max(width, static_cast<int>(l.text.size()));
+  width = std::min(width + 2, v.cols);
+  const int used = 4 + static_cast<int>(board.size());
+  int row = v.row0 + std::max(0, (v.rows - used) / 2);
+  put_centred(s, row, " Waiting for the match: press Enter when ready ", kTitleStyle, v);
+  if (!snap.players.empty()) put_centred(s, row + 1, " " + ready_line(snap) + " ", kHudStyle, v);
+  if (left >= 0) put_centred(s, row + 2, " The match starts in " + std::to_string(left) + " s, ready or not ", kHudStyle, v);
+  row += 4;
+  const int col = v.col0 + std::max(0, (v.cols - width) / 2);
+  for (const auto& l : board) {
+    std::string text = " " + l.text;
+    text.resize(static_cast<std::size_t>(width), ' ');
+    const Style style = l.title ? kTitleStyle : l.mine ? kMineStyle : kHudStyle;
+    s.put(col, row++, text, style);
+  }
 }
 
 }  // namespace
@@ -348,10 +398,7 @@ Screen render(const protocol::Snapshot& a, const protocol::Snapshot& b, double a
       put_centred(s, v.row0, " GAME OVER at level " + std::to_string(snap.level) + " ", kTitleStyle, v);
       draw_standings(s, snap, view, v);
     } else if (snap.phase == Phase::lobby) {
-      put_centred(s, mid, " Waiting for the match: press Enter when ready ", kTitleStyle, v);
-      if (!snap.players.empty()) put_centred(s, mid + 2, " " + ready_line(snap) + " ", kHudStyle, v);
-      if (const int left = countdown_s(snap, view.tick_rate_hz); left >= 0)
-        put_centred(s, mid + 4, " The match starts in " + std::to_string(left) + " s, ready or not ", kHudStyle, v);
+      draw_lobby(s, snap, view, v);
     } else if (me != nullptr && !me->alive) {
       put_centred(s, mid, me->lives > 0 ? " You fell off: respawning... " : " You are out: watching (Tab: next player) ",
                   kTitleStyle, v);

@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "fts/protocol/messages.hpp"
 #include "fts/sim/items.hpp"
 
 namespace fts::client {
@@ -58,6 +60,12 @@ struct ViewState {
   bool mouse_steering = false;  // the pointer steers (shown in the footer)
   std::string replay_footer;    // --replay: the footer text (speed, pause, keys)
   std::string room;           // "Room ABCDE" / "Watching ABCDE" (ui/start_screen.hpp), "" : none
+  // The leaderboard (PROTOCOL.md 4.7c, ui/board.hpp): the last one the server sent (names
+  // as they came: cleaned when drawn), shown on the waiting screen and, as the player's
+  // best, after each level.
+  std::optional<protocol::Leaderboard> board;
+  bool guest = false;       // we play without an identity: no rank of our own
+  std::string board_note;   // why there is no board (already sanitised), "" : nothing to say
 };
 
 }  // namespace fts::client

@@ -3,6 +3,7 @@
 #include "fts/sim/match.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "match_internal.hpp"
 
@@ -160,13 +161,13 @@ void handle_joins(MatchState& s, std::vector<JoinRequest> joins, std::vector<Eve
   // Every newcomer of a tick gets the same start, from the players there before it.
   const Economy start = late_joiner(s) ? late_join_economy(s) : start_economy(s.cfg);
   for (const JoinRequest& j : joins) {
-    std::string refusal;
-    if (j.player == 0) refusal = "bad_id";
-    else if (find_player(s, j.player)) refusal = "id_in_use";
-    else if (seated_players(s) >= s.cfg.max_players) refusal = "match_full";
-    else if (j.name.empty() || j.name.size() > 32) refusal = "bad_name";
-    if (!refusal.empty()) {
-      out.push_back(JoinRefused{j.player, std::move(refusal)});
+    std::optional<JoinRefusal> refusal;
+    if (j.player == 0) refusal = JoinRefusal::bad_id;
+    else if (find_player(s, j.player)) refusal = JoinRefusal::id_in_use;
+    else if (seated_players(s) >= s.cfg.max_players) refusal = JoinRefusal::match_full;
+    else if (j.name.empty() || j.name.size() > 32) refusal = JoinRefusal::bad_name;
+    if (refusal) {
+      out.push_back(JoinRefused{j.player, *refusal});
       continue;
     }
     Player p;

@@ -57,6 +57,9 @@ void ClientEndpoint::send_hello(std::uint64_t now_ms) {
                                 ? seal_hello_token(keys_, kx_.public_key, config_.token)
                                 : std::string();
   Hello hello{config_.name, token, cookie_, "", nonce_, config_.join, config_.room, public_key_hex(kx_.public_key)};
+  // The identity too, proven over this handshake (PROTOCOL.md 5.8).
+  if (seal_.ready() && config_.identity)
+    hello.id = seal_hello_identity(*config_.identity, keys_, kx_.public_key, server_kx_, cookie_);
   // Pad to kMinHelloBytes (a longer pad may need a longer length prefix: loop).
   for (;;) {
     const std::size_t size = kHeaderBytes + encode_payload(config_.encoding, {hello}).size();
@@ -193,6 +196,7 @@ void ClientEndpoint::handle_connecting(const Datagram& d, std::uint64_t now_ms) 
         continue;
       }
       keys_ = *keys;
+      server_kx_ = *server_key;
       seal_ = SealedChannel(keys_, SealDirection::client_to_server, SealDirection::server_to_client);
       cookie_ = c->cookie;
       send_hello(now_ms);
@@ -240,6 +244,9 @@ void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {
       if (auto why = results_.accept(*res)) reject(*why);
     } else if (const auto* chat = std::get_if<Chat>(&m)) {
       if (auto why = chats_.accept(*chat)) reject(*why);
+    } else if (const auto* board = std::get_if<Leaderboard>(&m)) {
+      if (boards_.size() >= kMaxBoards) boards_.erase(boards_.begin());
+      boards_.push_back(*board);
     } else if (std::holds_alternative<Ping>(m)) {
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       error_ = make_error(ErrorCode::bye, bye->reason);

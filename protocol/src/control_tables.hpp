@@ -17,6 +17,7 @@ inline constexpr std::size_t kSealedTokenHex = 96;  // a token sealed in a hello
 inline constexpr std::size_t kKeyHex = 64;          // a crypto_kx public key (5.7.1)
 inline constexpr std::size_t kCookieHex = 48;
 inline constexpr std::size_t kNonceHex = 16;
+inline constexpr std::size_t kSealedIdentityHex = 224;  // the hello's identity box (PROTOCOL.md 5.8)
 inline constexpr std::size_t kRoomBytes = 16;
 inline constexpr std::size_t kCodeBytes = 32;
 inline constexpr std::int64_t kAnyU32 = 0xFFFFFFFF;
@@ -34,7 +35,8 @@ inline constexpr auto kHelloFields = std::make_tuple(
     F<Hello, std::string, Hex>{"nonce", &Hello::nonce, {kNonceHex, true}},
     F<Hello, std::string, Text>{"join", &Hello::join, {0, kRoomBytes}, Presence::nonzero},
     F<Hello, std::string, Text>{"room", &Hello::room, {0, kRoomBytes}, Presence::nonzero},
-    F<Hello, std::string, Hex>{"key", &Hello::key, {kKeyHex}, Presence::nonzero});
+    F<Hello, std::string, Hex>{"key", &Hello::key, {kKeyHex}, Presence::nonzero},
+    F<Hello, std::string, Hex>{"id", &Hello::id, {kSealedIdentityHex}, Presence::nonzero});
 
 // ---- challenge (4.2)
 inline constexpr auto kChallengeFields =
@@ -121,8 +123,8 @@ inline constexpr auto kErrorFields =
 // chat text takes any bytes (the server cleans it).
 inline constexpr auto kCommandFields = std::make_tuple(
     F<Command, std::uint32_t, U32>{"rid", &Command::rid, {0, kAnyU32}},
-    F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 6>>>{
-        "op", &Command::op, {{{"buy", "ready", "again", "unknown", "chat", "rooms"}, CommandOp::unknown}}},
+    F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 8>>>{
+        "op", &Command::op, {{{"buy", "ready", "again", "unknown", "chat", "rooms", "top", "forget"}, CommandOp::unknown}}},
     F<Command, char, Tolerant<Key>>{"item", &Command::item, {}, Presence::nonzero},
     F<Command, std::string, Tolerant<AnyText>>{"text", &Command::text, {{kMaxTextBytes}}, Presence::nonzero});
 

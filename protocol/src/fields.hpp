@@ -5,6 +5,7 @@
 // and for tables over two structs (state and delta entry) the changed-field delta.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -95,7 +96,8 @@ struct Hex {
   template <class W>
   void put(W& w, const std::string& v) const { w.str(v); }
   void get(MsgpackReader& r, std::string& v) const {
-    const std::string_view s = r.str(kMaxTextBytes);
+    // (A hex field may be longer than text: the hello's sealed identity, 224 digits.)
+    const std::string_view s = r.str(std::max(kMaxTextBytes, digits));
     if (r.failed()) return;
     if (s.empty() ? required : s.size() != digits) return r.fail(Reject::out_of_range);
     for (char c : s)

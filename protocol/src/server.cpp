@@ -345,12 +345,19 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
   if (s.results.pending() > config_.max_pending_results) overflow(s, "results", now_ms);
 }
 
+bool ServerEndpoint::send_board(std::uint32_t player_id, const Leaderboard& board, std::uint64_t now_ms) {
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end() || !it->second.connected) return false;
+  send_packet(it->second, {board}, false, now_ms);
+  return true;
+}
+
 void ServerEndpoint::answer_fault(Session& s, const Command& c, std::uint64_t now_ms) {
   rejects_.add(Reject::bad_field);
   // op and item have their own codes (the same as an unknown op or item); any other
   // field is "field".
   const ResultCode code = c.fault == "op" ? ResultCode::op : c.fault == "item" ? ResultCode::item : ResultCode::field;
-  const std::string why = c.fault == "op"     ? "op must be text: buy, ready, again, chat or rooms"
+  const std::string why = c.fault == "op"     ? "op must be text: buy, ready, again, chat, rooms, top or forget"
                           : c.fault == "item" ? "item must be one printable character: m s a r l x b"
                           : c.fault == "text" ? "text must be text of at most 200 bytes"
                                               : c.fault + " is not valid";
@@ -407,7 +414,7 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
     // Its seat is free; the match parks its ball (a quit, again for one that quit already:
     // parking is idempotent), and the host logs it as kept.
     s.quit = true;
-    events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator});
+    events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator, s.identity});
   }
   for (auto id : expired) release(id, sessions_.at(id).kept ? "match over" : "reconnect window over");
   for (auto id : never_played) release(id, "timeout");
@@ -422,7 +429,7 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
                                              " s: your seat is freed; your progress is kept until the match ends")},
                 false, now_ms);
     s.quit = true;
-    drop_connection(s, "idle", now_ms);
+    drop_connection(s, std::string(to_string(ErrorCode::idle)), now_ms);  // the error it was sent
   }
 }
 
@@ -454,7 +461,7 @@ std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
   for (const auto& [id, s] : sessions_)
     out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
-                   s.rate_limited, s.room, s.spectator, s.seal.drops()});
+                   s.rate_limited, s.room, s.spectator, s.seal.drops(), s.identity});
   return out;
 }
 

@@ -106,6 +106,19 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, make_error(ErrorCode::bad_key, "the hello has no usable key (PROTOCOL.md 5.7)"), request_bytes);
     return;
   }
+  // The player's identity, proven over this handshake (PROTOCOL.md 5.8); "" a guest.
+  std::string identity;
+  if (!hello.id.empty()) {
+    auto fp = open_hello_identity(*keys, *client_key, kx_.public_key, hello.cookie, hello.id);
+    if (!fp) {
+      rejects_.add(Reject::bad_identity);
+      reply_unconnected(from, enc, 0,
+                        make_error(ErrorCode::bad_identity, "the hello's identity proof does not verify (PROTOCOL.md 5.8)"),
+                        request_bytes);
+      return;
+    }
+    identity = std::move(*fp);
+  }
   std::string token;
   if (!hello.token.empty()) {
     // Reconnects are rate limited per host: a token cannot be tried, or a player taken
@@ -120,26 +133,51 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   }
   // A new attempt from the address of a live session: the client there restarted.
   // With that session's token it is taken back below; otherwise the old client is gone.
-  if (here && here->connected && token != here->token) {
+  // Without a token, a proven identity takes back its player who is away (not connected:
+  // its seat held, or kept while its room's match runs, or restored by --resume): the
+  // same player, as with the token (issue 41). A spectate hello watches as someone new.
+  Session* back = nullptr;
+  if (token.empty() && !identity.empty() && hello.join != "spectate") {
+    for (auto& [pid, s] : sessions_)
+      if (s.identity == identity && !s.spectator && (!s.connected || &s == here)) {
+        back = &s;
+        break;
+      }
+  }
+  if (here && here->connected && token != here->token && here != back) {
     drop_connection(*here, "replaced by a new connection", now_ms);
     // A session that never played holds no slot (PROTOCOL.md 6): freed now, its token dead.
     if (!here->played) release(here->player_id, "replaced");
   }
-  if (!token.empty()) {
-    // A restored session knows only its token's verifier (compared once per hello).
-    const std::string verifier = token_verifier(token);
-    auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-      return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == token;
-    });
-    if (it == sessions_.end()) {
-      rejects_.add(Reject::bad_token);
-      reply_unconnected(from, enc, 0,
-                        make_error(ErrorCode::bad_token, "unknown or expired session token; connect again without one"),
-                        request_bytes);
-      return;
+  if (!token.empty() || back) {
+    if (!back) {
+      // A restored session knows only its token's verifier (compared once per hello).
+      const std::string verifier = token_verifier(token);
+      auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
+        return kv.second.token.empty() ? kv.second.verifier == verifier : kv.second.token == token;
+      });
+      // A token is its player's; with another player's identity it takes nothing back.
+      if (it != sessions_.end() && !identity.empty() && !it->second.identity.empty() &&
+          it->second.identity != identity)
+        it = sessions_.end();
+      if (it == sessions_.end()) {
+        rejects_.add(Reject::bad_token);
+        reply_unconnected(from, enc, 0,
+                          make_error(ErrorCode::bad_token, "unknown or expired session token; connect again without one"),
+                          request_bytes);
+        return;
+      }
+      back = &it->second;
+      back->token = token;
     }
-    Session& s = it->second;
-    s.token = token;
+    Session& s = *back;
+    if (s.identity.empty()) s.identity = identity;  // a guest's player proven now
+    if (s.token.empty()) {
+      // Taken back by its identity after a restart (--resume): the journal kept only the
+      // old token's verifier, so the player gets a new token (and the host a new verifier).
+      s.token = derive_token(config_.key, sessions_made_ + 1);
+      s.verifier = token_verifier(s.token);
+    }
     // A player who quit gave its seat up: it comes back only to a free one.
     if (s.quit && !s.spectator &&
         (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
@@ -155,7 +193,8 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       send_packet(s, {make_error(ErrorCode::taken_over, "another connection took this player over with its token")}, false, now_ms);
     start_session(s, from, enc, hello, *keys, now_ms);
     s.welcomed_as_reconnect = true;
-    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, "token", false, s.room, s.spectator});
+    events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, token.empty() ? "identity" : "token", false,
+                       s.room, s.spectator, s.identity});
     send_welcome(s, true, request_bytes, now_ms);
     return;
   }
@@ -210,8 +249,9 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   s.room = admission.room;
   s.room_code = admission.code;
   s.spectator = admission.spectator;
+  s.identity = identity;
   start_session(s, from, enc, hello, *keys, now_ms);
-  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator});
+  events_.push_back({ServerEvent::Kind::connected, s.player_id, s.name, "", false, s.room, s.spectator, s.identity});
   send_welcome(s, false, request_bytes, now_ms);
 }
 

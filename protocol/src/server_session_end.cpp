@@ -21,7 +21,7 @@ void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std:
   s.disconnected_ms = now_ms;
   by_session_id_.erase(s.session_id);
   by_address_.erase(s.address);
-  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit, s.room, s.spectator});
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit, s.room, s.spectator, s.identity});
 }
 
 void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {
@@ -30,7 +30,7 @@ void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason)
   by_session_id_.erase(it->second.session_id);
   by_address_.erase(it->second.address);
   events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason, false, it->second.room,
-                     it->second.spectator});
+                     it->second.spectator, it->second.identity});
   sessions_.erase(it);
 }
 
@@ -54,6 +54,7 @@ bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now
   s.player_id = r.player_id;
   s.name = r.name;
   s.verifier = r.token_verifier;
+  s.identity = r.identity.size() == kFingerprintHex ? r.identity : std::string();
   s.quit = r.quit;
   s.room = room;
   s.room_code = room_code;
@@ -61,8 +62,13 @@ bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now
   s.connected = false;
   s.disconnected_ms = now_ms;
   s.last_active_ms = now_ms;
-  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit, s.room, false});
+  events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "restart", s.quit, s.room, false, s.identity});
   return true;
+}
+
+std::string ServerEndpoint::session_identity(std::uint32_t player_id) const {
+  auto it = sessions_.find(player_id);
+  return it == sessions_.end() ? std::string() : it->second.identity;
 }
 
 std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {

@@ -33,6 +33,7 @@ FTS_WIRE_SPEC(Ping, "ping", kPingFields);
 FTS_WIRE_SPEC(Bye, "bye", kByeFields);
 FTS_WIRE_SPEC(SnapshotMsg, "snap", kSnapFields);
 FTS_WIRE_SPEC(Chat, "chat", kChatFields);
+FTS_WIRE_SPEC(Leaderboard, "board", kLeaderboardFields);
 
 #undef FTS_WIRE_SPEC
 

@@ -267,6 +267,23 @@ struct MapOf {
 
 inline constexpr MapOf<PlayerEntry, decltype(kPlayerFields)> kPlayerMap{&kPlayerFields};
 
+// ---- board (PROTOCOL.md 4.7c): a leaderboard, its rows [rank, name, level, coins]
+inline constexpr auto kBoardRow = std::make_tuple(
+    Field<BoardRow, std::uint32_t, Int<std::uint32_t>>{"rank", &BoardRow::rank, {1, kU32Max}},
+    Field<BoardRow, std::string, Text>{"name", &BoardRow::name, {1, kMaxNameBytes}},
+    Field<BoardRow, std::int64_t, Int<std::int64_t>>{"level", &BoardRow::level, {0, 1'000'000}},
+    Field<BoardRow, std::int64_t, Int<std::int64_t>>{"coins", &BoardRow::coins, kCoins});
+static_assert(fields::names_every_member<BoardRow>(kBoardRow));
+
+inline constexpr auto kLeaderboardFields = std::make_tuple(
+    Field<Leaderboard, std::uint32_t, Int<std::uint32_t>>{"cmd", &Leaderboard::cmd, {1, kU32Max}},
+    Field<Leaderboard, std::vector<BoardRow>, List<BoardRow, RowOf<BoardRow, decltype(kBoardRow)>>>{
+        "top", &Leaderboard::top, {kBoardRows, {&kBoardRow}}},
+    Field<Leaderboard, std::uint32_t, Int<std::uint32_t>>{"of", &Leaderboard::of, kU32<std::uint32_t>},
+    Field<Leaderboard, std::uint32_t, Int<std::uint32_t>>{"rank", &Leaderboard::rank, kU32<std::uint32_t>, Presence::nonzero},
+    Field<Leaderboard, std::int64_t, Int<std::int64_t>>{"best", &Leaderboard::best, {0, 1'000'000}, Presence::nonzero},
+    Field<Leaderboard, std::int64_t, Int<std::int64_t>>{"best_coins", &Leaderboard::best_coins, kCoins, Presence::nonzero});
+
 // ---- snap (PROTOCOL.md 4.10)
 inline constexpr auto kSnapFields = std::make_tuple(
     Field<SnapshotMsg, std::uint32_t, Int<std::uint32_t>>{"tick", &SnapshotMsg::tick, kU32<std::uint32_t>},

@@ -175,6 +175,14 @@ Reply stats(GameHost& host, const nlohmann::json&, std::uint64_t) {
   const auto journal = host.journal_health();
   out["journal"] = {{"rooms", journal.rooms}, {"failing", journal.failing}, {"failures", journal.failures},
                     {"error", journal.error}};
+  if (const auto* w = host.profiles()) {
+    const auto ps = w->stats();
+    out["profiles"] = {{"where", ps.where}, {"connected", ps.connected}, {"error", ps.error}, {"queued", ps.queued},
+                       {"spooled", ps.pending}, {"results", ps.results}, {"duplicates", ps.duplicates},
+                       {"dropped", ps.dropped}, {"failures", ps.failures}, {"adopted", ps.adopted}};
+  } else {
+    out["profiles"] = "off";
+  }
   return out;
 }
 
@@ -201,6 +209,27 @@ std::optional<std::uint64_t> number_word(const std::string& s) {
 }
 
 std::string no_words(Words, nlohmann::json&) { return ""; }
+
+// With --profiles on, the server answers these off the tick (net/udp_server.cpp, the
+// profile writer's thread); here only when they are off.
+Reply profiles_off(GameHost&, const nlohmann::json&, std::uint64_t) {
+  return error_reply("profiles are off (fts-server --profiles off)");
+}
+
+std::string top_words(Words w, nlohmann::json& req) {
+  for (const auto& word : w) {
+    if (word == "level" || word == "knocks") req["board"] = word;
+    else if (const auto n = number_word(word)) req["n"] = *n;
+    else return "top [level|knocks] [N]";
+  }
+  return "";
+}
+
+std::string profile_words(Words w, nlohmann::json& req) {
+  if (w.size() != 1) return "profile NAME|FINGERPRINT";
+  req["who"] = w[0];
+  return "";
+}
 
 std::string room_word(Words w, nlohmann::json& req) {
   if (!w.empty()) req["room"] = w[0];
@@ -249,6 +278,10 @@ constexpr ConsoleCommand kCommands[] = {
     {"close", "close ROOM", "closes the room (its clients are told room_closed)", close, room_required},
     {"drain", "drain", "no new rooms; the server exits 0 when the last room has closed", drain, no_words},
     {"stats", "stats", "rooms, players, spectators, sessions, bans, dropped datagrams, skipped ticks, the journal (failing rooms)", stats, no_words},
+    {"top", "top [level|knocks] [N]",
+     "the leaderboard (profiles): best level (ties by coins) or most knocks, the first N (10)", profiles_off,
+     top_words},
+    {"profile", "profile NAME|FINGERPRINT", "a player's profile and ranks (profiles)", profiles_off, profile_words},
     {"help", "help", "these commands", help, no_words},
 };
 

@@ -122,13 +122,15 @@ std::size_t GameHost::rooms_made_by(const std::string& host) const {
 Room* GameHost::open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
                           const sim::MatchConfig& config) {
   auto room = std::make_unique<Room>(id, code, is_private, seed, options_, config);
-  const std::string record = !record_dir_.empty() ? (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id))).string()
-                             : id == 1                ? first_record_
-                                                      : std::string();
+  // --record names room 1's record, --record-dir every other room's (both may be given).
+  const std::string record = id == 1 && !first_record_.empty() ? first_record_
+                             : !record_dir_.empty() ? (std::filesystem::path(record_dir_) / ("room-" + std::to_string(id))).string()
+                                                    : std::string();
   if (!record.empty() && !room->record_to(record, version_))
     log_record(spdlog::level::err, "record_failed", {{"room", id}, {"path", record}});
   ++rooms_made_;
   room->count_into(&stats_.totals);
+  if (profiles_) room->use_profiles(profiles_, unix_s_);
   log_record(spdlog::level::info, "room_open",
              {{"room", id}, {"code", code}, {"private", is_private}, {"seed", room->seed()},
               {"record", room->record_path()}});
@@ -180,9 +182,7 @@ std::string GameHost::room_list_text() const {
 void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
   const ChatVerdict v = chat_.accept(pc.player_id, pc.command.text, now_ms);
   if (!v.ok) {
-    endpoint_.send_result(pc.player_id, pc.command.rid, v.code,
-                          v.code == protocol::ResultCode::rate ? "too many chat lines: wait a moment" : "nothing to say",
-                          now_ms);
+    endpoint_.send_result(pc.player_id, pc.command.rid, v.code, std::string(protocol::result_sentence(v.code)), now_ms);
     return;
   }
   endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::ok, "", now_ms);
@@ -216,7 +216,11 @@ std::size_t GameHost::announce(const std::string& text, std::uint64_t now_ms) {
 void GameHost::dispatch(std::uint64_t now_ms) {
   for (const auto& e : endpoint_.take_events()) {
     using K = protocol::ServerEvent::Kind;
-    if (e.kind == K::connected || e.kind == K::reconnected) members_[e.player_id] = {e.room, e.spectator};
+    if (e.kind != K::disconnected) profile_requests_.drop(e.player_id);  // a new session, or none
+    if (e.kind == K::connected || e.kind == K::reconnected) {
+      members_[e.player_id] = {e.room, e.spectator};
+      if (profiles_ && !e.identity.empty() && !e.spectator) profiles_->push(profiles::Seen{e.identity, e.name, unix_s_()});
+    }
     if (e.kind == K::released) members_.erase(e.player_id);
     if (auto it = rooms_.find(e.room); it != rooms_.end()) it->second->on_event(e, endpoint_);
   }
@@ -231,6 +235,10 @@ void GameHost::dispatch(std::uint64_t now_ms) {
       relay_chat(pc, now_ms);
       continue;
     }
+    if (pc.command.op == protocol::CommandOp::top || pc.command.op == protocol::CommandOp::forget) {
+      profile_request(pc, now_ms);  // spectators too: a board is to look at
+      continue;
+    }
     auto m = members_.find(pc.player_id);
     if (m != members_.end() && m->second.spectator) {
       endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::spectator,
@@ -238,6 +246,34 @@ void GameHost::dispatch(std::uint64_t now_ms) {
       continue;
     }
     if (auto it = rooms_.find(pc.room); it != rooms_.end()) it->second->on_command(pc, endpoint_, now_ms);
+  }
+}
+
+void GameHost::profile_request(const protocol::PlayerCommand& pc, std::uint64_t now_ms) {
+  using protocol::ResultCode;
+  const auto refuse = [&](ResultCode code) {
+    endpoint_.send_result(pc.player_id, pc.command.rid, code, std::string(protocol::result_sentence(code)), now_ms);
+  };
+  if (!profiles_) return refuse(ResultCode::no_profiles);
+  if (!profile_requests_.may_ask(pc.player_id, now_ms)) return refuse(ResultCode::busy);
+  const std::string identity = endpoint_.session_identity(pc.player_id);
+  if (pc.command.op == protocol::CommandOp::top) {
+    profile_requests_.top(*profiles_, pc.player_id, pc.command.rid, identity);
+    return;
+  }
+  if (identity.empty()) return refuse(ResultCode::guest);
+  // No result of the identity's running matches is made from now on: none brings the
+  // profile back after the erasure.
+  for (auto& [id, r] : rooms_) r->forget_identity(identity);
+  if (!profile_requests_.forget(*profiles_, pc.player_id, pc.command.rid, identity))
+    return refuse(ResultCode::unavailable);
+  log_record(spdlog::level::info, "profile_forget", {{"player", pc.player_id}, {"identity", identity}});
+}
+
+void GameHost::answer_profiles(std::uint64_t now_ms) {
+  for (auto& a : profile_requests_.take()) {
+    if (a.board) endpoint_.send_board(a.player, *a.board, now_ms);
+    endpoint_.send_result(a.player, a.rid, a.code, std::move(a.message), now_ms);
   }
 }
 
@@ -263,6 +299,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   // The datagrams received since the last tick: opened on the pool, applied in order.
   pool_.run(endpoint_.inbox_sessions(), [&](std::size_t i) { endpoint_.open_inbox(i); });
   endpoint_.apply_inbox();
+  answer_profiles(now_ms);  // before update(): the results go out in this tick's packets
   endpoint_.update(now_ms);
   dispatch(now_ms);
   // The rooms on the pool (the phases: game_host.hpp).
@@ -306,6 +343,7 @@ void GameHost::close_room(std::uint32_t id, protocol::ErrorCode code, const std:
   for (const auto& s : endpoint_.sessions())
     if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
   Room& r = *it->second;
+  r.close_careers();  // the players' matches end with the room (before the kicks' releases count as quits)
   closed_journal_failures_ += r.journal_failures();
   finish_journal(r);  // first: the seal must not wait for the journal's disk
   r.seal();
@@ -315,6 +353,12 @@ void GameHost::close_room(std::uint32_t id, protocol::ErrorCode code, const std:
   endpoint_.forget_room(id);
   rooms_.erase(it);
   if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
+}
+
+void GameHost::use_profiles(profiles::Writer* writer, std::function<std::int64_t()> unix_s) {
+  profiles_ = writer;
+  unix_s_ = std::move(unix_s);
+  for (auto& [id, r] : rooms_) r->use_profiles(profiles_, unix_s_);
 }
 
 void GameHost::kick(std::uint32_t player_id, protocol::ErrorCode code, const std::string& message,
@@ -331,6 +375,10 @@ void GameHost::shutdown(std::uint64_t now_ms) {
   // Sealed first: the shutdown's releases are not journaled (a clean stop resumes like
   // a crash).
   for (auto& [id, r] : rooms_) r->seal();
+  // Without a journal the rooms end here: their players' matches with them. With one
+  // they resume (--resume) and end later, under the same keys.
+  if (!journal_base_)
+    for (auto& [id, r] : rooms_) r->close_careers();
   endpoint_.shutdown(now_ms);
 }
 

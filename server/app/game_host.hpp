@@ -37,6 +37,7 @@
 #include "app/chat_relay.hpp"
 #include "app/log.hpp"
 #include "app/options.hpp"
+#include "app/profile_requests.hpp"
 #include "app/room.hpp"
 #include "app/room_codes.hpp"
 #include "app/stats.hpp"
@@ -58,7 +59,7 @@ class GameHost {
 
   // Records the first room (id 1) into the directory `dir` (--record; Room::record_to).
   void record_to(const std::string& dir, const std::string& version);
-  // Records each room into dir/room-<id>/ (--record-dir).
+  // Records each room into dir/room-<id>/ (--record-dir); with record_to, room 1 goes there.
   void record_dir(const std::string& dir, const std::string& version);
 
   void receive(const std::string& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
@@ -129,6 +130,12 @@ class GameHost {
   const WorkerPool& workers() const { return pool_; }
   Stats& stats() { return stats_; }
 
+  // ---- profiles (issue 41): with a writer, each room follows its players with an
+  // identity and hands their results to it; a player with an identity is "seen" when it
+  // connects. `unix_s` is the wall clock (tests give their own: "a day later").
+  void use_profiles(profiles::Writer* writer, std::function<std::int64_t()> unix_s);
+  profiles::Writer* profiles() const { return profiles_; }
+
  private:
   struct Member {
     std::uint32_t room = 0;
@@ -148,6 +155,10 @@ class GameHost {
   bool journal_exists(const std::string& code) const;  // a directory of that code under the root
   void dispatch(std::uint64_t now_ms);
   void answer_rooms(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
+  // `cmd top` and `cmd forget` (PROTOCOL.md 4.7c): asked of the profile writer's thread;
+  // answered when it has answered (answer_profiles, each tick).
+  void profile_request(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
+  void answer_profiles(std::uint64_t now_ms);
   // A chat command: refused, or relayed to everybody connected in the sender's room.
   void relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_ms);
   std::string room_list_text() const;
@@ -174,6 +185,9 @@ class GameHost {
   std::uint64_t stalled_logged_ms_ = 0;
   sim::MatchState no_match_;
   Stats stats_;
+  profiles::Writer* profiles_ = nullptr;
+  std::function<std::int64_t()> unix_s_;
+  ProfileRequests profile_requests_;
   WorkerPool pool_;
   std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_

@@ -78,8 +78,10 @@ bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_m
   }
   for (const auto& s : resumed.sessions) {
     // Each comes back as "disconnected" in the next tick's events: the match marks it away.
-    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit}, now_ms, id, *code))
+    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit, s.identity}, now_ms, id, *code)) {
       members_[s.player] = {id, false};
+      r->restore_career(s);  // the player's match so far: its result key and counts
+    }
     else
       log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}, {"room", id}});
   }

@@ -1,5 +1,6 @@
 // The match configuration fts-server runs, from four sources in rising precedence:
-// built-in defaults < the --config file < FTS_* variables < flags.
+// built-in defaults < the --config file < FTS_* variables < flags. The options a config
+// key overlaps are the rows of app/option_table.hpp with a config key.
 #pragma once
 
 #include <string>

@@ -1,6 +1,7 @@
 // fts-server's settings from flags and the environment (FTS_PORT, ...). Flags win over
 // the environment; every bad value is an error naming the flag (or variable) and value,
-// found before anything binds a port.
+// found before anything binds a port. A setting's default is its initialiser here and
+// nowhere else; its flag, variable, check and help are its row in app/option_table.hpp.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,8 @@
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "fts/cli/option_table.hpp"
 
 namespace fts::server {
 
@@ -22,7 +25,7 @@ struct Options {
   std::string model = "continuous";
   std::uint64_t seed = 1;
   std::string config_path;   // "" : built-in defaults
-  std::string record_path;   // "" : no recording
+  std::string record_path;   // "" : no recording of room 1 but --record-dir's
   std::string replay_path;   // non-empty: re-run a recording and check its hashes, no network
   std::string log_level = "info";   // trace debug info warn error off
   std::string log_format = "text";  // text | json
@@ -38,6 +41,10 @@ struct Options {
   std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
   std::uint32_t journal_checkpoint_s = 5;    // a checkpoint (new segment) this often (bounds a resume's replay)
   bool resume = false;                       // rebuild the rooms of --journal-dir first
+  // Players' profiles (issue 41): "" the default SQLite file under the state directory
+  // ($XDG_STATE_HOME/fear-the-sphere/server/profiles.sqlite), a SQLite path, a
+  // postgresql:// URL (a fleet shares one), or "off".
+  std::string profiles;
   // Fleet (server/fleet/): the Agones SDK sidecar's REST port (0: Agones off; --agones
   // on, or AGONES_SDK_HTTP_PORT set, turns it on), the health ping period, how long a
   // drain waits for the last match, and the Prometheus endpoint ("": off).
@@ -53,9 +60,10 @@ struct Options {
   std::uint32_t threads = 0;            // threads stepping the rooms (0: every usable core)
   std::uint32_t room_idle_ms = 60000;   // a room without a connected client this long is closed
   std::uint32_t max_spectators = 8;     // spectators per room (0: none)
-  std::string record_dir;   // "" : no per-room records; else DIR/room-<id>.jsonl per room
+  std::string record_dir;   // "" : no per-room records; else DIR/room-<id>/ per room (room 1: record_path if set)
   std::string console_path;  // "" : no console; else the host's UNIX socket (mode 0600)
-  bool help = false;
+  bool help = false;      // --help (the table's library adds it)
+  bool markdown = false;  // --help-markdown: the flag reference (docs/flags/fts-server.md)
   bool version = false;
   bool print_fleet_names = false;  // print the fleet's Counters and Lists (JSON lines), exit
   // The settings given by a flag or an FTS_* variable, by flag name without dashes
@@ -69,15 +77,16 @@ struct OptionError {
 
 using EnvLookup = std::function<std::optional<std::string>(const std::string&)>;
 
-// Parses argv-style arguments (without the program name) over the environment.
+// Parses argv-style arguments (without the program name) over the environment, by the
+// table in app/option_table.hpp.
 std::variant<Options, OptionError> parse_options(const std::vector<std::string>& args, const EnvLookup& env);
 
+// --help, and --help-markdown (docs/flags/fts-server.md), from the table.
 std::string usage_text();
+std::string markdown_text();
 
-// The flag table, for documentation and tests: flag, environment variable, default, meaning.
-struct OptionDoc {
-  std::string flag, env, default_value, meaning;
-};
-const std::vector<OptionDoc>& option_docs();
+// The table's rows without their types (flag, env, default_value, help, ...): for the
+// documentation's tests.
+const std::vector<cli::RowInfo>& option_docs();
 
 }  // namespace fts::server

@@ -84,11 +84,13 @@ void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoi
   switch (e.kind) {
     case K::connected:
       if (!e.spectator) pending_.joins.push_back({e.player_id, e.name});
+      if (profiles_ && !e.spectator) careers_.identify(e.player_id, e.identity, e.name);
       log_record(spdlog::level::info, "connect", {{who, e.player_id}, {"name", e.name}, {"room", id_}});
       break;
     case K::reconnected:
       held_.erase(e.player_id);  // the new session numbers its inputs from 1 again
       if (!e.spectator) pending_.back.push_back(e.player_id);
+      if (profiles_ && !e.spectator) careers_.identify(e.player_id, e.identity, shown_name(e.player_id, e.name));
       log_record(spdlog::level::info, "reconnect", {{who, e.player_id}, {"name", e.name}, {"room", id_}});
       break;
     case K::disconnected:
@@ -100,6 +102,10 @@ void Room::on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoi
       break;
     case K::released:
       held_.erase(e.player_id);
+      if (profiles_) {
+        if (auto r = careers_.released(e.player_id, stepper_.match().cfg.tick_rate_hz, unix_s_())) push_result(*r);
+      }
+      journaled_.erase(e.player_id);
       if (!e.spectator) pending_.leaves.push_back(e.player_id);
       log_record(spdlog::level::info, "leave",
                  {{who, e.player_id}, {"reason", e.reason}, {"room", id_}, {"name", shown_name(e.player_id, e.name)}});
@@ -163,9 +169,11 @@ void Room::on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoin
       break;
     case protocol::CommandOp::rooms:  // the host answers these
     case protocol::CommandOp::chat:
+    case protocol::CommandOp::top:
+    case protocol::CommandOp::forget:
     case protocol::CommandOp::unknown:  // consumed and answered here: the match has no such command
       endpoint.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::op,
-                           "unknown command; this server knows buy, ready, again, chat and rooms", now_ms);
+                           "unknown command; this server knows buy, ready, again, chat, rooms, top and forget", now_ms);
       break;
   }
 }
@@ -211,8 +219,11 @@ void Room::log_events(const std::vector<sim::Event>& events, protocol::ServerEnd
     std::visit(
         sim::Overloaded{
             [&](const sim::JoinRefused& e) {
-              log_record(spdlog::level::warn, "join_refused", {{"player", e.player}, {"reason", e.reason}, {"room", id_}});
-              endpoint.kick(e.player.value, protocol::ErrorCode::refused, "the match refused the join: " + e.reason, now_ms);
+              const auto& why = sim::join_refusal_info(e.reason);
+              log_record(spdlog::level::warn, "join_refused",
+                         {{"player", e.player}, {"reason", std::string(why.name)}, {"room", id_}});
+              endpoint.kick(e.player.value, protocol::ErrorCode::refused,
+                            "the match refused the join: " + std::string(why.sentence), now_ms);
             },
             [&](const sim::LevelStarted& e) {
               log_record(spdlog::level::info, e.restart ? "level_restart" : "level_start", {{"level", e.level}, {"room", id_}});
@@ -258,6 +269,11 @@ void Room::step(std::uint64_t now_ms) {
 void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   answer(stepped_.results, endpoint, now_ms);
   log_events(stepped_.events, endpoint, now_ms);
+  if (profiles_) {
+    std::vector<std::uint32_t> changed;
+    for (const auto& r : careers_.step(stepper_.match(), stepped_.events, unix_s_(), &changed)) push_result(r);
+    if (!changed.empty()) journal_careers(changed, endpoint);
+  }
   if (journal_ && stepper_.match().tick % 100 == 0) watch_journal();
   endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
 }
@@ -290,7 +306,8 @@ void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint
   std::vector<host::JournalSession> sessions;
   for (const auto& s : endpoint.sessions())
     if (s.room == id_ && !s.spectator)
-      sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected});
+      sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected, s.identity,
+                          careers_.saved(s.player_id)});
   journal_ = std::make_unique<host::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),
                                                    std::move(sessions));
   watch_journal();  // a directory locked by another server: the room plays on without a journal, said once
@@ -306,7 +323,42 @@ void Room::journal_session(const protocol::ServerEvent& e, const protocol::Serve
   using K = protocol::ServerEvent::Kind;
   if (e.kind == K::released) return journal_->released(stepper_.match().tick, e.player_id);
   const bool quit = e.kind == K::disconnected && e.quit;
-  journal_->session(stepper_.match().tick, {e.player_id, e.name, endpoint.session_verifier(e.player_id), quit});
+  host::JournalSession s{e.player_id, e.name, endpoint.session_verifier(e.player_id), quit,
+                         endpoint.session_identity(e.player_id), careers_.saved(e.player_id)};
+  journaled_[e.player_id] = s;
+  journal_->session(stepper_.match().tick, s);
+}
+
+// A player's match so far goes into the journal with its session (each change: a knock,
+// a fall, a level, its end), so that a resumed room ends it under the same key.
+void Room::journal_careers(const std::vector<std::uint32_t>& players, const protocol::ServerEndpoint& endpoint) {
+  if (!journal_) return;
+  for (std::uint32_t p : players) {
+    auto it = journaled_.find(p);
+    if (it == journaled_.end()) {
+      host::JournalSession s{p, shown_name(p, ""), endpoint.session_verifier(p), false, endpoint.session_identity(p), ""};
+      if (s.verifier.empty()) continue;
+      it = journaled_.emplace(p, s).first;
+    }
+    const std::string saved = careers_.saved(p);
+    if (saved == it->second.career) continue;
+    it->second.career = saved;
+    journal_->session(stepper_.match().tick, it->second);
+  }
+}
+
+void Room::push_result(const profiles::MatchResult& r) {
+  if (!profiles_) return;
+  const bool ok = profiles_->push(r);
+  log_record(ok ? spdlog::level::info : spdlog::level::warn, "match_result",
+             {{"room", id_}, {"identity", r.fingerprint}, {"name", r.name}, {"level", r.level}, {"coins", r.coins},
+              {"knocks", r.knocks}, {"lives_lost", r.lives_lost}, {"ending", profiles::to_string(r.ending)},
+              {"key", r.key}, {"queued", ok}});
+}
+
+void Room::close_careers() {
+  if (!profiles_) return;
+  for (const auto& r : careers_.close(stepper_.match().cfg.tick_rate_hz, unix_s_())) push_result(r);
 }
 
 // Every second: a journal that dropped records says so (once per change); one that

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "app/careers.hpp"
 #include "app/log.hpp"
 #include "app/options.hpp"
 #include "app/stats.hpp"
@@ -19,6 +21,7 @@
 #include "host/journal.hpp"
 #include "fts/room/record.hpp"
 #include "fts/room/stepper.hpp"
+#include "profiles/writer.hpp"
 
 namespace fts::server {
 
@@ -89,6 +92,19 @@ class Room {
   bool journal_failing() const { return journal_failing_; }
   std::uint64_t journal_failures() const { return journal_failures_; }
   const std::string& journal_error() const { return journal_error_; }
+  // ---- profiles (issue 41): players with an identity are followed (app/careers.hpp); a
+  // result goes to `writer` (which never waits) when the player's match ends; `unix_s`
+  // is the wall clock (tests set their own). Without a writer nothing is followed.
+  void use_profiles(profiles::Writer* writer, std::function<std::int64_t()> unix_s) {
+    profiles_ = writer;
+    unix_s_ = std::move(unix_s);
+  }
+  void restore_career(const host::JournalSession& s) { careers_.restore(s.player, s.identity, s.career); }
+  // The room closes: its players' running results (closed).
+  void close_careers();
+  // An identity asked to be forgotten: its players here are followed no more.
+  void forget_identity(const std::string& identity) { careers_.forget(identity); }
+  const Careers& careers() const { return careers_; }
   // Purchases counted for the fleet's metrics (Stats::Totals), when set.
   void count_into(Stats::Totals* totals) { totals_ = totals; }
 
@@ -146,6 +162,12 @@ class Room {
   bool journal_failing_ = false;        // as last seen, once a second
   std::string journal_error_;
   Stats::Totals* totals_ = nullptr;
+  void push_result(const profiles::MatchResult& r);
+  void journal_careers(const std::vector<std::uint32_t>& players, const protocol::ServerEndpoint& endpoint);
+  Careers careers_;
+  profiles::Writer* profiles_ = nullptr;
+  std::function<std::int64_t()> unix_s_;
+  std::map<std::uint32_t, host::JournalSession> journaled_;  // each player's last session record
 };
 
 // The result code (PROTOCOL.md 4.7) of the match's answer to a command.

@@ -55,6 +55,15 @@ void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std
     const auto journal = host.journal_health();
     s.journal_failing = journal.failing;
     s.journal_failures = journal.failures;
+    if (const auto* w = host.profiles()) {
+      const auto ps = w->stats();
+      s.profiles = true;
+      s.profiles_queued = ps.queued;
+      s.profiles_pending = ps.pending;
+      s.profiles_results = ps.results;
+      s.profiles_dropped = ps.dropped;
+      s.profiles_db_up = ps.connected;
+    }
     if (agones_)
       for (std::size_t i = 0; i < kFleetNameCount; ++i) s.agones_update_failures[i] = agones_->update_failures(i);
     metrics_->update(s);

@@ -43,6 +43,10 @@ std::vector<CounterRow> counter_table() {
        [](S s) { return s.totals.purchases_refused; }},
       {"fts_journal_failures_total", "Times a room's journal stopped on an I/O error (disk full, read-only)", {},
        [](S s) { return s.journal_failures; }},
+      {"fts_profiles_results_total", "Match results written to the profile database (new ones; a repeat counts 0)", {},
+       [](S s) { return s.profiles_results; }},
+      {"fts_profiles_dropped_total", "Profile writes dropped: the writer's queue was full (each logged)", {},
+       [](S s) { return s.profiles_dropped; }},
   };
   for (std::size_t i = 0; i < kFleetNames.size(); ++i)
     rows.push_back({"fts_agones_update_failures_total",
@@ -85,6 +89,10 @@ Metrics::Metrics(const std::string& address) : registry_(std::make_shared<promet
   sessions_connected_ = gauge(reg, "fts_sessions", "Sessions by state", {{"state", "connected"}});
   sessions_away_ = gauge(reg, "fts_sessions", "Sessions by state", {{"state", "away"}});
   journal_failing_ = gauge(reg, "fts_journal_failing_rooms", "Rooms whose journal is not writing (an I/O error; retried every second)");
+  profiles_queued_ = gauge(reg, "fts_profiles_queue", "Profile writes handed over by the tick, not yet taken by the writer");
+  profiles_pending_ = gauge(reg, "fts_profiles_spool",
+                            "Profile writes in the durable spool, waiting for the database (it is down or slow)");
+  profiles_db_up_ = gauge(reg, "fts_profiles_db_up", "1 while the profile database answers (-1: profiles are off)");
   // 0.1 ms .. 100 ms: a 100 Hz tick has 10 ms.
   tick_seconds_ = &prometheus::BuildHistogram()
                        .Name("fts_tick_duration_seconds")
@@ -112,6 +120,9 @@ void Metrics::update(const MetricsSample& s) {
   sessions_connected_->Set(s.sessions_connected);
   sessions_away_->Set(s.sessions_away);
   journal_failing_->Set(static_cast<double>(s.journal_failing));
+  profiles_queued_->Set(static_cast<double>(s.profiles_queued));
+  profiles_pending_->Set(static_cast<double>(s.profiles_pending));
+  profiles_db_up_->Set(s.profiles ? (s.profiles_db_up ? 1 : 0) : -1);
   for (auto& c : *counters_) {
     const std::uint64_t v = c.value(s);
     if (v > c.seen) c.counter->Increment(static_cast<double>(v - c.seen));

@@ -29,6 +29,11 @@ struct MetricsSample {
   std::uint32_t sessions_connected = 0, sessions_away = 0;
   std::uint64_t journal_failing = 0, journal_failures = 0;  // rooms not journaling now; times one stopped
   std::array<std::uint64_t, kFleetNameCount> agones_update_failures{};  // by row of kFleetNames
+  // The profile writer (issue 41), when --profiles is on: writes the tick handed over not
+  // yet taken, writes spooled for the database, whether the database answers.
+  bool profiles = false;
+  std::uint64_t profiles_queued = 0, profiles_pending = 0, profiles_results = 0, profiles_dropped = 0;
+  bool profiles_db_up = false;
 };
 
 class Metrics {
@@ -57,11 +62,14 @@ class Metrics {
   prometheus::Gauge* sessions_connected_ = nullptr;
   prometheus::Gauge* sessions_away_ = nullptr;
   prometheus::Gauge* journal_failing_ = nullptr;
+  prometheus::Gauge* profiles_queued_ = nullptr;
+  prometheus::Gauge* profiles_pending_ = nullptr;
+  prometheus::Gauge* profiles_db_up_ = nullptr;
   prometheus::Histogram* tick_seconds_ = nullptr;
   prometheus::Histogram* journal_sync_seconds_ = nullptr;
   // The rows of counter_table() (metrics.cpp): 9 of their own, one per Counter or List of
   // the fleet and one per drop reason.
-  static constexpr std::size_t kCounterRows = 9 + kFleetNameCount + protocol::kRejectCount;
+  static constexpr std::size_t kCounterRows = 11 + kFleetNameCount + protocol::kRejectCount;
   std::unique_ptr<std::array<Cumulative, kCounterRows>> counters_;
 };
 

@@ -32,6 +32,8 @@ ojson session_json(const JournalSession& s) {
   j["name"] = s.name;
   j["verifier"] = s.verifier;
   j["quit"] = s.quit;
+  if (!s.identity.empty()) j["identity"] = s.identity;
+  if (!s.career.empty()) j["career"] = s.career;
   return j;
 }
 

@@ -58,6 +58,8 @@ struct JournalSession {
   std::string name;
   std::string verifier;  // protocol::token_verifier(token)
   bool quit = false;     // gave its seat up (bye or idle), progress kept
+  std::string identity = "";  // its proven identity's fingerprint ("" a guest; PROTOCOL.md 5.8)
+  std::string career = "";    // its match so far (app/careers.hpp Careers::saved; "" none)
   bool operator==(const JournalSession&) const = default;
 };
 

@@ -25,6 +25,8 @@ JournalSession session_from(const json& j) {
   s.name = j.at("name").get<std::string>();
   s.verifier = j.at("verifier").get<std::string>();
   s.quit = j.at("quit").get<bool>();
+  if (j.contains("identity")) s.identity = j.at("identity").get<std::string>();  // journals before issue 41 lack both
+  if (j.contains("career")) s.career = j.at("career").get<std::string>();
   return s;
 }
 

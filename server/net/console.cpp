@@ -19,9 +19,10 @@ namespace asio = boost::asio;
 using local = asio::local::stream_protocol;
 
 struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::Connection> {
-  Connection(local::socket s, std::function<std::string(const std::string&)>& h, std::shared_ptr<std::size_t> open,
-             std::shared_ptr<Counters> c)
-      : socket(std::move(s)), timer(socket.get_executor()), buffer(kMaxLineBytes), handle(h),
+  using Deferred = ConsoleServer::Deferred;
+  Connection(local::socket s, std::function<std::string(const std::string&)>& h, Deferred& d,
+             std::shared_ptr<std::size_t> open, std::shared_ptr<Counters> c)
+      : socket(std::move(s)), timer(socket.get_executor()), buffer(kMaxLineBytes), handle(h), deferred(d),
         open_count(std::move(open)), counters(std::move(c)) {
     ++*open_count;
   }
@@ -52,12 +53,23 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
       self->buffer.consume(n);
       while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
       if (line.empty()) return self->read();
-      self->reply = self->handle(line) + "\n";
       self->arm();
-      asio::async_write(self->socket, asio::buffer(self->reply), [self](const boost::system::error_code& e, std::size_t) {
-        if (!e) return self->read();
-        self->timer.cancel();
-      });
+      if (self->deferred &&
+          self->deferred(line, [self](std::string r) {
+            asio::post(self->socket.get_executor(), [self, r = std::move(r)]() mutable { self->write(std::move(r)); });
+          }))
+        return;
+      self->write(self->handle(line));
+    });
+  }
+
+  void write(std::string text) {
+    reply = std::move(text) + "\n";
+    arm();
+    auto self = shared_from_this();
+    asio::async_write(socket, asio::buffer(reply), [self](const boost::system::error_code& e, std::size_t) {
+      if (!e) return self->read();
+      self->timer.cancel();
     });
   }
 
@@ -66,6 +78,7 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
   asio::streambuf buffer;
   std::string reply;
   std::function<std::string(const std::string&)>& handle;
+  Deferred& deferred;
   std::shared_ptr<std::size_t> open_count;
   std::shared_ptr<Counters> counters;
 };
@@ -109,7 +122,7 @@ void ConsoleServer::accept() {
     if (!ec && *open_ < kMaxConnections) {
       ++counters_->accepted;
       busy_logged_ = false;
-      std::make_shared<Connection>(std::move(s), handle_, open_, counters_)->read();
+      std::make_shared<Connection>(std::move(s), handle_, deferred_, open_, counters_)->read();
     } else if (!ec) {
       ++counters_->refused_busy;
       if (!busy_logged_)

@@ -18,6 +18,11 @@ class ConsoleServer {
   // handle: one request line -> one reply line (without the newline).
   ConsoleServer(boost::asio::io_context& io, std::string path, std::function<std::string(const std::string&)> handle);
   ~ConsoleServer();
+  // Requests answered later, off the tick (the profile database's, issue 41): `deferred`
+  // takes a line it answers and returns true, and calls `reply` once, from any thread;
+  // false: `handle` answers it.
+  using Deferred = std::function<bool(const std::string& line, std::function<void(std::string)> reply)>;
+  void set_deferred(Deferred deferred) { deferred_ = std::move(deferred); }
   // Binds and listens ("" on success, else why not). A stale socket file is replaced;
   // any other file at the path is left alone and is an error.
   std::string start();
@@ -42,6 +47,7 @@ class ConsoleServer {
   boost::asio::io_context& io_;
   std::string path_;
   std::function<std::string(const std::string&)> handle_;
+  Deferred deferred_;
   boost::asio::local::stream_protocol::acceptor acceptor_;
   std::shared_ptr<std::size_t> open_ = std::make_shared<std::size_t>(0);
   std::shared_ptr<Counters> counters_ = std::make_shared<Counters>();

@@ -8,6 +8,7 @@
 
 #include "app/console_commands.hpp"
 #include "app/log.hpp"
+#include "app/profile_setup.hpp"
 #include "app/tick_clock.hpp"
 #include "fleet/fleet.hpp"
 #include "fts/io/udp.hpp"
@@ -59,6 +60,21 @@ class Loop {
     if (!options_.console_path.empty()) {
       console_ = std::make_unique<ConsoleServer>(io_, options_.console_path,
                                                  [this](const std::string& line) { return console_line(line); });
+      // The profile commands run on the profile writer's thread: the tick never waits
+      // for the database (issue 41).
+      if (auto* writer = host_.profiles()) {
+        console_->set_deferred([writer](const std::string& line, std::function<void(std::string)> reply) {
+          const auto req = nlohmann::json::parse(line, nullptr, false);
+          if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string()) return false;
+          const std::string cmd = req["cmd"].get<std::string>();
+          if (cmd != "top" && cmd != "profile") return false;
+          log_record(spdlog::level::info, "console", {{"request", req.dump()}, {"deferred", true}});
+          writer->query([req, reply](profiles::Store* store) {
+            reply(server::profiles_reply(store, req).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+          });
+          return true;
+        });
+      }
       if (const std::string why = console_->start(); !why.empty()) {
         log_record(spdlog::level::err, "console_failed", {{"error", why}});
         return 1;

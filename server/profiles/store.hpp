@@ -94,7 +94,8 @@ class Store {
 
   // Applies a batch in one transaction; the match results that were new (a key already
   // written counts 0). Throws std::exception (soci::soci_error) when the database fails;
-  // then nothing of the batch is written.
+  // then nothing of the batch is written. The result is the same as writing the batch one
+  // item at a time in its order; it is done in a few multi-row statements (Batcher).
   std::size_t write(const std::vector<Write>& batch);
 
   std::vector<Profile> top(Board board, std::size_t n);
@@ -104,6 +105,8 @@ class Store {
   // Profiles whose name is `name`, most recently seen first (names are not unique).
   std::vector<Profile> by_name(const std::string& name, std::size_t n);
   std::int64_t profiles();
+  // Profiles on the boards: those with a match played.
+  std::int64_t ranked();
   std::int64_t results();
   // Whether the connection still works (a cheap query); false: reconnect.
   bool alive();
@@ -113,8 +116,10 @@ class Store {
   const std::string& where() const { return where_; }
 
  private:
-  Store() = default;
+  struct Batcher;  // store.cpp: the write statements, prepared once per connection
+  Store();
   std::unique_ptr<soci::session> sql_;
+  std::unique_ptr<Batcher> batcher_;  // after sql_: destroyed before it
   bool postgresql_ = false;
   std::string where_;
 };

@@ -264,12 +264,7 @@ void Writer::write_pending() {
   }
 }
 
-void Writer::run_queries() {
-  std::deque<std::function<void(Store*)>> jobs;
-  {
-    std::lock_guard lock(mu_);
-    jobs.swap(queries_);
-  }
+void Writer::run_queries(std::deque<std::function<void(Store*)>>& jobs) {
   for (auto& job : jobs) {
     try {
       job(store_.get());
@@ -285,6 +280,7 @@ void Writer::run() {
   write_pending();
   for (;;) {
     std::vector<Write> taken;
+    std::deque<std::function<void(Store*)>> jobs;
     bool stopping = false;
     {
       std::unique_lock lock(mu_);
@@ -294,6 +290,9 @@ void Writer::run() {
       taken.assign(std::make_move_iterator(queue_.begin()), std::make_move_iterator(queue_.end()));
       queue_.clear();
       stats_.queued = 0;
+      // The queries with the writes, under one lock: a query asked after a write runs
+      // after that write was tried (a forget's answer sees it done).
+      jobs.swap(queries_);
       stopping = stop_;
     }
     if (!taken.empty()) {
@@ -311,7 +310,7 @@ void Writer::run() {
     }
     try_connect();
     write_pending();
-    run_queries();
+    run_queries(jobs);
     {
       std::lock_guard lock(mu_);
       done_.notify_all();

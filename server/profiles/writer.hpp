@@ -11,9 +11,11 @@
 // flock) and writes it. Results are idempotent by their key (Store::write), so one that
 // was in the database and in a spool counts once.
 //
-// Queries (the console's top and profile, a client's leaderboard) are jobs run on the
-// same thread between batches; their answers go back through the callback they carry
-// (on the writer's thread: the caller posts them to its own).
+// Queries (the console's top and profile, a client's leaderboard or forget) are jobs run
+// on the same thread between batches; their answers go back through the callback they
+// carry (on the writer's thread: the caller posts them to its own). A query runs after
+// every write pushed before it was asked has been tried: with the database up, it sees
+// them written.
 #pragma once
 
 #include <chrono>
@@ -98,7 +100,7 @@ class Writer {
   void truncate_spool();
   void try_connect();
   void write_pending();
-  void run_queries();
+  void run_queries(std::deque<std::function<void(Store*)>>& jobs);
 
   WriterConfig cfg_;
   std::string spool_error_;

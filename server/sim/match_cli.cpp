@@ -7,9 +7,9 @@
 #include <optional>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "fts/cli/option_table.hpp"
 #include "fts/sim/bot_player.hpp"
 #include "fts/sim/match.hpp"
 #include "fts/room/match_config_json.hpp"
@@ -19,15 +19,60 @@
 namespace fts::simtool {
 namespace {
 
-constexpr const char* kMatchUsage =
-    "usage: fts-sim --match [--players N] [--levels N] [--max-ticks T] [--seed S] [--model M]\n"
-    "                       [--tick-rate HZ] [--config FILE] [--inputs FILE] [--record FILE] [--events]\n";
+// fts-sim --match's options (defaults: the initialisers) and their table.
+struct MatchOptions {
+  std::int64_t players = 1, levels = 5, max_ticks = 1'000'000, seed = 1;
+  std::optional<std::string> model;
+  std::optional<std::int64_t> tick_rate;
+  std::optional<std::string> config, inputs, record;
+  bool events = false;
+};
 
-int usage(const std::string& msg) {
-  std::cerr << "fts-sim --match: " << msg << "\n" << kMatchUsage;
-  return 2;
+using cli::Int, cli::Maybe, cli::Text;
+constexpr std::int64_t kMax = INT64_MAX;
+inline constexpr auto kMatchTable = std::tuple{
+    cli::value("--players", "", &MatchOptions::players, Int<std::int64_t>{1, 64}, "must be 1..64",
+               "bots that play (at most the config's max_players)", "N"),
+    cli::value("--levels", "", &MatchOptions::levels, Int<std::int64_t>{0, 1'000'000}, "must be 0..1000000",
+               "stop after this many levels cleared", "N"),
+    cli::value("--max-ticks", "", &MatchOptions::max_ticks, Int<std::int64_t>{0, 1'000'000'000'000}, "must be >= 0",
+               "stop after this many ticks", "T"),
+    cli::value("--seed", "", &MatchOptions::seed, Int<std::int64_t>{0, kMax}, "must be >= 0",
+               "seed of the match's random generator", "S"),
+    cli::value("--model", "", &MatchOptions::model, Maybe<cli::OneOf>{{{"seed", "discrete", "continuous"}}},
+               "must be seed, discrete or continuous", "physics model (default: the config's)", "seed|discrete|continuous"),
+    cli::value("--tick-rate", "", &MatchOptions::tick_rate, Maybe<Int<std::int64_t>>{{1, 10000}},
+               "must be 1..10000 (integer Hz)", "ticks per second (default: the config's)", "HZ"),
+    cli::value("--config", "", &MatchOptions::config, Maybe<Text>{}, "needs a file",
+               "match configuration JSON (docker/server-config.example.json)", "FILE"),
+    cli::value("--inputs", "", &MatchOptions::inputs, Maybe<Text>{}, "needs a file",
+               "replay: an input log, a record file or a journal directory (its own seed and config, every hash "
+               "checked) instead of the bots",
+               "FILE"),
+    cli::value("--record", "", &MatchOptions::record, Maybe<Text>{}, "needs a file",
+               "write the match's inputs to FILE (one line a tick, for --inputs)", "FILE"),
+    cli::on("--events", "", &MatchOptions::events, "print every event as a JSON line on stderr"),
+};
+static_assert(fields::names_every_member<MatchOptions>(kMatchTable), "a member of MatchOptions has no row");
+
+constexpr cli::Program kMatchProgram{
+    "fts-sim",
+    "usage: fts-sim --match [options]\n",
+    "Plays a headless match with built-in bots (or replays --inputs) and prints one JSON report.\n",
+    cli::Wording{false, ""},
+    false,
+    false,
+};
+
+const std::vector<cli::RowInfo>& match_rows() {
+  static const std::vector<cli::RowInfo> r = cli::infos(kMatchTable);
+  return r;
 }
 
+int usage(const std::string& msg) {
+  std::cerr << "fts-sim --match: " << msg << "\n" << match_help();
+  return 2;
+}
 
 nlohmann::json event_json(std::int64_t tick, const sim::Event& event) {
   nlohmann::json j = {{"tick", tick}, {"event", sim::to_string(sim::kind_of(event))}};
@@ -36,7 +81,7 @@ nlohmann::json event_json(std::int64_t tick, const sim::Event& event) {
   };
   std::visit(sim::Overloaded{
                  [&](const sim::Joined& e) { player(e.player); j["name"] = e.name; },
-                 [&](const sim::JoinRefused& e) { player(e.player); j["reason"] = e.reason; },
+                 [&](const sim::JoinRefused& e) { player(e.player); j["reason"] = sim::to_string(e.reason); },
                  [&](const sim::Left& e) { player(e.player); },
                  [&](const sim::LevelStarted& e) { j["level"] = e.level; j["restart"] = e.restart; },
                  [&](const sim::EnemyDefeated& e) { player(e.player); j["enemy"] = e.enemy; j["coins"] = e.coins; },
@@ -76,58 +121,17 @@ struct Tally {
 
 }  // namespace
 
+std::string match_help() { return cli::help_text(kMatchProgram, match_rows()); }
+std::string match_markdown() { return cli::markdown(kMatchProgram, match_rows(), "fts-sim --match"); }
+
 int run_match_cli(const std::vector<std::string>& args) {
-  std::int64_t players = 1, levels = 5, max_ticks = 1'000'000, seed = 1;
-  struct IntFlag {
-    const char* flag;
-    std::int64_t* out;
-    std::int64_t lo, hi;
-    const char* message;  // for a missing or bad value
-  };
-  const IntFlag int_flags[] = {{"--players", &players, 1, 64, "--players must be 1..64"},
-                               {"--levels", &levels, 0, 1'000'000, "--levels must be 0..1000000"},
-                               {"--max-ticks", &max_ticks, 0, 1'000'000'000'000, "--max-ticks must be >= 0"},
-                               {"--seed", &seed, 0, INT64_MAX, "--seed must be >= 0"}};
-  const std::pair<const char*, const char*> text_flags[] = {
-      {"--model", "--model needs a value"}, {"--tick-rate", "--tick-rate needs a value"},
-      {"--config", "--config needs a file"}, {"--inputs", "--inputs needs a file"},
-      {"--record", "--record needs a file"}};
-  CLI::App app{"", "fts-sim --match"};
-  app.set_help_flag();
-  app.allow_extras();
-  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  for (const auto& f : int_flags) app.add_option(f.flag);
-  for (const auto& f : text_flags) app.add_option(f.first);
-  const CLI::Option* events = app.add_flag("--events");
-  try {
-    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them reversed
-  } catch (const CLI::ArgumentMismatch&) {
-    // Only a flag at the very end lacks its value (any next argument is taken).
-    const std::string flag = args.back().substr(0, args.back().find('='));
-    for (const auto& f : int_flags)
-      if (flag == f.flag) return usage(f.message);
-    for (const auto& [name, message] : text_flags)
-      if (flag == name) return usage(message);
-    return usage(flag + " needs a value");
-  } catch (const CLI::ParseError& e) {
-    return usage(e.what());
-  }
-  if (!app.remaining().empty()) return usage("unknown argument " + app.remaining().front());
-  auto value = [&](const std::string& flag) -> std::optional<std::string> {
-    const CLI::Option* o = app.get_option(flag);
-    if (o->count() == 0) return std::nullopt;
-    return o->results().back();
-  };
-  for (const auto& f : int_flags) {
-    if (const auto v = value(f.flag)) {
-      const auto n = room::to_integer(*v);
-      if (!n || *n < f.lo || *n > f.hi) return usage(f.message);
-      *f.out = *n;
-    }
-  }
-  const bool print_events = events->count() > 0;
-  const auto model = value("--model"), tick_rate = value("--tick-rate"), config_path = value("--config"),
-             inputs_path = value("--inputs"), record_path = value("--record");
+  MatchOptions o;
+  auto parsed = cli::parse(kMatchProgram, kMatchTable, o, args);
+  if (const auto* e = std::get_if<cli::Error>(&parsed)) return usage(e->message);
+  std::int64_t players = o.players, levels = o.levels, max_ticks = o.max_ticks, seed = o.seed;
+  const bool print_events = o.events;
+  const auto &model = o.model, &config_path = o.config, &inputs_path = o.inputs, &record_path = o.record;
+  const auto& tick_rate = o.tick_rate;
 
   sim::MatchConfig cfg;
   if (config_path) {
@@ -147,11 +151,7 @@ int run_match_cli(const std::vector<std::string>& args) {
     if (!m) return usage("--model must be seed, discrete or continuous, got " + *model);
     cfg.model = *m;
   }
-  if (tick_rate) {
-    auto hz = room::to_integer(*tick_rate);
-    if (!hz || *hz < 1 || *hz > 10000) return usage("--tick-rate must be 1..10000 (integer Hz)");
-    cfg.tick_rate_hz = static_cast<double>(*hz);
-  }
+  if (tick_rate) cfg.tick_rate_hz = static_cast<double>(*tick_rate);
   if (players > cfg.max_players) return usage("--players exceeds max_players");
   if (const std::string err = sim::validate(cfg); !err.empty()) return usage("config: " + err);
 

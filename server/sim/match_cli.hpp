@@ -10,4 +10,8 @@ namespace fts::simtool {
 // Prints one JSON report to stdout; returns the process exit code (2: usage error).
 int run_match_cli(const std::vector<std::string>& args);
 
+// --help's and the reference's section for --match, from its option table.
+std::string match_help();
+std::string match_markdown();
+
 }  // namespace fts::simtool

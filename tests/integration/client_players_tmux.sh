@@ -40,12 +40,15 @@ for name in ann bob; do
   cmd="TERM=xterm-256color XDG_STATE_HOME='$WORK/state-$name' '$CLIENT' --connect 127.0.0.1:$PORT --name $name --no-kitty --quick; echo CLIENT_EXIT=\$?; sleep 600"
   tm new-session -d -s "$name" -x 120 -y 40 "$cmd"
 done
-"$BOT" --connect "127.0.0.1:$PORT" --name bot1 --behavior wander --duration 120 >"$WORK/bot.log" 2>&1 &
-BOT_PID=$!
-
-# Names: each sees the other (and the bot) in the legend.
+# Names: each sees the other (and the bot) in the legend. The bot joins once both are in
+# their room, by its code: a bot alone in a room readies at once and would start a match
+# of its own before the two clients arrive on a loaded machine.
 wait_for ann 10 'O bob '
 wait_for bob 10 'O ann '
+code=$(pane ann | grep -oE 'Room [A-Z]{5}' | head -n 1 | cut -d' ' -f2)
+[[ -n "$code" ]] || fail "no room code on ann's screen"
+"$BOT" --connect "127.0.0.1:$PORT" --name bot1 --room "$code" --behavior wander --duration 120 >"$WORK/bot.log" 2>&1 &
+BOT_PID=$!
 wait_for ann 10 'O bot1 '
 echo "each sees the other's name"
 # Colours: the same player is drawn in the same colour on both screens.

@@ -2,6 +2,7 @@
 """A seeded UDP impairment relay between clients and one server, for tests and benchmarks.
 
 usage: relay.py --listen PORT --server HOST:PORT [impairments...] [--seed 1] [--stats FILE]
+                [--trace FILE]
 
 Clients send to 127.0.0.1:PORT (0: any free port); each client gets its own socket
 towards the server, so the server sees one address per client. "up" is client -> server,
@@ -43,6 +44,12 @@ same line with "final": false and goes on (a test waits on "pending": 0). Per di
   datagrams_in, datagrams_out, bytes_in, bytes_out, lost {random, burst, down, queue},
   duplicated (extra copies sent), reordered (delivered after a later datagram of its
   flow), pending (scheduled, not yet sent), bursts (bad states entered)
+
+--trace FILE writes one line per datagram sent: "DIRECTION INDEX DRAWN_MS LATE_MS", its
+index in its flow (0 for a flow's first datagram), the delay the relay drew for it (rate
+queue, delay and jitter, from its arrival) and how late the relay sent it after it was
+due (the relay's own scheduling: on a loaded machine a starved relay sends late). A test
+of the delay model reads what was drawn; what the machine added is reported apart.
 """
 import argparse, heapq, json, os, random, select, signal, socket, statistics, sys, time
 from collections import deque
@@ -75,6 +82,7 @@ def parse_args(argv=None):
     ap.add_argument("--server", required=True)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--stats", help="write the counters here instead of stdout")
+    ap.add_argument("--trace", help="write one line per datagram sent here (see above)")
     ap.add_argument("--down-at", type=float, default=None, help="link down from S s after ready")
     ap.add_argument("--down-for", type=float, default=0.0, help="for S s")
     for name, typ, default, text in PER_DIRECTION:
@@ -197,7 +205,8 @@ def main():
     front.bind(("127.0.0.1", a.listen))
     uplinks = {}   # client address -> socket towards the server
     owner = {}     # uplink socket -> client address
-    queue = []     # (due, seq, direction, flow, arrival index, socket, payload, destination)
+    queue = []     # (due, seq, direction, flow, arrival index, socket, payload, destination, arrival)
+    trace = open(a.trace, "w", buffering=1 << 16) if a.trace else None
     seq = 0
     t0 = time.monotonic()  # the down window counts from here (just before "ready")
 
@@ -236,7 +245,7 @@ def main():
                 due = max(due, link.last_due.get(flow, due))
                 link.last_due[flow] = due
             seq += 1
-            heapq.heappush(queue, (due, seq, direction, flow, index, sock, data, dest))
+            heapq.heappush(queue, (due, seq, direction, flow, index, sock, data, dest, now))
 
     print(f"relay ready port={front.getsockname()[1]}", flush=True)
     try:
@@ -262,7 +271,7 @@ def main():
             now = time.monotonic()
             while queue and queue[0][0] <= now:
                 sending[0] = queue[0][2]
-                _, _, direction, flow, index, sock, data, dest = heapq.heappop(queue)
+                due, _, direction, flow, index, sock, data, dest, arrived = heapq.heappop(queue)
                 link = links[direction]
                 if index < link.sent_max.get(flow, -1):
                     link.c["reordered"] += 1
@@ -273,9 +282,14 @@ def main():
                     link.c["bytes_out"] += len(data)
                 except OSError:
                     pass
+                if trace:
+                    trace.write(f"{direction} {index} {(due - arrived) * 1e3:.6f} "
+                                f"{(time.monotonic() - due) * 1e3:.6f}\n")
                 sending[0] = None
     except Stop:
         pass
+    if trace:
+        trace.close()
     write_stats(True)
     return 0
 

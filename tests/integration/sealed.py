@@ -306,10 +306,37 @@ def check_vectors():
              "bd367ef0d6350cb38c2507db15a2f231",
     }
     assert c_tx == s_rx and c_rx == s_tx
+    ok_identity = check_identity_vector(cpk, spk, c_tx, s_rx)
     assert open_sealed(c_rx, S2C, 1, bytes.fromhex(want["1"])) == ping
     bad = [k for k in want if got[k] != want[k]]
     for k in bad:
         print(f"vector {k}: got {got[k]}, PROTOCOL.md says {want[k]}")
+    return not bad and ok_identity
+
+
+def check_identity_vector(cpk, spk, c_tx, s_rx):
+    """PROTOCOL.md 5.8.3: the hello's identity proof, from the document alone."""
+    import hashlib
+    ipk, isk = nb.crypto_sign_seed_keypair(bytes(range(0x40, 0x60)))
+    cookie = bytes.fromhex("00000000000030390123456789abcdef0123456789abcdef")
+    transcript = b"fts-identity-1\x00" + cookie + cpk + spk
+    signature = nb.crypto_sign(transcript, isk)[:64]
+    box = nb.crypto_aead_chacha20poly1305_ietf_encrypt(ipk + signature, cpk, nonce(4, 0), c_tx)
+    got = {"identity pk": ipk.hex(), "fingerprint": hashlib.blake2b(ipk, digest_size=16).hexdigest(),
+           "signature": signature.hex(), "id": box.hex()}
+    want = {"identity pk": "2543b92ff1095511476adc8369db6ddc933665a11978dda1404ee1066ca9559d",
+            "fingerprint": "0e934e02183f97e0cd83ad10d6c4be5a",
+            "signature": "1fc9b5e73f7afd32820670dbfee9135b7864d80a141c8702c1157fbfedd5c08b"
+                         "d38b1fab5261680729684de4943e0c480ee66b4164ff07b169a3146f2f4b360a",
+            "id": "e16a2caac55b7fd0dd8d4663428a1bd1487aa62783cc4ee7e8b50f19c0d3214b"
+                  "2eeaef8066502552311a4e7e2168d3d45867ebdb211b8b4a29bb199575318aa7"
+                  "47550b255c8ca20bed3fcc5e8c117ac2d9f026a45bc6a8f7019138cec0239ef1"
+                  "839d24d543f5947eac7038417dd2d817"}
+    opened = nb.crypto_aead_chacha20poly1305_ietf_decrypt(bytes.fromhex(want["id"]), cpk, nonce(4, 0), s_rx)
+    nb.crypto_sign_open(opened[32:] + transcript, opened[:32])  # raises if it does not verify
+    bad = [k for k in want if got[k] != want[k]]
+    for k in bad:
+        print(f"identity vector {k}: got {got[k]}, PROTOCOL.md says {want[k]}")
     return not bad
 
 

@@ -15,6 +15,8 @@
 #     refused. Guests (no key) are asked for a name and end at the idle time-out (one
 #     at the prompt, one in the game).
 #  6. The counters (fts-ssh-play --status) say what happened; q, y quit both players.
+#  7. `ssh -t HOST forget-me` with alice's key: asked, yes, her profile is erased (the
+#     server keeps profiles in a SQLite file of the test's), bob's stays.
 # sshd runs the ForceCommand as the logged-in user, and switches users only as root:
 # the test logs in as root through a `Match User root` block, and is skipped otherwise.
 #
@@ -70,7 +72,8 @@ cat >"$WORK/config.json" <<'JSON'
 {"enemies_cap": 1, "lobby_timeout_s": 4, "shop_timeout_s": 40, "player_coins": 5000,
  "bank_interest_factor": 1.0}
 JSON
-start_server "$SERVER" --time-scale 4 --max-per-address 16 --config "$WORK/config.json"
+start_server "$SERVER" --time-scale 4 --max-per-address 16 --config "$WORK/config.json" \
+  --profiles "$WORK/profiles.sqlite"
 "$BOT" --connect "127.0.0.1:$PORT" --name bot --count 2 --behavior shopper --room create --duration 120 \
   >"$WORK/bot.log" 2>&1 &
 BOT_PID=$!
@@ -208,6 +211,15 @@ bob_id=$(sed -nE 's/.*connect player=([0-9]+) name=bob room=.*/\1/p' "$WORK/serv
 tm capture-pane -e -p -t bob | grep -qE $'\x1b\\[[0-9;]*(3[0-7]|38;|4[0-7]|48;)' && fail "NO_COLOR: bob's screen has colours"
 tm capture-pane -e -p -t alice2 | grep -qE $'\x1b\\[[0-9;]*(3[0-7]|38;)' || fail "alice's screen has no colours"
 echo "bob is another player ($bob_id), named at the prompt, without colours (NO_COLOR)"
+# Each key is its own player for good (issue 41): an identity file of its own, 0600.
+ids=("$STATE"/keys/*/identity)
+((${#ids[@]} == 2)) || fail "identity files of the two keys: ${ids[*]}"
+for f in "${ids[@]}"; do
+  [[ $(stat -c %a "$f") == 600 ]] || fail "$f has mode $(stat -c %a "$f")"
+  grep -qE '^fts-identity-1 [0-9a-f]{64}$' "$f" || fail "$f is not an identity"
+done
+[[ $(cat "${ids[0]}") != $(cat "${ids[1]}") ]] || fail "two keys share an identity"
+echo "each key has its own identity file (0600)"
 
 # 5. Two sessions in all: a third key is refused; commands and forwarding too.
 out=$(timeout 10 "${SSH[@]}" -tt -i "$WORK/carol" root@127.0.0.1 </dev/null 2>&1 || true)
@@ -270,4 +282,26 @@ for s in alice2 bob; do
     fail "$s's terminal was not restored: $(tm display-message -p -t "$s" '#{alternate_on} #{cursor_flag}')"
 done
 [[ $(counter ended) == 2 && $(counter sessions) == 0 ]] || fail "counters: $(status | tr '\n' ' ')"
+
+# 7. `ssh -t HOST forget-me`: alice's key erases her profile (asked first: yes).
+profiles_named() {
+  python3 -c 'import sqlite3, sys; print(sqlite3.connect(sys.argv[1]).execute(
+    "SELECT COUNT(*) FROM fts_profiles WHERE name = ?", (sys.argv[2],)).fetchone()[0])' "$WORK/profiles.sqlite" "$1"
+}
+deadline=$((SECONDS + 10))
+until [[ $(profiles_named alice) == 1 ]]; do
+  ((SECONDS < deadline)) || fail "alice has no profile on the server"
+  sleep 0.1
+done
+tm new-session -d -s forget -x 100 -y 30 \
+  "${SSH[*]} -tt -i $WORK/alice root@127.0.0.1 forget-me; echo SSH_EXIT=\$?; sleep 600"
+PANES=(forget)
+wait_for forget 10 'Type yes to erase'
+tm send-keys -t forget yes Enter
+wait_for forget 10 'your profile is erased'
+wait_for forget 5 '^SSH_EXIT=0'
+wait_log "$WORK/server.log" 5 'profile_forget player=[0-9]+'
+[[ $(profiles_named alice) == 0 && $(profiles_named bob) == 1 ]] || fail "after forget-me: alice $(profiles_named alice), bob $(profiles_named bob)"
+[[ $(counter forgets) == 1 && $(counter refused_command) == 2 ]] || fail "counters: $(status | tr '\n' ' ')"
+echo "forget-me over ssh erased alice's profile (bob's stays)"
 echo "PASS in $((SECONDS - started)) s"

@@ -139,12 +139,15 @@ def client_run(relay, work, name, extra):
         wait_for(lambda: "Room " in pane(), 15, f"{name}'s welcome")
         tmux(sock, "send-keys", "-t", name, "Enter")
         wait_for(lambda: pane().startswith("Level: 1 ") and "@" in pane(), 30, f"{name}'s level 1")
-        # Taps and holds: each arrow key a new thrust the client answers.
-        for key in ["Right", "Up", "Left", "Down"] * 2:
+        # Taps and holds: each arrow key a new thrust the client answers. Twelve of them, and
+        # 0.8 s after each for the answer through the relay (about 0.3 s without prediction):
+        # on a loaded machine tmux delivers keys late and some answers are not measurable
+        # (a ball at a wall, a fall), and the check below wants four of each run.
+        for key in ["Right", "Up", "Left", "Down"] * 3:
             for _ in range(3):
                 tmux(sock, "send-keys", "-t", name, key)
                 time.sleep(0.08)
-            time.sleep(0.6)
+            time.sleep(0.8)
         tmux(sock, "send-keys", "-t", name, "q")
         wait_for(lambda: "Quit?" in pane(), 5, "the quit question")
         tmux(sock, "send-keys", "-t", name, "y")

@@ -8,7 +8,7 @@ sent has been handled and none is pending.
 
 usage: test_relay.py NAME   (one CTest entry per test, label integration)
 """
-import json, os, select, signal, socket, statistics, struct, subprocess, sys, time
+import json, os, select, signal, socket, statistics, struct, subprocess, sys, tempfile, time
 
 from harness import HERE, Failure, check, main
 
@@ -223,31 +223,62 @@ def test_burst():
     print(f"lost {lost}/{n} in {len(runs)} bursts, mean {mean:.2f}, longest {max(runs)}")
 
 
+def read_trace(path, direction="up"):
+    """The relay's --trace: {index: (drawn_s, late_s)} of one direction's datagrams."""
+    out = {}
+    with open(path) as f:
+        for line in f:
+            d, index, drawn_ms, late_ms = line.split()
+            if d == direction:
+                out[int(index)] = (float(drawn_ms) / 1e3, float(late_ms) / 1e3)
+    return out
+
+
+def traced_pump(n, gap_s, *relay_args):
+    """Pumps n datagrams up through a relay with a --trace; returns [(drawn_s, measured_s,
+    late_s)] per datagram: the delay the relay drew, the delay the receiver's kernel saw,
+    and how late the relay sent it (its own scheduling)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "trace")
+        with Link(*CLEAN, *relay_args, "--trace", path) as link:
+            got = link.pump(n, gap_s=gap_s)
+            link.relay.stop()
+        trace = read_trace(path)
+    check(len(got) == n and len(trace) == n, f"{len(got)} and {len(trace)} of {n} datagrams on a clean link")
+    return [(trace[seq][0], measured, trace[seq][1]) for seq, measured, _ in got]
+
+
 def test_delay():
-    """--delay-ms is a lower bound; uniform jitter adds 0..jitter on top."""
-    with Link(*CLEAN, "--delay-ms", "40", "--seed", "5") as link:
-        fixed = [d for _, d, _ in link.pump(50, gap_s=0.002)]
-        link.relay.stop()
-    with Link(*CLEAN, "--delay-ms", "40", "--jitter-ms", "20", "--seed", "5") as link:
-        jittered = [d for _, d, _ in link.pump(200, gap_s=0.001)]
-        link.relay.stop()
-    with Link(*CLEAN, "--up-delay-ms", "30", "--up-jitter-ms", "10", "--up-jitter-dist", "normal",
-              "--seed", "5") as link:
-        normal = [d for _, d, _ in link.pump(300, gap_s=0.001)]
-        link.relay.stop()
-    check(len(fixed) == 50 and len(jittered) == 200 and len(normal) == 300, "datagrams lost on a clean link")
-    check(min(fixed) >= 0.040, f"fixed: fastest {min(fixed) * 1e3:.2f} ms < 40 ms")
-    check(statistics.median(fixed) < 0.055, f"fixed: median {statistics.median(fixed) * 1e3:.2f} ms")
-    check(min(jittered) >= 0.040, f"uniform: fastest {min(jittered) * 1e3:.2f} ms < 40 ms")
-    spread = statistics.quantiles(jittered, n=10)
+    """--delay-ms is a lower bound; uniform jitter adds 0..jitter on top, |N(0, j)| adds
+    about 0.8 j. The model is checked on the delays the relay drew (seeded, so exact on any
+    machine); what a datagram took on the wire is checked never to be less than its draw,
+    and the relay's own lateness (a loaded machine starves it) is reported beside."""
+    fixed = traced_pump(50, 0.002, "--delay-ms", "40", "--seed", "5")
+    jittered = traced_pump(200, 0.001, "--delay-ms", "40", "--jitter-ms", "20", "--seed", "5")
+    normal = traced_pump(300, 0.001, "--up-delay-ms", "30", "--up-jitter-ms", "10", "--up-jitter-dist", "normal",
+                         "--seed", "5")
+    for name, runs in (("fixed", fixed), ("uniform", jittered), ("normal", normal)):
+        early = [(d, m) for d, m, _ in runs if m < d - 0.0005]
+        check(not early, f"{name}: {len(early)} datagrams arrived before their drawn delay, e.g. {early[:3]}")
+    drawn = lambda runs: [d for d, _, _ in runs]
+    check(all(abs(d - 0.040) < 1e-6 for d in drawn(fixed)), f"fixed: drew {sorted(set(drawn(fixed)))[:5]}")
+    check(min(m for _, m, _ in fixed) >= 0.040, "fixed: a datagram faster than 40 ms")
+    uni = drawn(jittered)
+    check(0.040 <= min(uni) and max(uni) <= 0.060, f"uniform: drew {min(uni) * 1e3:.1f}..{max(uni) * 1e3:.1f} ms")
+    spread = statistics.quantiles(uni, n=10)
     check(spread[-1] - spread[0] > 0.010, f"uniform: deciles {spread[0] * 1e3:.1f}..{spread[-1] * 1e3:.1f} ms")
-    check(statistics.median(jittered) < 0.040 + 0.010 + 0.008, f"uniform: median {statistics.median(jittered) * 1e3:.1f} ms")
-    check(min(normal) >= 0.030, f"normal: fastest {min(normal) * 1e3:.2f} ms < 30 ms")
-    extra = statistics.mean(normal) - 0.030  # |N(0, 10 ms)| has mean 8 ms
-    check(0.005 < extra < 0.014, f"normal: mean extra delay {extra * 1e3:.1f} ms, expected about 8")
-    print(f"fixed 40 ms: min {min(fixed) * 1e3:.2f} median {statistics.median(fixed) * 1e3:.2f} ms; "
-          f"uniform 40+0..20: {min(jittered) * 1e3:.1f}..{max(jittered) * 1e3:.1f} ms; "
-          f"normal 30+|N(0,10)|: mean {statistics.mean(normal) * 1e3:.1f} ms")
+    check(abs(statistics.median(uni) - 0.050) < 0.004, f"uniform: median {statistics.median(uni) * 1e3:.1f} ms")
+    nor = drawn(normal)
+    check(min(nor) >= 0.030, f"normal: drew {min(nor) * 1e3:.2f} ms < 30 ms")
+    extra = statistics.mean(nor) - 0.030  # |N(0, 10 ms)| has mean 8 ms
+    check(0.005 < extra < 0.011, f"normal: mean extra delay drawn {extra * 1e3:.1f} ms, expected about 8")
+    late = [l for runs in (fixed, jittered, normal) for _, _, l in runs]
+    # The relay's lateness is the machine's (reported, not judged: beside a CPU hog it
+    # reached tens of ms); sending early, which would be the relay's fault, is checked above.
+    print(f"drawn: fixed 40 ms; uniform 40+0..20: {min(uni) * 1e3:.1f}..{max(uni) * 1e3:.1f} ms; "
+          f"normal 30+|N(0,10)|: mean {statistics.mean(nor) * 1e3:.1f} ms; on the wire: fixed median "
+          f"{statistics.median(m for _, m, _ in fixed) * 1e3:.2f} ms; the relay's lateness p50 "
+          f"{statistics.median(late) * 1e3:.2f} ms, max {max(late) * 1e3:.1f} ms")
 
 
 def test_reorder():

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "ui/interpolate.hpp"
+#include "net/interpolate.hpp"
 
 using namespace fts::client;
 using fts::protocol::BallState;

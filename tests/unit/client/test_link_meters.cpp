@@ -1,7 +1,7 @@
 // The game loop's small stateful pieces: loss meter, event feed, input pacing.
 #include <catch2/catch.hpp>
 
-#include "ui/link_meters.hpp"
+#include "net/link_meters.hpp"
 #include "term/keys.hpp"
 
 using namespace fts;

@@ -6,6 +6,7 @@
 
 #include "field_geometry.hpp"
 #include "seed_situation.hpp"
+#include "fts/protocol/codes.hpp"
 #include "fts/sim/shop_text.hpp"
 #include "ui/hud.hpp"
 #include "ui/palette.hpp"
@@ -271,4 +272,20 @@ TEST_CASE("watching: Tab cycles the players and the footer says so", "[client][w
   view.chat_open = true;
   view.chat_draft = "gg";
   CHECK(footer_text(s, view, 120) == "Say: gg_   Enter: send   Esc: cancel");
+}
+
+TEST_CASE("Codes: the client's text for a result code is the table's sentence where it has one",
+          "[client][codes]") {
+  // A code the protocol gives a sentence (codes.hpp result_sentence) reads as that
+  // sentence whatever the server wrote; every other code has words of the client's own,
+  // but the two whose words are the server's (a field, a spectator's command).
+  for (const auto& row : fts::protocol::kResultCodes) {
+    if (row.code == fts::protocol::ResultCode::ok) continue;
+    const std::string name(row.name);
+    INFO("result code " << name);
+    const auto sentence = fts::protocol::result_sentence(row.code);
+    if (!sentence.empty()) CHECK(refusal_text(name, "something else", 0, nullptr) == sentence);
+    const bool servers_words = row.code == fts::protocol::ResultCode::field || row.code == fts::protocol::ResultCode::spectator;
+    CHECK((refusal_text(name, "", 'm', nullptr) == "refused (" + name + ")") == servers_words);
+  }
 }

@@ -10,9 +10,9 @@
 #include "fts/room/snapshot_build.hpp"
 #include "fts/sim/match.hpp"
 #include "fts/sim/match_view.hpp"
-#include "ui/jitter_buffer.hpp"
-#include "ui/link_stats.hpp"
-#include "ui/prediction.hpp"
+#include "net/jitter_buffer.hpp"
+#include "net/link_stats.hpp"
+#include "predict/prediction.hpp"
 
 using namespace fts;
 using namespace fts::client;

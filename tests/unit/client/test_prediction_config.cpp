@@ -14,7 +14,7 @@
 #include "fts/sim/config_fields.hpp"
 #include "fts/sim/match.hpp"
 #include "fts/sim/match_view.hpp"
-#include "ui/prediction.hpp"
+#include "predict/prediction.hpp"
 
 using namespace fts;
 

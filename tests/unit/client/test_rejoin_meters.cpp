@@ -6,7 +6,7 @@
 
 #include <optional>
 
-#include "ui/net_timing.hpp"
+#include "net/net_timing.hpp"
 
 using namespace fts;
 using namespace fts::client;

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "ui/session_store.hpp"
+#include "net/session_store.hpp"
 
 using namespace fts::client;
 

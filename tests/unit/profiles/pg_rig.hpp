@@ -29,7 +29,8 @@ inline int free_tcp_port() {
 
 class PgRig {
  public:
-  PgRig() {
+  // fsync off for tests (they measure nothing); on for a benchmark, as a host runs it.
+  explicit PgRig(bool fsync = false) : fsync_(fsync) {
     char tmpl[] = "/tmp/fts-pg-XXXXXX";
     dir_ = ::mkdtemp(tmpl);
     port_ = free_tcp_port();
@@ -51,7 +52,7 @@ class PgRig {
 
  private:
   int run(const std::string& cmd) const {
-    const std::string line = "FTS_PG_FSYNC=off bash " FTS_SOURCE_DIR "/tests/support/pg_temp.sh " + cmd + " " + dir_ +
+    const std::string line = std::string("FTS_PG_FSYNC=") + (fsync_ ? "on" : "off") + " bash " FTS_SOURCE_DIR "/tests/support/pg_temp.sh " + cmd + " " + dir_ +
                              "/pg " + std::to_string(port_) + " >/dev/null 2>&1";
     const int rc = std::system(line.c_str());
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -59,6 +60,7 @@ class PgRig {
   std::string dir_;
   int port_ = 0;
   int status_ = -1;
+  bool fsync_ = false;
 };
 
 }  // namespace fts::test

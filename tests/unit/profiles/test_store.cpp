@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "../../support/temp_dir.hpp"
 #include "pg_rig.hpp"
@@ -151,6 +152,74 @@ TEST_CASE("Profile store: a foreign, corrupt or newer SQLite file is refused", "
   CHECK_THAT(err, Catch::Contains(damaged.string()));
 }
 
+namespace {
+
+// Writes in one batch leave what the same writes one at a time leave (Store::write folds
+// a run of them into multi-row statements): a deterministic mix of players seen, results
+// (some keys twice in the batch, some already written) and forgets, with ties.
+std::vector<Write> mixed_writes(std::uint32_t seed, int count) {
+  std::mt19937 rng(seed);
+  auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<std::uint32_t>(n)); };
+  std::vector<Write> out;
+  for (int i = 0; i < count; ++i) {
+    const std::string fp = "f" + std::to_string(pick(12)) + std::string(30, '0');
+    const int kind = pick(100);
+    if (kind < 35) {
+      out.push_back(Seen{fp, "n" + std::to_string(pick(5)), 100 + pick(50)});
+    } else if (kind < 96) {
+      MatchResult r = result("k" + std::to_string(pick(count / 2)), fp, pick(4), pick(3) * 10, pick(3));
+      r.name = "r" + std::to_string(pick(5));
+      r.ended_unix_s = 100 + pick(50);
+      r.ending = static_cast<Ending>(pick(3));
+      out.push_back(r);
+    } else {
+      out.push_back(Forget{fp});
+    }
+  }
+  return out;
+}
+
+// `batched` gets `writes` in batches of `batch`; the reference, one at a time.
+void check_batched_as_one_at_a_time(Store& batched, const std::vector<Write>& writes, std::size_t batch) {
+  TempDir d;
+  auto one = open_ok((d.path / "one.sqlite").string());
+  std::size_t fresh_one = 0, fresh_batched = 0;
+  const auto results_before = batched.results(), profiles_before = batched.profiles();
+  for (const auto& w : writes) fresh_one += one->write({w});
+  for (std::size_t i = 0; i < writes.size(); i += batch)
+    fresh_batched += batched.write(std::vector<Write>(writes.begin() + static_cast<std::ptrdiff_t>(i),
+                                                      writes.begin() + static_cast<std::ptrdiff_t>(
+                                                                           std::min(i + batch, writes.size()))));
+  CHECK(fresh_batched == fresh_one);
+  CHECK(batched.results() - results_before == one->results());
+  CHECK(batched.profiles() - profiles_before == one->profiles());
+  for (int p = 0; p < 12; ++p) {
+    const std::string fp = "f" + std::to_string(p) + std::string(30, '0');
+    INFO("player " << fp);
+    const auto a = batched.profile(fp), b = one->profile(fp);
+    REQUIRE(a.has_value() == b.has_value());
+    if (a) CHECK(*a == *b);
+  }
+  auto mine = [](std::vector<Profile> v) {  // the mix's players only (PostgreSQL has others)
+    std::erase_if(v, [](const Profile& p) { return p.fingerprint[0] != 'f'; });
+    return v;
+  };
+  CHECK(mine(batched.top(Board::knocks, 20)) == mine(one->top(Board::knocks, 20)));
+}
+
+}  // namespace
+
+TEST_CASE("Profile store: a batch writes what one write at a time writes", "[profiles][store]") {
+  TempDir d;
+  for (std::uint32_t seed : {1u, 2u, 3u}) {
+    INFO("seed " << seed);
+    auto whole = open_ok((d.path / ("whole" + std::to_string(seed) + ".sqlite")).string());
+    check_batched_as_one_at_a_time(*whole, mixed_writes(seed, 600), 600);
+    auto sevens = open_ok((d.path / ("sevens" + std::to_string(seed) + ".sqlite")).string());
+    check_batched_as_one_at_a_time(*sevens, mixed_writes(seed, 600), 7);
+  }
+}
+
 TEST_CASE("Profile store: PostgreSQL 15 career, boards, two servers share it", "[profiles][store][postgresql]") {
   fts::test::PgRig pg;
   if (!pg.available()) {
@@ -168,6 +237,9 @@ TEST_CASE("Profile store: PostgreSQL 15 career, boards, two servers share it", "
   b->write({result("b/1/1", cat, 9, 1)});
   CHECK(a->top(Board::level, 1).at(0).fingerprint == cat);
   CHECK(a->rank(Board::level, cat) == 1);
+  // Batches as one write at a time (against SQLite's one at a time): the same.
+  b->write({Forget{cat}});
+  check_batched_as_one_at_a_time(*b, mixed_writes(4, 600), 600);
 }
 
 TEST_CASE("Profile store: URLs never show a password", "[profiles][store]") {

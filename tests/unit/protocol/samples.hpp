@@ -141,6 +141,8 @@ inline std::vector<Message> all_messages() {
       Bye{"quit"},
       Chat{1, 2, "bob", "gg"},
       Chat{2, 0, "host", "bye"},
+      Leaderboard{5, {{1, "ann", 12, 4500}, {2, "bob", 12, 900}, {3, "?x?", 3, 0}}, 3, 2, 12, 900},
+      Leaderboard{6, {}, 0, 0, 0, 0},
       full,
       delta,
   };

@@ -102,6 +102,29 @@ TEST_CASE("Game host: the record of a session replays with every hash equal", "[
   CHECK(rep.final_hash == live);
 }
 
+TEST_CASE("Game host: --record holds room 1's record, --record-dir the other rooms'", "[server][host]") {
+  test::HostRig rig;
+  rig.options.seed = 5;
+  rig.options.max_players = 2;  // four players: two rooms
+  rig.start();
+  test::RecordDir one("host-one"), rooms("host-rooms");
+  std::filesystem::create_directories(rooms.path);
+  rig.host->record_dir(rooms.path.string(), "test");
+  rig.host->record_to(one.path.string(), "test");
+  for (int i = 0; i < 4; ++i) rig.add("p" + std::to_string(i));
+  REQUIRE(rig.connect_all());
+  for (int i = 0; i < 100; ++i) rig.tick();
+  REQUIRE(rig.host->room_ids() == std::vector<std::uint32_t>{1, 2});
+  rig.host.reset();  // the records' writers write what is queued, then stop
+  CHECK_FALSE(std::filesystem::exists(rooms.path / "room-1"));  // room 1 is --record's alone
+  for (const auto& path : {one.path, rooms.path / "room-2"}) {
+    INFO(path);
+    auto replay = room::replay_history(path);  // each replays with every hash checked
+    REQUIRE(std::holds_alternative<room::ReplayReport>(replay));
+    CHECK(std::get<room::ReplayReport>(replay).hashes_checked > 1);
+  }
+}
+
 TEST_CASE("Replay: a damaged record is refused with the line, not simulated for ever", "[server][replay]") {
   std::stringstream record;
   room::RecordWriter w(record, 1, sim::MatchConfig{}, "test");

@@ -44,9 +44,22 @@ TEST_CASE("Server options: bad values name the flag or variable and the value", 
   CHECK(error_of({"--colour", "red"}) == "unknown flag --colour (see --help)");
   CHECK(error_of({"--port"}) == "--port: needs a value");
   CHECK(error_of({"stray"}) == R"(unexpected argument "stray" (see --help))");
-  // Issue 26: both recorders at once left FILE empty without a word.
-  CHECK_THAT(error_of({"--record", "a.jsonl", "--record-dir", "d"}), Catch::StartsWith("--record PATH and --record-dir DIR"));
-  CHECK_THAT(error_of({"--record-dir", "d"}, {{"FTS_RECORD", "a.jsonl"}}), Catch::Contains("cannot be used together"));
+  // Issue 38: --record and --record-dir go together (room 1 into PATH, the others into
+  // DIR/room-<id>), unless PATH would share DIR with the other rooms.
+  CHECK_THAT(error_of({"--record", "d/room-2", "--record-dir", "d"}), Catch::StartsWith("--record d/room-2 is inside --record-dir d"));
+  CHECK_THAT(error_of({"--record-dir", "d"}, {{"FTS_RECORD", "./d/"}}), Catch::Contains("give a --record outside DIR"));
+  CHECK_THAT(error_of({"--record", "d/x/../rooms", "--record-dir", "d/"}), Catch::Contains("is inside --record-dir"));
+}
+
+TEST_CASE("Server options: --record and --record-dir together", "[server][options]") {
+  for (const auto& [path, dir] : {std::pair{"one", "rooms"}, std::pair{"rooms/room-1", "rooms"},
+                                  std::pair{"rooms-1", "rooms"}, std::pair{"../one", "rooms"}}) {
+    INFO(path << " beside " << dir);
+    auto r = parse_options({"--record", path, "--record-dir", dir}, env_of({}));
+    REQUIRE(std::holds_alternative<Options>(r));
+    CHECK(std::get<Options>(r).record_path == path);
+    CHECK(std::get<Options>(r).record_dir == dir);
+  }
 }
 
 TEST_CASE("Server options: the command line's forms", "[server][options]") {
@@ -66,12 +79,36 @@ TEST_CASE("Server options: the command line's forms", "[server][options]") {
   CHECK(error_of({"-x"}) == R"(unexpected argument "-x" (see --help))");
 }
 
-TEST_CASE("Server options: every documented flag is in the usage text", "[server][options]") {
+TEST_CASE("Server options: every row is in the usage text and the reference", "[server][options]") {
   const std::string usage = usage_text();
+  const std::string markdown = markdown_text();
   for (const auto& d : option_docs()) {
-    CHECK(usage.find(d.flag) != std::string::npos);
+    INFO(d.flag);
+    if (d.hidden) {
+      CHECK(usage.find(d.flag) == std::string::npos);
+      continue;
+    }
+    CHECK(usage.find("  " + d.flag + " ") != std::string::npos);
     CHECK(usage.find(d.env) != std::string::npos);
+    CHECK(markdown.find("| `" + d.flag) != std::string::npos);
+    if (!d.default_value.empty() && d.kind == fts::cli::Kind::value)
+      CHECK(usage.find("default " + d.default_value) != std::string::npos);
   }
+  CHECK_THAT(usage, Catch::Contains("  --port PORT                 UDP port to listen on (0: any free port) [FTS_PORT, default 7777]"));
+  CHECK_THAT(markdown, Catch::Contains("| `--tick-rate HZ` | `FTS_TICK_RATE` | `100` | 10..1000 |"));
+  CHECK_THAT(markdown, Catch::Contains("| `--agones on\\|off\\|PORT` | `FTS_AGONES` | `off` |"));
+}
+
+TEST_CASE("Server options: --help-markdown and --resume from the environment", "[server][options]") {
+  auto r = parse_options({"--help-markdown"}, env_of({}));
+  REQUIRE(std::holds_alternative<Options>(r));
+  CHECK(std::get<Options>(r).markdown);
+  r = parse_options({"--journal-dir", "j"}, env_of({{"FTS_RESUME", "1"}}));
+  REQUIRE(std::holds_alternative<Options>(r));
+  CHECK(std::get<Options>(r).resume);
+  CHECK(error_of({}, {{"FTS_RESUME", "1"}}) == "--resume: needs --journal-dir DIR (where the journals are)");
+  CHECK(error_of({"--time-scale", "0.05"}) == R"(--time-scale: must be 0.1..100, got "0.05")");
+  CHECK(error_of({"--bind", "localhost"}) == R"(--bind: must be an IPv4 or IPv6 address, got "localhost")");
 }
 
 TEST_CASE("Server options: --threads (issue 29)", "[server][options][threads]") {

@@ -9,7 +9,7 @@
 //   host_row(key, member): the match's alone; no client reads it.
 // A new field goes here (its config key follows), and must say which it is; a member with
 // no row does not build (the static_assert below). The config file's reader and writer
-// (protocol/room/src/match_config_json.cpp), the welcome's rows
+// (room/src/match_config_json.cpp), the welcome's rows
 // (protocol/src/control_tables.hpp) and client_part() are made from this one table.
 #pragma once
 

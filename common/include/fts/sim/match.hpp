@@ -4,9 +4,11 @@
 // game_over; "play again" starts a new match at level 1.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -84,9 +86,30 @@ struct Joined {
   PlayerId player = 0;
   std::string name;
 };
+// Why the match refused a join: one row each, its name (logs, fts-sim's output) and the
+// sentence a player reads (the server's error message). The wire's code is the server's
+// (ErrorCode::refused); no layer spells these names itself.
+enum class JoinRefusal : std::uint8_t { bad_id, id_in_use, match_full, bad_name };
+struct JoinRefusalInfo {
+  JoinRefusal refusal;
+  std::string_view name;
+  std::string_view sentence;
+};
+inline constexpr std::array<JoinRefusalInfo, 4> kJoinRefusals{{
+    {JoinRefusal::bad_id, "bad_id", "player id 0 is no player"},
+    {JoinRefusal::id_in_use, "id_in_use", "that player id is in the match already"},
+    {JoinRefusal::match_full, "match_full", "every seat of the match is taken"},
+    {JoinRefusal::bad_name, "bad_name", "the name is empty or longer than 32 bytes"},
+}};
+static_assert(kJoinRefusals.size() == static_cast<std::size_t>(JoinRefusal::bad_name) + 1);
+constexpr const JoinRefusalInfo& join_refusal_info(JoinRefusal r) {
+  return kJoinRefusals[static_cast<std::size_t>(r) % kJoinRefusals.size()];
+}
+constexpr std::string_view to_string(JoinRefusal r) { return join_refusal_info(r).name; }
+
 struct JoinRefused {
   PlayerId player = 0;
-  std::string reason;  // "bad_id", "id_in_use", "match_full", "bad_name"
+  JoinRefusal reason = JoinRefusal::bad_id;
 };
 struct Left {
   PlayerId player = 0;

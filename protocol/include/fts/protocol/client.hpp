@@ -9,11 +9,13 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/codes.hpp"
+#include "fts/protocol/identity.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
@@ -26,6 +28,9 @@ struct ClientConfig {
   std::string token;            // a previous welcome's token, to take a player back (sent sealed)
   std::string join;             // Hello::join: "" (quick), "quick", "create", "join", "spectate"
   std::string room;             // Hello::room: the code for join and spectate
+  // The player's long-term identity, proven in the cookie hello (PROTOCOL.md 5.8); none:
+  // a guest.
+  std::optional<Identity> identity;
   // Names one connection attempt in its hellos (Hello::nonce). 0: a random one, new at
   // every connect().
   std::uint64_t nonce = 0;
@@ -84,6 +89,8 @@ class ClientEndpoint {
   std::vector<Result> take_results();
   // Chat lines and host announcements, in order, each exactly once.
   std::vector<Chat> take_chats() { return chats_.take(); }
+  // Leaderboards received (PROTOCOL.md 4.7c), oldest first; each `cmd` names its request.
+  std::vector<Leaderboard> take_boards() { return std::exchange(boards_, {}); }
   // Complete snapshots, newest last (older ones that arrive late are dropped).
   std::vector<Snapshot> take_snapshots();
   // The match's events, each exactly once, in seq order (however often snapshots repeat
@@ -115,6 +122,7 @@ class ClientEndpoint {
   std::string cookie_;
   KxKeyPair kx_;          // new for every connect(): the hello carries its public half
   SessionKeys keys_;      // from our key pair and the challenge's server key
+  KxPublicKey server_kx_{};  // the challenge's key (the identity proof signs it)
   SealedChannel seal_;    // ready once a challenge gave the server's key
   std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
   std::string nonce_;  // 16 hex digits
@@ -130,6 +138,8 @@ class ClientEndpoint {
   ReliableSender<Command> commands_;
   ReliableReceiver<Result> results_;
   ReliableReceiver<Chat> chats_;
+  std::vector<Leaderboard> boards_;  // at most kMaxBoards kept until taken
+  static constexpr std::size_t kMaxBoards = 4;
   SnapshotReceiver snapshots_;
   std::vector<Snapshot> new_snapshots_;
   std::deque<InputFrame> inputs_;

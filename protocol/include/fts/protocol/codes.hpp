@@ -14,7 +14,7 @@ namespace fts::protocol {
 enum class ErrorCode : std::uint8_t {
   version, bad_hello, bad_name, bad_key, bad_token, rate_limited, server_full, room_full, no_such_room,
   bad_join, address_full, draining, refused, taken_over, overflow, idle, kicked, banned, room_closed,
-  shutdown, timeout, bye, count_
+  shutdown, timeout, bye, bad_identity, count_
 };
 
 inline constexpr std::array<CodeRow<ErrorCode>, static_cast<std::size_t>(ErrorCode::count_)> kErrorCodes{{
@@ -59,11 +59,16 @@ inline constexpr std::array<CodeRow<ErrorCode>, static_cast<std::size_t>(ErrorCo
     {ErrorCode::timeout, "timeout",
      "the C++ client's own: no answer during the handshake, or the server stopped answering", false},
     {ErrorCode::bye, "bye", "the C++ client's own: the server sent `bye` (the message is its reason)", false},
+    {ErrorCode::bad_identity, "bad_identity",
+     "the hello's `id` does not open or its signature does not verify over this handshake (5.8); connect "
+     "again (a new attempt signs anew), or as a guest"},
 }};
 static_assert(rows_in_order(kErrorCodes), "kErrorCodes: one row per ErrorCode, in order");
 
 // The codes of a command's result. ok is the only one with `ok: true`.
-enum class ResultCode : std::uint8_t { ok, coins, owned, phase, dead, item, op, field, spectator, rate, empty, count_ };
+enum class ResultCode : std::uint8_t {
+  ok, coins, owned, phase, dead, item, op, field, spectator, rate, empty, busy, no_profiles, unavailable, guest, count_
+};
 
 inline constexpr std::array<CodeRow<ResultCode>, static_cast<std::size_t>(ResultCode::count_)> kResultCodes{{
     {ResultCode::ok, "ok", "applied (`ok: true`); for `rooms`, `msg` is the room list (5.6)"},
@@ -77,8 +82,39 @@ inline constexpr std::array<CodeRow<ResultCode>, static_cast<std::size_t>(Result
     {ResultCode::spectator, "spectator", "a spectator's command other than `rooms` (5.6)"},
     {ResultCode::rate, "rate", "a chat line over the chat rate (4.6)"},
     {ResultCode::empty, "empty", "a chat line with nothing printable left (4.6)"},
+    {ResultCode::busy, "busy",
+     "a `top` or `forget` while the player's previous one is unanswered, or within a second of it (4.7c)"},
+    {ResultCode::no_profiles, "no_profiles", "a `top` or `forget` on a server that keeps no profiles (4.7c)"},
+    {ResultCode::unavailable, "unavailable",
+     "a `top` while the profile database does not answer, or a `forget` the server could not queue (4.7c)"},
+    {ResultCode::guest, "guest", "a `forget` in a session without a proven identity: there is no profile (4.7c, 5.8)"},
 }};
 static_assert(rows_in_order(kResultCodes), "kResultCodes: one row per ResultCode, in order");
+
+// The sentence a player reads for a result that needs no context: the server sends it as
+// the result's message and the client shows it for the code, one string. "" where the
+// words depend on the item, the player or the server (the client's own, or the message).
+constexpr std::string_view result_sentence(ResultCode c) {
+  switch (c) {
+    case ResultCode::rate: return "too many chat lines: wait a moment";
+    case ResultCode::empty: return "nothing to say";
+    case ResultCode::busy: return "asked too often: wait a moment";
+    case ResultCode::no_profiles: return "this server keeps no profiles";
+    case ResultCode::unavailable: return "the server's profile database is not available now: try again later";
+    case ResultCode::guest: return "you play as a guest: there is no profile to erase";
+    case ResultCode::ok:
+    case ResultCode::coins:
+    case ResultCode::owned:
+    case ResultCode::phase:
+    case ResultCode::dead:
+    case ResultCode::item:
+    case ResultCode::op:
+    case ResultCode::field:
+    case ResultCode::spectator:
+    case ResultCode::count_: break;
+  }
+  return {};
+}
 
 constexpr std::string_view to_string(ErrorCode c) { return name_in(kErrorCodes, c); }
 constexpr std::string_view to_string(ResultCode c) { return name_in(kResultCodes, c); }

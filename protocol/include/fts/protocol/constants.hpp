@@ -27,6 +27,7 @@ inline constexpr std::size_t kMaxInputFrames = 16;
 inline constexpr std::size_t kMaxBallsPerMessage = 256;
 inline constexpr std::size_t kMaxPlayersPerMessage = 64;
 inline constexpr std::size_t kMaxEventsPerMessage = 64;
+inline constexpr std::size_t kBoardRows = 10;  // rows of a leaderboard (PROTOCOL.md 4.7c)
 inline constexpr std::uint32_t kMaxSnapshotParts = 16;
 inline constexpr std::int64_t kMaxCoins = 1'000'000'000'000'000;  // 10^15
 inline constexpr std::int64_t kMaxQuantized = std::int64_t{1} << 40;

@@ -33,6 +33,9 @@ struct Hello {
   // The client's crypto_kx public key for this attempt (64 hex digits; required with a
   // cookie, PROTOCOL.md 5.7).
   std::string key = "";
+  // The player's identity proven (PROTOCOL.md 5.8, identity.hpp): "" (a guest, and in a
+  // hello without a cookie) or 224 hex digits, a sealed box.
+  std::string id = "";
 
   bool operator==(const Hello&) const = default;
 };
@@ -100,8 +103,11 @@ struct Input {
 
 // unknown: an op this server does not know (answered with code "op", never applied).
 // chat: a chat line (text); rooms: asks for the room list, answered in the result's
-// message (PROTOCOL.md 4.6).
-enum class CommandOp : std::uint8_t { buy = 0, ready = 1, play_again = 2, unknown = 3, chat = 4, rooms = 5 };
+// message; top: asks for the leaderboard, answered by a result and a Leaderboard;
+// forget: erases the profile of the session's identity (PROTOCOL.md 4.6, 4.7c).
+enum class CommandOp : std::uint8_t {
+  buy = 0, ready = 1, play_again = 2, unknown = 3, chat = 4, rooms = 5, top = 6, forget = 7
+};
 
 // client -> server, reliable: applied exactly once, in rid order, answered by a Result.
 struct Command {
@@ -134,6 +140,28 @@ struct Result {
   std::string code;     // one of kResultCodes (codes.hpp), or a code this version does not know
   std::string message;  // human readable
   bool operator==(const Result&) const = default;
+};
+
+// One row of the leaderboard (PROTOCOL.md 4.7c): best level, ties by that match's coins.
+struct BoardRow {
+  std::uint32_t rank = 0;  // 1-based
+  std::string name;        // the name last played under (1..16 printable ASCII; the
+                           // server cleans what its database holds, the client again)
+  std::int64_t level = 0;  // the best level reached
+  std::int64_t coins = 0;  // the coins of the match that reached it
+  bool operator==(const BoardRow&) const = default;
+};
+
+// server -> client, unreliable: the leaderboard of the server's profiles, answering a
+// `cmd top` (a result answers the command too; a lost board is asked for again).
+struct Leaderboard {
+  std::uint32_t cmd = 0;       // the rid of the `cmd top` this answers
+  std::vector<BoardRow> top;   // the first rows, at most kBoardRows
+  std::uint32_t of = 0;        // players on the board (a match recorded)
+  std::uint32_t rank = 0;      // yours; 0: a guest, or no match of yours recorded yet
+  std::int64_t best = 0;       // your best level (0: none)
+  std::int64_t best_coins = 0; // the coins of that match
+  bool operator==(const Leaderboard&) const = default;
 };
 
 // Either way: keeps the connection alive and carries the header's acks.
@@ -197,7 +225,7 @@ struct SnapshotMsg {
 };
 
 using Message = std::variant<Hello, Challenge, Welcome, Error, Input, Command, Result, Ping,
-                             Bye, SnapshotMsg, Chat>;
+                             Bye, SnapshotMsg, Chat, Leaderboard>;
 
 // Why a player name is refused ("" if it is fine): 1..16 printable ASCII characters.
 std::string name_problem(const std::string& name);

@@ -14,7 +14,7 @@ enum class Reject : std::uint8_t {
   truncated, oversize, wrong_protocol_id, bad_version, bad_flags, garbage, unknown_type, out_of_range,
   unpadded_hello, bad_cookie, bad_token, unknown_session, address_mismatch, unexpected, server_full,
   unknown_base, stale, rate_limited, overflow, address_full, idle, join_refused, forged, replayed, bad_key,
-  takeover_limited, bad_field, unknown_room, code_limited, count_
+  takeover_limited, bad_field, unknown_room, code_limited, bad_identity, count_
 };
 
 inline constexpr std::size_t kRejectCount = static_cast<std::size_t>(Reject::count_);
@@ -66,6 +66,8 @@ inline constexpr std::array<CodeRow<Reject>, kRejectCount> kRejects{{
     {Reject::unknown_room, "unknown_room", "a `join`/`spectate` naming no open room, refused `no_such_room` (5.6)"},
     {Reject::code_limited, "code_limited",
      "a `join`/`spectate` over its host's rate of unknown room codes, refused `rate_limited` (10.1)"},
+    {Reject::bad_identity, "bad_identity",
+     "a cookie hello whose `id` box does not open or whose signature does not verify, refused `bad_identity` (5.8)"},
 }};
 static_assert(rows_in_order(kRejects), "kRejects: one row per Reject, in order");
 

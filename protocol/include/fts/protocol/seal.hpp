@@ -50,7 +50,7 @@ std::optional<SessionKeys> client_session_keys(const KxKeyPair& client, const Kx
 std::optional<SessionKeys> server_session_keys(const KxKeyPair& server, const KxPublicKey& client);
 
 // The first nonce byte: who sealed it. The hello's token box has its own.
-enum class SealDirection : std::uint8_t { client_to_server = 1, server_to_client = 2, hello_token = 3 };
+enum class SealDirection : std::uint8_t { client_to_server = 1, server_to_client = 2, hello_token = 3, hello_identity = 4 };
 
 // byte 0: direction, bytes 1-3: zero, bytes 4-11: the extended sequence, big-endian.
 SealNonce seal_nonce(SealDirection direction, std::uint64_t sequence);

@@ -19,6 +19,7 @@
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/codes.hpp"
 #include "fts/protocol/cookie.hpp"
+#include "fts/protocol/identity.hpp"
 #include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
@@ -136,10 +137,14 @@ struct ServerEvent {
   Kind kind;
   std::uint32_t player_id = 0;
   std::string name;
+  // For the host's log: the name of the ErrorCode the session was sent when one ended it
+  // (kick, idle: to_string of codes.hpp's row, never spelled here), else how the link
+  // ended ("timeout", the bye's reason, "replaced", "restart", "match over", ...).
   std::string reason;
   bool quit = false;  // disconnected by the client's bye: its seat is free (PROTOCOL.md 5.4)
   std::uint32_t room = 0;
   bool spectator = false;
+  std::string identity = "";  // the player's proven identity's fingerprint ("" a guest; PROTOCOL.md 5.8)
 };
 
 // A session carried over a server restart (from a room's journal): its player is away,
@@ -150,6 +155,7 @@ struct RestoredSession {
   std::string name;
   std::string token_verifier;
   bool quit = false;  // had given its seat up (bye or idle) before the restart
+  std::string identity = "";  // its identity's fingerprint ("" a guest): a hello proving it takes it back too
 };
 
 struct Outgoing {
@@ -191,6 +197,7 @@ struct SessionInfo {
   std::uint32_t room = 0;
   bool spectator = false;
   SealDrops sealed_drops;  // its sealed datagrams dropped: forged (bad tag) or replayed
+  std::string identity = "";  // the fingerprint of its proven identity ("" a guest, PROTOCOL.md 5.8)
 };
 
 class ServerEndpoint {
@@ -231,6 +238,9 @@ class ServerEndpoint {
   // results together in one datagram.
   void send_result(std::uint32_t player_id, std::uint32_t command_rid, ResultCode code, std::string message,
                    std::uint64_t now_ms);
+  // Sends a leaderboard (PROTOCOL.md 4.7c) to a connected player, in a datagram of its
+  // own (unreliable: the client asks again when it is lost). False: no such connected player.
+  bool send_board(std::uint32_t player_id, const Leaderboard& board, std::uint64_t now_ms);
   // Ends a session now (error sent to the client, slot released).
   void kick(std::uint32_t player_id, ErrorCode code, const std::string& message, std::uint64_t now_ms);
   // Re-creates a session of a previous server process, disconnected as of now_ms (an
@@ -250,6 +260,8 @@ class ServerEndpoint {
   }
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
+  // The fingerprint of a session's proven identity ("" for a guest or no such player).
+  std::string session_identity(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
   // While paused (the host's lobby, shop and game-over phases) nobody idles: every
@@ -320,6 +332,7 @@ class ServerEndpoint {
     std::string name;
     std::string token;     // "" for a restored session until its client comes back
     std::string verifier;  // token_verifier(token)
+    std::string identity;  // the proven identity's fingerprint ("" a guest)
     std::uint32_t session_id = 0;
     Address address;
     Encoding encoding = Encoding::msgpack;

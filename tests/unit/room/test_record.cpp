@@ -35,7 +35,7 @@ std::stringstream record_of(const std::vector<std::string>& names, int ticks) {
 
 }  // namespace
 
-TEST_CASE("Replay: a player named hash does not make the record unreplayable", "[server][replay]") {
+TEST_CASE("Replay: a player named hash does not make the record unreplayable", "[room][replay]") {
   // Regression: a line was taken for a hash line when its text held "hash" anywhere, so
   // the join line of a player named hash failed the replay at line 2.
   auto record = record_of({"hash", "tick", "ann"}, 250);
@@ -46,7 +46,7 @@ TEST_CASE("Replay: a player named hash does not make the record unreplayable", "
   CHECK(std::get<room::ReplayReport>(r).ticks == 250);
 }
 
-TEST_CASE("Replay: each line is dispatched on its keys", "[server][replay]") {
+TEST_CASE("Replay: each line is dispatched on its keys", "[room][replay]") {
   const std::string head = record_of({}, 0).str();
   auto error_of = [&](const std::string& line) {
     std::stringstream in(head + line + "\n");

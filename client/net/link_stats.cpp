@@ -1,4 +1,4 @@
-#include "ui/link_stats.hpp"
+#include "net/link_stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,12 +67,13 @@ double percentile(std::vector<double> v, double p) {
 std::string link_stats_json(const LinkSummary& s) {
   const double minutes = std::max(1e-9, static_cast<double>(s.duration_ms) / 60000.0);
   const auto& p = s.prediction;
-  char buf[1024];
+  char buf[1536];
   std::snprintf(buf, sizeof buf,
                 "{\"predict\":%s,\"duration_s\":%.1f,\"frames\":%llu,\"rtt_ms\":%.1f,\"loss_percent\":%.2f,"
                 "\"jitter_ms\":%.1f,\"delay_ms\":%.1f,\"corrections\":%llu,\"snaps\":%llu,\"contact_corrections\":%llu,"
                 "\"corrections_per_min\":%.2f,\"correction_p50_radii\":%.4f,\"correction_p99_radii\":%.4f,"
-                "\"free_correction_p50_radii\":%.4f,\"free_correction_p99_radii\":%.4f,\"stalls\":%llu,"
+                "\"free_correction_p50_radii\":%.4f,\"free_correction_p99_radii\":%.4f,"
+                "\"contact_correction_p50_radii\":%.4f,\"contact_correction_p99_radii\":%.4f,\"stalls\":%llu,"
                 "\"stalls_per_min\":%.2f,\"stalls_over_100ms\":%llu,\"longest_stall_ms\":%llu,\"bytes_sent\":%llu,"
                 "\"bytes_received\":%llu,\"up_bytes_per_s\":%.0f,\"down_bytes_per_s\":%.0f,\"responses\":%zu,"
                 "\"response_p50_ms\":%.1f,\"response_p99_ms\":%.1f}",
@@ -82,6 +83,7 @@ std::string link_stats_json(const LinkSummary& s) {
                 static_cast<unsigned long long>(p.contact_corrections),
                 static_cast<double>(p.corrections + p.snaps) / minutes, percentile(p.all_sizes_radii, 50),
                 percentile(p.all_sizes_radii, 99), percentile(p.free_sizes_radii, 50), percentile(p.free_sizes_radii, 99),
+                percentile(p.contact_sizes_radii, 50), percentile(p.contact_sizes_radii, 99),
                 static_cast<unsigned long long>(s.stalls.stalls()), static_cast<double>(s.stalls.stalls()) / minutes,
                 static_cast<unsigned long long>(s.stalls.over_100ms()),
                 static_cast<unsigned long long>(s.stalls.longest_ms()), static_cast<unsigned long long>(s.bytes_sent),

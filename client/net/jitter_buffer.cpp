@@ -1,4 +1,4 @@
-#include "ui/jitter_buffer.hpp"
+#include "net/jitter_buffer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ui/session_store.hpp"
+#include "net/session_store.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -11,19 +11,20 @@
 
 #include "fts/protocol/messages.hpp"
 #include "fts/protocol/snapshot.hpp"
-#include "ui/interpolate.hpp"
-#include "ui/jitter_buffer.hpp"
-#include "ui/link_meters.hpp"
-#include "ui/link_stats.hpp"
-#include "ui/prediction.hpp"
+#include "net/interpolate.hpp"
+#include "net/jitter_buffer.hpp"
+#include "net/link_meters.hpp"
+#include "net/link_stats.hpp"
+#include "predict/prediction.hpp"
 
 namespace fts::client {
 
 class NetTiming {
  public:
   // `predict`: run the own-ball prediction (fts-client --no-predict, fts-bot without
-  // --predict: only the clock and the delay).
-  explicit NetTiming(bool predict = true) : predict_(predict) {}
+  // --predict: only the clock and the delay); `tuning`: the prediction's (fts-bot
+  // --predict-own-only: the own ball alone, as before issue 37).
+  explicit NetTiming(bool predict = true, PredictionTuning tuning = {}) : predict_(predict), tuning_(tuning) {}
 
   // The welcome's rates and platform: the clock's rate, the snapshot interval, the
   // prediction's world. A welcome starts a session (the first or a reconnect): the clock,
@@ -47,6 +48,8 @@ class NetTiming {
   void sent(const protocol::InputFrame& f);
   // The own ball at the tick own_tick() gave last, or nothing (no base, fallen).
   std::optional<protocol::BallState> own_ball(std::uint64_t now_ms) { return predictor_.at(shown_tick_, now_ms); }
+  // The balls stepped with ours, at the same tick (issue 37: a hit is drawn where it happens).
+  std::vector<protocol::BallState> near_balls() { return predictor_.others_at(shown_tick_); }
   // The remote balls' delay now (`fixed`: --interp-delay-ms), and the tick they are drawn at.
   double remote_tick(std::uint64_t now_ms, std::optional<int> fixed_ms);
   double remote_delay_ms() const { return delay_ms_; }
@@ -58,6 +61,7 @@ class NetTiming {
   void drawn(double vx, double vy, std::uint64_t now_ms);
 
   const PredictionStats& prediction() const { return predictor_.stats(); }
+  const OwnBallPredictor& predictor() const { return predictor_; }
   double lead_ticks() const { return lead_.lead_ticks(); }
   double jitter_ms() const { return jitter_.jitter_ms(); }
   // Snapshots lost in this session, recently (0..100; < 0 before there is anything to judge).
@@ -68,6 +72,7 @@ class NetTiming {
 
  private:
   bool predict_;
+  PredictionTuning tuning_;
   double tick_rate_hz_ = 100;
   ServerClock clock_;
   JitterBuffer jitter_;
@@ -86,5 +91,12 @@ class NetTiming {
 // `s` with our ball (owner `me`) moved to `own` (the prediction drawn in place of the
 // snapshot's).
 void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own);
+
+// `s` with the balls predicted near ours (`near`, NetTiming::near_balls()) drawn at their
+// predicted places: wholly where their edge is within `full_u` of the own ball's, not at
+// all from `none_u` on, in between a mix, so that a ball coming near slides from the
+// remote balls' time into the own ball's rather than jumping.
+void place_near_balls(protocol::Snapshot& s, const std::vector<protocol::BallState>& near,
+                      const protocol::BallState& own, double full_u = 60, double none_u = 120);
 
 }  // namespace fts::client

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ui/prediction.hpp"
+#include "predict/prediction.hpp"
 
 namespace fts::client {
 

@@ -1,4 +1,4 @@
-#include "ui/interpolate.hpp"
+#include "net/interpolate.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ui/link_meters.hpp"
+#include "net/link_meters.hpp"
 
 #include <algorithm>
 

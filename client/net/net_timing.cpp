@@ -1,4 +1,7 @@
-#include "ui/net_timing.hpp"
+#include "net/net_timing.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace fts::client {
 
@@ -14,7 +17,7 @@ void NetTiming::on_welcome(const protocol::Welcome& w) {
   delay_ms_ = 0;
   // The prediction steps the match's physics as the server configured it: everything the
   // welcome carries of its configuration (platform, tick rate, model, sub-steps, friction).
-  predictor_ = OwnBallPredictor(w.match);
+  predictor_ = OwnBallPredictor(w.match, tuning_);
 }
 
 void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms) {
@@ -58,6 +61,22 @@ std::string NetTiming::stats_json(std::uint64_t duration_ms, double rtt_ms, doub
 void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own) {
   for (auto& b : s.balls)
     if (b.kind == protocol::BallKind::player && b.owner == me) b.x = own.x, b.y = own.y, b.vx = own.vx, b.vy = own.vy;
+}
+
+void place_near_balls(protocol::Snapshot& s, const std::vector<protocol::BallState>& near,
+                      const protocol::BallState& own, double full_u, double none_u) {
+  for (const auto& p : near) {
+    const double gap = std::hypot(p.x - own.x, p.y - own.y) - p.radius - own.radius;
+    const double w = none_u > full_u ? std::clamp((none_u - gap) / (none_u - full_u), 0.0, 1.0) : (gap <= full_u ? 1.0 : 0.0);
+    if (w <= 0) continue;
+    for (auto& b : s.balls)
+      if (b.id == p.id) {
+        b.x += w * (p.x - b.x);
+        b.y += w * (p.y - b.y);
+        b.vx += w * (p.vx - b.vx);
+        b.vy += w * (p.vy - b.vy);
+      }
+  }
 }
 
 }  // namespace fts::client
