@@ -34,7 +34,7 @@ inline constexpr auto kOptionTable = std::tuple{
                "N"),
     cli::off("--no-predict", &Options::predict, "draw your own ball from snapshots too (no prediction)"),
     cli::value("--stats-file", "", &Options::stats_file, Text{true}, "needs a path",
-               "at exit, write the link and prediction figures (JSON)", "PATH"),
+               "every second and at exit, write the link and prediction figures (JSON)", "PATH"),
     cli::value("--fps", "", &Options::fps, Int<int>{1, 240}, "is 1..240", "frames drawn per second", "N"),
     cli::off("--no-kitty", &Options::kitty, "do not ask the terminal for key release events"),
     cli::off("--no-mouse", &Options::mouse, "do not steer with the mouse (no mouse reporting)"),

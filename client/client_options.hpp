@@ -22,7 +22,7 @@ struct Options {
   // is set (--interp-delay-ms N: fixed).
   std::optional<int> interp_delay_ms;
   bool predict = true;     // --no-predict: the own ball is drawn from snapshots too
-  std::string stats_file;  // --stats-file PATH: the link and prediction figures at exit (JSON)
+  std::string stats_file;  // --stats-file PATH: the link and prediction figures, every second and at exit (JSON)
   int fps = 60;
   bool kitty = true;
   bool mouse = true;  // --no-mouse: no mouse reporting, keys only

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -151,6 +152,10 @@ class Game {
     send_input(now);
     flush();
     draw(now);
+    if (!opts_.stats_file.empty() && now >= stats_written_ms_ + kStatsEveryMs) {
+      stats_written_ms_ = now;
+      write_stats_file(opts_.stats_file, stats_json(now));
+    }
     timer_.expires_after(std::chrono::milliseconds(1000 / opts_.fps));
     timer_.async_wait([this](boost::system::error_code ec) {
       if (!ec && !done_) frame();
@@ -455,6 +460,8 @@ class Game {
   PointerSteering steer_;  // mouse steering: toward the pointer, arriving there
   NetTiming net_;  // server clock, remote delay, own-ball prediction and their meters (issue 28)
   std::uint64_t started_ms_ = now_ms();
+  std::uint64_t stats_written_ms_ = now_ms();  // --stats-file: written every second
+  static constexpr std::uint64_t kStatsEveryMs = 1000;
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120, kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
@@ -476,6 +483,16 @@ class Game {
 }  // namespace
 
 namespace fts::client {
+
+bool write_stats_file(const std::string& path, const std::string& json) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << json << "\n";
+    if (!out.flush()) return false;
+  }
+  return std::rename(tmp.c_str(), path.c_str()) == 0;
+}
 
 GameEnd play(asio::io_context& io, const Options& opts, const udp::endpoint& server) {
   GameEnd end;

@@ -127,9 +127,7 @@ int main(int argc, char** argv) {
   GameEnd end = play(io, opts, *server);
   term::leave();
   if (!opts.stats_file.empty() && !end.stats_json.empty()) {
-    std::ofstream out(opts.stats_file);
-    out << end.stats_json << "\n";
-    if (!out) end.message += (end.message.empty() ? "" : "; ") + std::string("cannot write ") + opts.stats_file;
+    if (!write_stats_file(opts.stats_file, end.stats_json)) end.message += (end.message.empty() ? "" : "; ") + std::string("cannot write ") + opts.stats_file;
   }
   if (!end.message.empty()) std::cerr << "fts-client: " << end.message << "\n";
   return end.code;

@@ -126,6 +126,15 @@ def tmux(sock, *args):
     return subprocess.run(["tmux", "-L", sock, *args], capture_output=True, text=True).stdout
 
 
+def read_stats(path):
+    """The client's --stats-file figures so far ({} before the first write)."""
+    try:
+        with open(path) as f:
+            return json.loads(f.read())
+    except (OSError, ValueError):
+        return {}
+
+
 def client_run(relay, work, name, extra):
     """Plays a level-1 round in tmux through the relay, steering with arrow keys; returns
     the client's --stats-file figures."""
@@ -139,22 +148,25 @@ def client_run(relay, work, name, extra):
         wait_for(lambda: "Room " in pane(), 15, f"{name}'s welcome")
         tmux(sock, "send-keys", "-t", name, "Enter")
         wait_for(lambda: pane().startswith("Level: 1 ") and "@" in pane(), 30, f"{name}'s level 1")
-        # Taps and holds: each arrow key a new thrust the client answers. Twelve of them, and
-        # 0.8 s after each for the answer through the relay (about 0.3 s without prediction):
-        # on a loaded machine tmux delivers keys late and some answers are not measurable
-        # (a ball at a wall, a fall), and the check below wants four of each run.
-        for key in ["Right", "Up", "Left", "Down"] * 3:
+        # Taps and holds: each arrow key a new thrust the client answers, and 0.8 s after
+        # each for the answer through the relay (about 0.3 s without prediction). On a loaded
+        # machine tmux delivers keys late and some answers are not measurable (a ball at a
+        # wall, a fall), so the keys go on until the stats file (written every second) counts
+        # six answers, or for 40 s; the checks want four of each run.
+        keys = ["Right", "Up", "Left", "Down"]
+        deadline = time.monotonic() + 40
+        sent = 0
+        while time.monotonic() < deadline and (sent < 4 or read_stats(stats).get("responses", 0) < 6):
             for _ in range(3):
-                tmux(sock, "send-keys", "-t", name, key)
+                tmux(sock, "send-keys", "-t", name, keys[sent % 4])
                 time.sleep(0.08)
+            sent += 1
             time.sleep(0.8)
         tmux(sock, "send-keys", "-t", name, "q")
         wait_for(lambda: "Quit?" in pane(), 5, "the quit question")
         tmux(sock, "send-keys", "-t", name, "y")
         wait_for(lambda: "CLIENT_EXIT=0" in pane(), 10, f"{name} to exit")
-        wait_for(lambda: os.path.exists(stats) and os.path.getsize(stats) > 0, 5, "the stats file")
-        with open(stats) as f:
-            return json.loads(f.read())
+        return wait_for(lambda: read_stats(stats), 5, "the stats file")
     finally:
         tmux(sock, "kill-server")
 

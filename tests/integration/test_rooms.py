@@ -23,8 +23,10 @@ def test_four_rooms():
     rec = tempfile.mkdtemp(prefix="fts-rooms-")
     sock = os.path.join(rec, "console.sock")
     with Server("--time-scale", "4", "--record-dir", rec, "--console-socket", sock) as srv:
+        # The console's close ends every bot (they are told room_closed): their --duration
+        # only bounds a run that fails, and must outlast the waits on a loaded machine.
         groups = [start_bots("--connect", srv.address, "--name", g, "--count", "4", "--behavior", "shopper",
-                             "--room", "create", "--duration", "12", "--seed", str(i * 10))
+                             "--room", "create", "--duration", "90", "--seed", str(i * 10))
                   for i, g in enumerate(["ann", "bob", "cat", "dan"])]
         wait_for(lambda: len(re.findall(r"level_start level=2 room=", srv.text())) >= 4, 90,
                  "level 2 to start in all four rooms")
