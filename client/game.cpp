@@ -4,6 +4,7 @@
 // the only translation units of the client with Asio in them (through fts_io's socket).
 #include "game.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -243,7 +244,9 @@ class Game {
     if (conn_.state() != proto::ClientState::connected) return;
     proto::InputFrame f;
     if (phase() != proto::Phase::play) steer_.stop();
-    if (phase() == proto::Phase::play && steer_.active()) {
+    const bool steering = phase() == proto::Phase::play && steer_.active();
+    if (!steering) steered_at_ms_ = 0;
+    if (steering) {
       const Steer st = mouse_steer(now);
       f.move_x = static_cast<std::int8_t>(st.x);
       f.move_y = static_cast<std::int8_t>(st.y);
@@ -286,7 +289,11 @@ class Game {
     const double ticks_old = std::max(0.0, net_.server_tick(now) - static_cast<double>(s->tick));
     const double age_s = ticks_old / tick_rate_hz(conn_.endpoint().welcome());
     const double rtt_s = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms / 1000.0 : 0.0;
-    return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, age_s + rtt_s / 2);
+    // The thrust decided now holds until the next frame: on a loaded machine frames come
+    // late, so the gap since the last one (at most 0.25 s) is part of the delay too.
+    const double gap_s = steered_at_ms_ != 0 ? std::min(0.25, static_cast<double>(now - steered_at_ms_) / 1000.0) : 0.0;
+    steered_at_ms_ = now;
+    return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, age_s + rtt_s / 2 + gap_s);
   }
 
   void absorb(std::uint64_t now) {
@@ -458,6 +465,7 @@ class Game {
   std::map<std::uint32_t, char> pending_buys_;
   std::set<std::uint32_t> pending_chats_;  // rids of chat lines awaiting their result
   PointerSteering steer_;  // mouse steering: toward the pointer, arriving there
+  std::uint64_t steered_at_ms_ = 0;  // the last frame mouse steering decided (0: not steering)
   NetTiming net_;  // server clock, remote delay, own-ball prediction and their meters (issue 28)
   std::uint64_t started_ms_ = now_ms();
   std::uint64_t stats_written_ms_ = now_ms();  // --stats-file: written every second
