@@ -1,10 +1,9 @@
 // Issue 26, point 2: spawn protection. A ball put back on the platform during a level is
 // immovable for MatchConfig::spawn_protection_s (3 s) or until its player thrusts or
 // fires; its touches credit nobody. Part of the match state: hashed, in the view, in the
-// checkpoint. Time is stepped by hand.
+// checkpoint (unit/journal/test_checkpoint_protection.cpp). Time is stepped by hand.
 #include <catch2/catch.hpp>
 
-#include "host/match_state_json.hpp"
 #include "fts/sim/match_view.hpp"
 #include "match_test_util.hpp"
 
@@ -130,7 +129,7 @@ TEST_CASE("Spawn protection: ends at the player's first thrust or rocket, not at
   CHECK(find_player(q.s, 1)->protected_until_tick == -1);
 }
 
-TEST_CASE("Spawn protection: in the view, the hash and the checkpoint", "[match][protection][journal]") {
+TEST_CASE("Spawn protection: in the view and the hash", "[match][protection]") {
   Respawned r = respawned();
   MatchState& s = r.s;
   const std::int64_t until = r.respawn_tick + 300;
@@ -142,30 +141,5 @@ TEST_CASE("Spawn protection: in the view, the hash and the checkpoint", "[match]
   MatchState unprotected = s;
   unprotected.players[0].protected_until_tick = -1;
   CHECK(match_hash(unprotected) != match_hash(s));
-
-  // A checkpoint in the middle of a blow: restored, it steps on bit for bit.
-  hit_from_right(s);
-  run(s, 5);
-  const auto j = host::match_state_to_json(s);
-  CHECK(j.dump().find("null") == std::string::npos);  // no infinite mass was written
-  CHECK(j["players"][0]["protected_until_tick"] == until);
-  auto back = host::match_state_from_json(nlohmann::json::parse(j.dump()), make_match(s.cfg, 99));
-  REQUIRE(std::holds_alternative<MatchState>(back));
-  MatchState b = std::get<MatchState>(back);
-  CHECK(b.players[0].protected_until_tick == until);
-  CHECK(match_hash(b) == match_hash(s));
-  for (int i = 0; i < 400; ++i) {
-    step(s, {});
-    step(b, {});
-    REQUIRE(match_hash(b) == match_hash(s));
-  }
-  CHECK(s.tick > until);
-  CHECK(b.players[0].protected_until_tick == -1);
-
-  // A checkpoint written before the field existed reads as unprotected.
-  auto old = j;
-  old["players"][0].erase("protected_until_tick");
-  auto read_old = host::match_state_from_json(old, make_match(s.cfg, 99));
-  REQUIRE(std::holds_alternative<MatchState>(read_old));
-  CHECK(std::get<MatchState>(read_old).players[0].protected_until_tick == -1);
+  // In the checkpoint: unit/journal/test_checkpoint_protection.cpp (it needs the host).
 }
