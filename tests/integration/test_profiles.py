@@ -6,6 +6,9 @@ against fts-server with --profiles on SQLite and on a real PostgreSQL 15
   sqlite_record   a match played and left: the profile, `top`, `profile`, `stats`
   day_later       the same identity a (simulated) day later, under another name: the
                   same profile, two matches, first and last seen a day apart
+  day_later_client  the same, with the player's real fts-client (tmux, 80x24): a level
+                  joined and quit, and again a day later under another name with the
+                  same identity file: one profile, two matches, the waiting screen's rank
   refused_files   a corrupt and a foreign SQLite file refused at start, saying which
   kill_resume     kill -9 mid-match, --resume, the player back and gone: one result
   pg_two_servers  two servers share one PostgreSQL: a record made on one is on the
@@ -90,6 +93,59 @@ def day_later():
         check(p["first_seen"] == first["first_seen"] and p["last_seen"] - p["first_seen"] >= 86400,
               f"first and last seen a day apart: {p}")
         check(console(srv.sock, "top")["profiles"] == 1, "one identity, one profile")
+        srv.stop()
+    shutil.rmtree(work, ignore_errors=True)
+
+
+def client_match(srv, work, ident, name):
+    """The player's real fts-client (tmux, 80x24, ASCII) joins a match, plays until level 1
+    is on its screen and quits (q, then y): a match played and left. Returns the screen
+    of the level."""
+    if shutil.which("tmux") is None:
+        print("tmux is not installed here: skipped")
+        sys.exit(77)
+    tmux = ["tmux", "-L", f"fts-day-{os.getpid()}-{time.monotonic_ns()}"]
+    pane = lambda: subprocess.run([*tmux, "capture-pane", "-p", "-t", "c"], capture_output=True,  # noqa: E731
+                                  text=True).stdout
+    try:
+        env = f"env LANG=C XDG_STATE_HOME={os.path.join(work, 'client-state')} TERM=xterm"
+        subprocess.run([*tmux, "new-session", "-d", "-s", "c", "-x", "80", "-y", "24",
+                        f"{env} {CLIENT} --connect {srv.address} --identity {ident} --name {name} --quick "
+                        "--glyphs ascii; echo CLIENT_EXIT=$?; sleep 30"], check=True)
+        wait_for(lambda: "Room " in pane(), 30, f"{name}'s welcome")
+        subprocess.run([*tmux, "send-keys", "-t", "c", "Enter"])
+        # (At 80x24 the header is the compact one: "Level 1  Coins 0 ...".)
+        level = wait_for(lambda: (lambda t: t if t.startswith("Level 1 ") else None)(pane()), 30, f"{name}'s level 1")
+        subprocess.run([*tmux, "send-keys", "-t", "c", "Right"])
+        subprocess.run([*tmux, "send-keys", "-t", "c", "q"])
+        wait_for(lambda: "Quit?" in pane(), 10, "the quit question")
+        subprocess.run([*tmux, "send-keys", "-t", "c", "y"])
+        wait_for(lambda: "CLIENT_EXIT=0" in pane(), 20, f"{name}'s client to exit")
+        return level
+    finally:
+        subprocess.run([*tmux, "kill-server"], capture_output=True)
+
+
+def day_later_client():
+    work = tempfile.mkdtemp(prefix="fts-prof-")
+    db = os.path.join(work, "profiles.sqlite")
+    ident = os.path.join(work, "ann.id")
+    with profiles_server(work, db) as srv:
+        client_match(srv, work, ident, "ann")
+        first = profile_of(srv.sock, "ann")
+        srv.stop()
+    check(os.path.exists(ident), "the client kept no identity file")
+    with profiles_server(work, db, env={"FTS_TEST_CLOCK_OFFSET_S": "86400"}) as srv:
+        client_match(srv, work, ident, "annie")
+        p = wait_for(lambda: (lambda r: r if r.get("ok") and r["profiles"][0]["matches"] == 2 else None)(
+            console(srv.sock, "profile", first["fingerprint"])), 20, "the second match")["profiles"][0]
+        check(p["name"] == "annie", f"the name is the last one played under: {p}")
+        check(p["first_seen"] == first["first_seen"] and p["last_seen"] - p["first_seen"] >= 86400,
+              f"first and last seen a day apart: {p}")
+        check(console(srv.sock, "top")["profiles"] == 1, "one identity, one profile")
+        # Back on its waiting screen, the player sees the one profile as theirs.
+        text = client_screen(srv, work, ident, "annie", "You: #1 of 1")
+        check("annie" in text, f"the board's name: {text}")
         srv.stop()
     shutil.rmtree(work, ignore_errors=True)
 
@@ -319,6 +375,7 @@ def board_forget():
 
 
 if __name__ == "__main__":
-    sys.exit(main({"sqlite_record": sqlite_record, "day_later": day_later, "refused_files": refused_files,
+    sys.exit(main({"sqlite_record": sqlite_record, "day_later": day_later,
+                   "day_later_client": day_later_client, "refused_files": refused_files,
                    "kill_resume": kill_resume, "pg_two_servers": pg_two_servers, "pg_down_up": pg_down_up,
                    "board_forget": board_forget}))
