@@ -1,4 +1,5 @@
 #include "net/identity_store.hpp"
+#include "net/session_store.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,15 +10,6 @@
 
 namespace fts::client {
 namespace {
-
-bool make_dirs(const std::string& path) {
-  for (std::size_t i = 1; i <= path.size(); ++i) {
-    if (i != path.size() && path[i] != '/') continue;
-    const std::string part = path.substr(0, i);
-    if (::mkdir(part.c_str(), 0700) != 0 && errno != EEXIST) return false;
-  }
-  return true;
-}
 
 std::string errno_text() { return std::strerror(errno); }
 
@@ -59,7 +51,7 @@ std::optional<protocol::Identity> load_or_create_identity(const std::string& pat
   }
   // The first run: a new key, written to a file made 0600 from the start.
   const auto slash = path.rfind('/');
-  if (slash != std::string::npos && slash > 0 && !make_dirs(path.substr(0, slash))) {
+  if (slash != std::string::npos && slash > 0 && !make_private_dirs(path.substr(0, slash))) {
     why = "cannot create " + path.substr(0, slash) + ": " + errno_text();
     return std::nullopt;
   }

@@ -27,7 +27,9 @@ std::string file_name(const std::string& server) {
   return out.empty() ? "server" : out;
 }
 
-bool make_dirs(const std::string& path) {
+}  // namespace
+
+bool make_private_dirs(const std::string& path) {
   for (std::size_t i = 1; i <= path.size(); ++i) {
     if (i != path.size() && path[i] != '/') continue;
     const std::string part = path.substr(0, i);
@@ -35,8 +37,6 @@ bool make_dirs(const std::string& path) {
   }
   return true;
 }
-
-}  // namespace
 
 std::string state_dir(const char* xdg_state_home, const char* home) {
   if (xdg_state_home && *xdg_state_home == '/') return xdg_state_home;  // the spec: absolute only
@@ -64,7 +64,7 @@ bool SessionStore::save(const std::string& token, std::string& why) const {
     why = "no state directory (set HOME or XDG_STATE_HOME)";
     return false;
   }
-  if (!make_dirs(dir_)) {
+  if (!make_private_dirs(dir_)) {
     why = "cannot create " + dir_ + ": " + std::strerror(errno);
     return false;
   }

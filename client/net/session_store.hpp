@@ -12,6 +12,10 @@ namespace fts::client {
 // The state directory from XDG_STATE_HOME / HOME (both as given; "" if neither is set).
 std::string state_dir(const char* xdg_state_home, const char* home);
 
+// Makes every missing directory of `path` with mode 0700 (the state is private); false,
+// with errno set, when one cannot be made.
+bool make_private_dirs(const std::string& path);
+
 class SessionStore {
  public:
   // dir: the state directory ("" keeps nothing); server: "host:port" as typed.

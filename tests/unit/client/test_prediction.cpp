@@ -13,49 +13,11 @@
 #include "net/jitter_buffer.hpp"
 #include "net/link_stats.hpp"
 #include "predict/prediction.hpp"
+#include "prediction_match.hpp"
 
 using namespace fts;
 using namespace fts::client;
-
-namespace {
-
-// One player in level 1, playing (the level's one enemy still at the centre).
-sim::MatchState playing_alone() {
-  sim::MatchConfig cfg;
-  cfg.spawn_protection_s = 0;
-  auto s = sim::make_match(cfg, 3);
-  sim::TickInputs join;
-  join.joins.push_back({1, "ann"});
-  sim::step(s, join);
-  sim::TickInputs ready;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.commands.push_back({sim::CommandKind::ready, {}});
-  ready.players.push_back(t);
-  sim::step(s, ready);
-  for (int i = 0; i < 400 && !(s.phase == sim::Phase::playing && s.players[0].ball); ++i) sim::step(s, {});
-  REQUIRE(s.phase == sim::Phase::playing);
-  REQUIRE(s.players[0].ball);
-  return s;
-}
-
-protocol::Snapshot snapshot_of(const sim::MatchState& s) {
-  return protocol::quantize(room::build_snapshot(sim::make_view(s), {}));
-}
-
-sim::TickInputs move(int dx, int dy) {
-  sim::TickInputs in;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.input.move_x = static_cast<std::int8_t>(dx);
-  t.input.move_y = static_cast<std::int8_t>(dy);
-  in.players.push_back(t);
-  return in;
-}
-
-const sim::Ball& own(const sim::MatchState& s) { return *sim::find_ball(s.world, s.players[0].ball); }
-
-}  // namespace
+using namespace fts::client::test;
 
 TEST_CASE("Prediction: from a snapshot and the inputs at their ticks, the own ball lands on the server's",
           "[client][predict]") {

@@ -15,8 +15,11 @@
 #include "fts/sim/match.hpp"
 #include "fts/sim/match_view.hpp"
 #include "predict/prediction.hpp"
+#include "prediction_match.hpp"
 
 using namespace fts;
+using client::test::move;
+using client::test::playing_alone;
 
 namespace {
 
@@ -57,39 +60,11 @@ protocol::Welcome welcome_for(const sim::MatchConfig& cfg) {
   return w;
 }
 
-// One player in level 1 of a match with this configuration, playing.
-sim::MatchState playing_alone(sim::MatchConfig cfg) {
-  cfg.spawn_protection_s = 0;
-  auto s = sim::make_match(cfg, 3);
-  sim::TickInputs join;
-  join.joins.push_back({1, "ann"});
-  sim::step(s, join);
-  sim::TickInputs ready;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.commands.push_back({sim::CommandKind::ready, {}});
-  ready.players.push_back(t);
-  sim::step(s, ready);
-  for (int i = 0; i < 400 && !(s.phase == sim::Phase::playing && s.players[0].ball); ++i) sim::step(s, {});
-  REQUIRE(s.phase == sim::Phase::playing);
-  REQUIRE(s.players[0].ball);
-  return s;
-}
-
-sim::TickInputs move(int dx, int dy) {
-  sim::TickInputs in;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.input.move_x = static_cast<std::int8_t>(dx);
-  t.input.move_y = static_cast<std::int8_t>(dy);
-  in.players.push_back(t);
-  return in;
-}
 
 // The largest distance between the predicted and the match's own ball over 80 ticks of
 // thrusts and coasting (the inputs in force at their ticks, as the server applies them).
 double worst_miss(sim::MatchState s, client::OwnBallPredictor p) {
-  const auto base = protocol::quantize(room::build_snapshot(sim::make_view(s), {}));
+  const auto base = client::test::snapshot_of(s);
   p.on_snapshot(base, 1, static_cast<double>(base.tick), 1000);
   const std::int64_t t0 = s.tick;
   const auto input_for = [&](std::int64_t t) {

@@ -13,50 +13,17 @@
 #include "fts/sim/match_view.hpp"
 #include "net/net_timing.hpp"
 #include "predict/prediction.hpp"
+#include "prediction_match.hpp"
 
 using namespace fts;
 using namespace fts::client;
+using namespace fts::client::test;
 
 namespace {
 
 // The tolerance of a predicted contact: the base is quantized (1/16 u, 1/16 u/s), so the
 // contact comes a little earlier or later; the rest is the same arithmetic.
 constexpr double kToleranceU = 0.5;
-
-sim::MatchState playing_alone() {
-  sim::MatchConfig cfg;
-  cfg.spawn_protection_s = 0;
-  auto s = sim::make_match(cfg, 3);
-  sim::TickInputs join;
-  join.joins.push_back({1, "ann"});
-  sim::step(s, join);
-  sim::TickInputs ready;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.commands.push_back({sim::CommandKind::ready, {}});
-  ready.players.push_back(t);
-  sim::step(s, ready);
-  for (int i = 0; i < 400 && !(s.phase == sim::Phase::playing && s.players[0].ball); ++i) sim::step(s, {});
-  REQUIRE(s.phase == sim::Phase::playing);
-  REQUIRE(s.players[0].ball);
-  return s;
-}
-
-protocol::Snapshot snapshot_of(const sim::MatchState& s) {
-  return protocol::quantize(room::build_snapshot(sim::make_view(s), {}));
-}
-
-sim::TickInputs move(int dx, int dy) {
-  sim::TickInputs in;
-  sim::PlayerTick t;
-  t.player = 1;
-  t.input.move_x = static_cast<std::int8_t>(dx);
-  t.input.move_y = static_cast<std::int8_t>(dy);
-  in.players.push_back(t);
-  return in;
-}
-
-const sim::Ball& own(const sim::MatchState& s) { return *sim::find_ball(s.world, s.players[0].ball); }
 
 sim::Ball& the_enemy(sim::MatchState& s) {
   for (auto& b : s.world.balls)
