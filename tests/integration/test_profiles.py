@@ -77,6 +77,17 @@ def sqlite_record():
     shutil.rmtree(work, ignore_errors=True)
 
 
+def same_player_a_day_later(srv, first, name):
+    """The profile `first` (a match on day one) after a second match a day later under
+    `name`: the same profile, two matches, the new name, first and last seen a day apart."""
+    p = wait_for(lambda: (lambda r: r if r.get("ok") and r["profiles"][0]["matches"] == 2 else None)(
+        console(srv.sock, "profile", first["fingerprint"])), 20, "the second match")["profiles"][0]
+    check(p["name"] == name, f"the name is the last one played under: {p}")
+    check(p["first_seen"] == first["first_seen"] and p["last_seen"] - p["first_seen"] >= 86400,
+          f"first and last seen a day apart: {p}")
+    check(console(srv.sock, "top")["profiles"] == 1, "one identity, one profile")
+
+
 def day_later():
     work = tempfile.mkdtemp(prefix="fts-prof-")
     db = os.path.join(work, "profiles.sqlite")
@@ -87,12 +98,7 @@ def day_later():
         srv.stop()
     with profiles_server(work, db, env={"FTS_TEST_CLOCK_OFFSET_S": "86400"}) as srv:
         play(srv, ident, "annie", 4)
-        p = wait_for(lambda: (lambda r: r if r.get("ok") and r["profiles"][0]["matches"] == 2 else None)(
-            console(srv.sock, "profile", first["fingerprint"])), 20, "the second match")["profiles"][0]
-        check(p["name"] == "annie", f"the name is the last one played under: {p}")
-        check(p["first_seen"] == first["first_seen"] and p["last_seen"] - p["first_seen"] >= 86400,
-              f"first and last seen a day apart: {p}")
-        check(console(srv.sock, "top")["profiles"] == 1, "one identity, one profile")
+        same_player_a_day_later(srv, first, "annie")
         srv.stop()
     shutil.rmtree(work, ignore_errors=True)
 
@@ -137,12 +143,7 @@ def day_later_client():
     check(os.path.exists(ident), "the client kept no identity file")
     with profiles_server(work, db, env={"FTS_TEST_CLOCK_OFFSET_S": "86400"}) as srv:
         client_match(srv, work, ident, "annie")
-        p = wait_for(lambda: (lambda r: r if r.get("ok") and r["profiles"][0]["matches"] == 2 else None)(
-            console(srv.sock, "profile", first["fingerprint"])), 20, "the second match")["profiles"][0]
-        check(p["name"] == "annie", f"the name is the last one played under: {p}")
-        check(p["first_seen"] == first["first_seen"] and p["last_seen"] - p["first_seen"] >= 86400,
-              f"first and last seen a day apart: {p}")
-        check(console(srv.sock, "top")["profiles"] == 1, "one identity, one profile")
+        same_player_a_day_later(srv, first, "annie")
         # Back on its waiting screen, the player sees the one profile as theirs.
         text = client_screen(srv, work, ident, "annie", "You: #1 of 1")
         check("annie" in text, f"the board's name: {text}")
