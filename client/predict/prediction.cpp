@@ -11,6 +11,17 @@
 namespace fts::client {
 
 namespace {
+// A snapshot's ball as the physics' (id, position, velocity, radius, mass).
+sim::Ball ball_of(const protocol::BallState& b) {
+  sim::Ball ball;
+  ball.id = b.id;
+  ball.pos = {b.x, b.y};
+  ball.vel = {b.vx, b.vy};
+  ball.radius = b.radius;
+  ball.mass = b.mass;
+  return ball;
+}
+
 // Never predict more than this past the base, in the server's ticks (200 at 100 Hz; a
 // fixed 200 ticks was 10 s at 20 Hz).
 constexpr double kMaxAheadS = 2.0;
@@ -238,13 +249,7 @@ void OwnBallPredictor::choose_others(const protocol::Snapshot& s, const protocol
   base_world_.clear();
   for (const auto& m : base_movers_) {
     auto b = std::find_if(s.balls.begin(), s.balls.end(), [&](const protocol::BallState& x) { return x.id == m.id; });
-    sim::Ball ball;
-    ball.id = b->id;
-    ball.pos = {b->x, b->y};
-    ball.vel = {b->vx, b->vy};
-    ball.radius = b->radius;
-    ball.mass = b->mass;
-    base_world_.push_back(ball);
+    base_world_.push_back(ball_of(*b));
   }
 }
 
@@ -275,13 +280,7 @@ void OwnBallPredictor::on_snapshot(const protocol::Snapshot& s, std::uint32_t me
   const bool same_ball = base_ && base_->id.value == own->id;
   if (same_ball) drawn = at(shown_tick, now_ms);
   const std::int64_t previous_tick = base_tick_;
-  sim::Ball b;
-  b.id = own->id;
-  b.pos = {own->x, own->y};
-  b.vel = {own->vx, own->vy};
-  b.radius = own->radius;
-  b.mass = own->mass;
-  base_ = b;
+  base_ = ball_of(*own);
   base_tick_ = s.tick;
   accel_ = player->accel_u_per_s2;
   vmax_ = player->vmax_u_per_s;

@@ -8,18 +8,12 @@
 #include "fts/protocol/cookie.hpp"
 #include "fts/protocol/identity.hpp"
 #include "fts/protocol/server.hpp"
+#include "key_samples.hpp"
 
 using namespace fts::protocol;
+using namespace fts::protocol::test;
 
 namespace {
-
-std::array<std::uint8_t, 32> seed_from(std::uint8_t first) {
-  std::array<std::uint8_t, 32> s{};
-  for (std::size_t i = 0; i < s.size(); ++i) s[i] = static_cast<std::uint8_t>(first + i);
-  return s;
-}
-
-std::string hex(std::span<const std::uint8_t> b) { return to_hex(b.data(), b.size()); }
 
 // One server and clients on their own addresses, stepped by hand.
 struct Rig {

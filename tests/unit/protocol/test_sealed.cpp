@@ -5,19 +5,12 @@
 
 #include "fts/protocol/cookie.hpp"
 #include "harness.hpp"
+#include "key_samples.hpp"
 
 using namespace fts::protocol;
 using namespace fts::protocol::test;
 
 namespace {
-
-std::array<std::uint8_t, 32> seed_from(std::uint8_t first) {
-  std::array<std::uint8_t, 32> s{};
-  for (std::size_t i = 0; i < s.size(); ++i) s[i] = static_cast<std::uint8_t>(first + i);
-  return s;
-}
-
-std::string hex(std::span<const std::uint8_t> b) { return to_hex(b.data(), b.size()); }
 
 const std::vector<std::uint8_t> kPing = {'[', '{', '"', 't', '"', ':', '"', 'p', 'i', 'n', 'g', '"', '}', ']'};
 
