@@ -92,6 +92,7 @@ void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
 
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
+  serial_only("receive");
   Session* s = screen(from, bytes, now_ms);
   if (s) handle_opened(*s, open_sealed(s->seal, bytes, config_.version, plain_), now_ms);
 }
@@ -297,10 +298,12 @@ void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
+  serial_only("send_snapshot");
   send_snapshot(player_id, std::make_shared<const Snapshot>(quantize(snapshot)), now_ms);
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
+  serial_only("send_snapshot");
   send_snapshot(player_id, quantized, now_ms, lane_);
 }
 
@@ -321,6 +324,7 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
 }
 
 void ServerEndpoint::adopt(SendLane& lane) {
+  serial_only("adopt");
   for (Outgoing& o : lane.out) lane_.out.push_back(std::move(o));
   const std::size_t used = lane.out.size();
   lane.out.clear();
@@ -333,6 +337,7 @@ void ServerEndpoint::adopt(SendLane& lane) {
 
 void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_rid, ResultCode code,
                                  std::string message, std::uint64_t now_ms) {
+  serial_only("send_result");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
   Session& s = it->second;
@@ -346,6 +351,7 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
 }
 
 bool ServerEndpoint::send_board(std::uint32_t player_id, const Leaderboard& board, std::uint64_t now_ms) {
+  serial_only("send_board");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return false;
   send_packet(it->second, {board}, false, now_ms);
@@ -365,6 +371,7 @@ void ServerEndpoint::answer_fault(Session& s, const Command& c, std::uint64_t no
 }
 
 void ServerEndpoint::update(std::uint64_t now_ms) {
+  serial_only("update");
   observe_time(now_ms);
   if (now_ms >= last_forget_ms_ + 1000) {
     forget_quiet_addresses(now_ms);
@@ -433,8 +440,12 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
   }
 }
 
-std::vector<Outgoing> ServerEndpoint::take_datagrams() { return std::exchange(lane_.out, {}); }
+std::vector<Outgoing> ServerEndpoint::take_datagrams() {
+  serial_only("take_datagrams");
+  return std::exchange(lane_.out, {});
+}
 void ServerEndpoint::take_datagrams(std::vector<Outgoing>& batch) {
+  serial_only("take_datagrams");
   for (Outgoing& o : batch) {
     if (lane_.spare.size() >= kSpareDatagrams) break;
     lane_.spare.push_back(std::move(o));
@@ -442,9 +453,16 @@ void ServerEndpoint::take_datagrams(std::vector<Outgoing>& batch) {
   batch.clear();
   std::swap(batch, lane_.out);
 }
-std::vector<ServerEvent> ServerEndpoint::take_events() { return std::exchange(events_, {}); }
-std::vector<PlayerInput> ServerEndpoint::take_inputs() { return std::exchange(inputs_, {}); }
+std::vector<ServerEvent> ServerEndpoint::take_events() {
+  serial_only("take_events");
+  return std::exchange(events_, {});
+}
+std::vector<PlayerInput> ServerEndpoint::take_inputs() {
+  serial_only("take_inputs");
+  return std::exchange(inputs_, {});
+}
 bool ServerEndpoint::send_chat(std::uint32_t player_id, const Chat& chat, std::uint64_t) {
+  serial_only("send_chat");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return false;
   if (it->second.chats.pending() >= config_.max_pending_chats) {
@@ -455,7 +473,10 @@ bool ServerEndpoint::send_chat(std::uint32_t player_id, const Chat& chat, std::u
   return true;
 }
 
-std::vector<PlayerCommand> ServerEndpoint::take_commands() { return std::exchange(commands_, {}); }
+std::vector<PlayerCommand> ServerEndpoint::take_commands() {
+  serial_only("take_commands");
+  return std::exchange(commands_, {});
+}
 
 std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;

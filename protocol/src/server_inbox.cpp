@@ -11,6 +11,7 @@ ServerEndpoint::Session* ServerEndpoint::live_session(std::uint32_t player_id, s
 }
 
 void ServerEndpoint::receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
+  serial_only("receive_later");
   Session* s = screen(from, bytes, now_ms);
   if (!s) return;
   if (inbox_used_ >= kMaxInbox) return rejects_.add(Reject::rate_limited);
@@ -29,8 +30,7 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   inbox_groups_[g->second].push_back(inbox_used_++);
 }
 
-void ServerEndpoint::open_inbox(std::size_t i) {
-  thread_local std::vector<std::uint8_t> plain;  // each thread's scratch
+void ServerEndpoint::open_inbox(std::size_t i, std::vector<std::uint8_t>& plain) {
   for (const std::size_t at : inbox_groups_[i]) {
     Queued& q = inbox_[at];
     // Only the session's own seal changes: another session's open may run beside this one.
@@ -41,6 +41,7 @@ void ServerEndpoint::open_inbox(std::size_t i) {
 }
 
 void ServerEndpoint::apply_inbox() {
+  serial_only("apply_inbox");
   for (std::size_t at = 0; at < inbox_used_; ++at) {
     Queued& q = inbox_[at];
     // An earlier datagram may have ended the session (bye, overflow) or a hello replaced it.

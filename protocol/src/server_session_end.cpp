@@ -35,6 +35,7 @@ void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason)
 }
 
 void ServerEndpoint::kick(std::uint32_t player_id, ErrorCode code, const std::string& message, std::uint64_t now_ms) {
+  serial_only("kick");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
   if (it->second.connected) send_packet(it->second, {make_error(code, message.substr(0, kMaxTextBytes))}, false, now_ms);
@@ -43,6 +44,7 @@ void ServerEndpoint::kick(std::uint32_t player_id, ErrorCode code, const std::st
 
 bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms, std::uint32_t room,
                                      const std::string& room_code) {
+  serial_only("restore_session");
   const bool hex32 = r.token_verifier.size() == 32 &&
                      std::all_of(r.token_verifier.begin(), r.token_verifier.end(),
                                  [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
@@ -77,6 +79,7 @@ std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {
 }
 
 void ServerEndpoint::shutdown(std::uint64_t now_ms) {
+  serial_only("shutdown");
   std::vector<std::uint32_t> ids;
   for (const auto& [id, s] : sessions_) ids.push_back(id);
   for (auto id : ids) kick(id, ErrorCode::shutdown, "the server is shutting down", now_ms);

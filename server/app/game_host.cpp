@@ -60,7 +60,8 @@ GameHost::GameHost(const Options& options, const sim::MatchConfig& config, const
       }()),
       codes_(fold_key(key)),
       no_match_(sim::make_match(config, options.seed)),
-      pool_(options.threads) {}
+      pool_(options.threads),
+      open_scratch_(pool_.threads()) {}
 
 void GameHost::record_to(const std::string& dir, const std::string& version) {
   first_record_ = dir;
@@ -297,7 +298,11 @@ void GameHost::tick(std::uint64_t now_ms) {
     for (const sim::Player& p : m.players) endpoint_.set_watching(p.id.value, !p.in_match());
   }
   // The datagrams received since the last tick: opened on the pool, applied in order.
-  pool_.run(endpoint_.inbox_sessions(), [&](std::size_t i) { endpoint_.open_inbox(i); });
+  {
+    const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
+    pool_.run(endpoint_.inbox_sessions(),
+              [&](std::size_t i, std::size_t slot) { endpoint_.open_inbox(i, open_scratch_[slot]); });
+  }
   endpoint_.apply_inbox();
   answer_profiles(now_ms);  // before update(): the results go out in this tick's packets
   endpoint_.update(now_ms);
@@ -305,7 +310,10 @@ void GameHost::tick(std::uint64_t now_ms) {
   // The rooms on the pool (the phases: game_host.hpp).
   order_.clear();
   for (auto& [id, r] : rooms_) order_.push_back(r.get());
-  pool_.run(order_.size(), [&](std::size_t i) { order_[i]->step(now_ms); });
+  {
+    const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
+    pool_.run(order_.size(), [&](std::size_t i, std::size_t) { order_[i]->step(now_ms); });
+  }
   for (Room* r : order_) r->publish(endpoint_, now_ms);
   if (lanes_.size() < order_.size()) lanes_.resize(order_.size());
   endpoint_.connected_by_room(connected_);  // one pass over the sessions, not one per room
@@ -314,8 +322,12 @@ void GameHost::tick(std::uint64_t now_ms) {
     auto it = connected_.find(id);
     return it == connected_.end() ? kNobody : it->second;
   };
-  pool_.run(order_.size(),
-            [&](std::size_t i) { order_[i]->send_snapshots(endpoint_, members(order_[i]->id()), now_ms, lanes_[i]); });
+  {
+    const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
+    pool_.run(order_.size(), [&](std::size_t i, std::size_t) {
+      order_[i]->send_snapshots(endpoint_, members(order_[i]->id()), now_ms, lanes_[i]);
+    });
+  }
   for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
 
   // A room nobody is connected to for room_idle_ms is closed, one that holds nobody after

@@ -189,6 +189,9 @@ class GameHost {
   std::function<std::int64_t()> unix_s_;
   ProfileRequests profile_requests_;
   WorkerPool pool_;
+  // Each pool thread's scratch for opening the inbox (by slot: the pool owns the threads,
+  // the host the buffers they reuse).
+  std::vector<std::vector<std::uint8_t>> open_scratch_;
   std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_
   std::map<std::uint32_t, std::vector<std::uint32_t>> connected_;  // this tick's, by room

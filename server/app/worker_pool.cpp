@@ -36,13 +36,13 @@ WorkerPool::~WorkerPool() {
 
 // Takes indices until none is left and runs them; how many it ran. The first exception
 // is kept for run().
-std::uint64_t WorkerPool::claim() {
+std::uint64_t WorkerPool::claim(std::size_t slot) {
   std::uint64_t ran = 0;
   for (std::size_t i = next_.fetch_add(1, std::memory_order_relaxed); i < n_;
        i = next_.fetch_add(1, std::memory_order_relaxed)) {
     ++ran;
     try {
-      (*job_)(i);
+      (*job_)(i, slot);
     } catch (...) {
       std::lock_guard lock(mu_);
       if (!error_) error_ = std::current_exception();
@@ -72,7 +72,7 @@ void WorkerPool::work(std::size_t slot) {
     }
     ++active_;
     lock.unlock();
-    const std::uint64_t ran = claim();
+    const std::uint64_t ran = claim(slot);
     lock.lock();
     done_[slot] += ran;
     finished_ += ran;
@@ -85,7 +85,7 @@ void WorkerPool::work(std::size_t slot) {
 void WorkerPool::run(std::size_t n, const Job& job) {
   if (n == 0) return;
   if (workers_.empty() || n == 1) {  // nothing to share: no wake-up, no join
-    for (std::size_t i = 0; i < n; ++i) job(i);
+    for (std::size_t i = 0; i < n; ++i) job(i, 0);
     std::lock_guard lock(mu_);
     done_[0] += n;
     return;
@@ -100,7 +100,7 @@ void WorkerPool::run(std::size_t n, const Job& job) {
     published_.store(++generation_, std::memory_order_release);
   }
   start_cv_.notify_all();
-  const std::uint64_t ran = claim();
+  const std::uint64_t ran = claim(0);
   std::exception_ptr error;
   {
     std::unique_lock lock(mu_);

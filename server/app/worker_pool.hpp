@@ -1,6 +1,8 @@
-// Fork-join over the rooms (issue 29): run(n, job) calls job(i) once for every i in
-// [0, n), spread over the pool's threads (the caller is one of them), and returns when
-// every call has returned. With one thread it is a plain loop on the caller.
+// Fork-join over the rooms (issue 29): run(n, job) calls job(i, slot) once for every i
+// in [0, n), spread over the pool's threads (the caller is one of them), and returns when
+// every call has returned. With one thread it is a plain loop on the caller. `slot` is
+// the thread running the call (0 the caller, below threads()): a job that needs scratch
+// takes its slot's from an array its owner keeps, one per thread (no thread_local).
 //
 // What it guarantees: run() returning happens-after every job(i) (the join takes the
 // pool's mutex), and job(i) happens-after everything the caller did before run(); the
@@ -28,7 +30,7 @@ namespace fts::server {
 
 class WorkerPool {
  public:
-  using Job = std::function<void(std::size_t)>;
+  using Job = std::function<void(std::size_t i, std::size_t slot)>;
   // `threads` counts the caller: 1 starts no thread. 0 means every core the process may use.
   explicit WorkerPool(unsigned threads);
   ~WorkerPool();
@@ -45,7 +47,7 @@ class WorkerPool {
 
  private:
   void work(std::size_t slot);
-  std::uint64_t claim();
+  std::uint64_t claim(std::size_t slot);
 
   mutable std::mutex mu_;
   std::condition_variable start_cv_, done_cv_;

@@ -95,15 +95,40 @@ TEST_CASE("Threads: the pool runs every job once per run and rethrows a job's ex
   server::WorkerPool pool(3);
   REQUIRE(pool.threads() == 3);
   std::vector<int> hits(1000, 0);
-  for (int round = 0; round < 50; ++round) pool.run(hits.size(), [&](std::size_t i) { ++hits[i]; });
+  std::vector<std::vector<int>> by_slot(pool.threads());  // each thread's own, as scratch is
+  for (int round = 0; round < 50; ++round)
+    pool.run(hits.size(), [&](std::size_t i, std::size_t slot) {
+      ++hits[i];
+      by_slot.at(slot).push_back(static_cast<int>(i));
+    });
   for (int h : hits) REQUIRE(h == 50);
   std::uint64_t total = 0;
   for (auto n : pool.jobs_per_thread()) total += n;
   CHECK(total == 50 * 1000);
-  CHECK_THROWS_AS(pool.run(10, [](std::size_t i) { if (i == 7) throw std::runtime_error("job 7"); }),
+  std::size_t seen = 0;  // every call ran on a slot below threads(), the caller's 0 included
+  for (const auto& v : by_slot) seen += v.size();
+  CHECK(seen == 50 * 1000);
+  CHECK_THROWS_AS(pool.run(10, [](std::size_t i, std::size_t) { if (i == 7) throw std::runtime_error("job 7"); }),
                   std::runtime_error);
   int after = 0;
-  pool.run(1, [&](std::size_t) { ++after; });  // still works
+  pool.run(1, [&](std::size_t, std::size_t) { ++after; });  // still works
   CHECK(after == 1);
   CHECK(server::WorkerPool(0).threads() == server::WorkerPool::usable_cores());
+}
+
+TEST_CASE("Threads: while a pool runs on the endpoint, a serial call is refused by name",
+          "[threads]") {
+  protocol::ServerEndpoint e(protocol::ServerConfig{});
+  {
+    const protocol::ServerEndpoint::ParallelPhase parallel(e);
+    if constexpr (protocol::ServerEndpoint::kPhaseChecks) {
+      CHECK_THROWS_WITH(e.update(1000), Catch::Contains("ServerEndpoint::update"));
+      CHECK_THROWS_WITH(e.take_datagrams(), Catch::Contains("take_datagrams"));
+      CHECK_THROWS_WITH(e.set_server_tick(1, 5), Catch::Contains("set_server_tick"));
+    }
+    CHECK(e.inbox_sessions() == 0);  // const reads stay allowed
+    CHECK(e.sessions().empty());
+  }
+  CHECK_NOTHROW(e.update(1000));  // the phase is over
+  CHECK(e.take_datagrams().empty());
 }

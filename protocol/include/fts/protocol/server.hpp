@@ -12,6 +12,7 @@
 #include <set>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -209,14 +210,15 @@ class ServerEndpoint {
   // ---- Receiving on several threads (issue 29). receive_later() makes receive()'s cheap
   // checks at once (the sender's rate, the header, the version, the session and its
   // address; a handshake datagram is handled at once) and queues the rest of a session's
-  // datagram. open_inbox(i) opens (replay window, tag, payload) the queued datagrams of
-  // the i-th session with any, in arrival order: calls for different i may run at once on
+  // datagram. open_inbox(i, scratch) opens (replay window, tag, payload) the queued
+  // datagrams of the i-th session with any, in arrival order, into `scratch` (the calling
+  // thread's own buffer, kept by the caller): calls for different i may run at once on
   // different threads while nothing else calls the endpoint. apply_inbox() then applies
   // every opened datagram in arrival order, as receive() would have, and empties the
   // queue. At most max_inbox datagrams wait; beyond, they are dropped (rate_limited).
   void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
   std::size_t inbox_sessions() const { return inbox_groups_used_; }
-  void open_inbox(std::size_t i);
+  void open_inbox(std::size_t i, std::vector<std::uint8_t>& scratch);
   void apply_inbox();
   static constexpr std::size_t kMaxInbox = 65536;
   // Timers: heartbeats, result resends, time-outs, reconnect windows.
@@ -268,11 +270,13 @@ class ServerEndpoint {
   // session's idle clock restarts when the pause ends.
   void set_idle_paused(bool paused) { set_idle_paused(0, paused); }
   void set_idle_paused(std::uint32_t room, bool paused) {
+    serial_only("set_idle_paused");
     if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
   }
   // A player out of lives who watches its room's match (the host says so, each tick) is
   // never dropped for idling: it has nothing to press (issue 37).
   void set_watching(std::uint32_t player_id, bool watching) {
+    serial_only("set_watching");
     if (auto it = sessions_.find(player_id); it != sessions_.end()) it->second.watching = watching;
   }
   // While the room's match runs (the host's playing and shop phases) a player who left
@@ -282,13 +286,18 @@ class ServerEndpoint {
   // kMaxKeptPerRoom a room; over it, the window's end releases as before.
   static constexpr std::size_t kMaxKeptPerRoom = 32;  // four times a room's 8 seats
   void set_keeps_departed(std::uint32_t room, bool keep) {
+    serial_only("set_keeps_departed");
     if (keep) keeping_rooms_.insert(room); else keeping_rooms_.erase(room);
   }
   // The tick reported in welcomes (of a reconnect: the admission gives a new player's).
   void set_server_tick(std::uint32_t tick) { set_server_tick(0, tick); }
-  void set_server_tick(std::uint32_t room, std::uint32_t tick) { room_ticks_[room] = tick; }
+  void set_server_tick(std::uint32_t room, std::uint32_t tick) {
+    serial_only("set_server_tick");
+    room_ticks_[room] = tick;
+  }
   // A closed room's entries are forgotten.
   void forget_room(std::uint32_t room) {
+    serial_only("forget_room");
     idle_paused_rooms_.erase(room);
     keeping_rooms_.erase(room);
     room_ticks_.erase(room);
@@ -326,7 +335,34 @@ class ServerEndpoint {
   // Time the server itself stood still (gaps over stall_threshold_ms), in total.
   std::uint64_t stalled_ms() const { return stalled_ms_; }
 
+  // ---- Phases (issue 39). While a pool's jobs run on the endpoint, the only calls
+  // allowed are the jobs' own (open_inbox, the lane's send_snapshot) and const reads;
+  // every other mutator checks that no parallel phase is on. The host holds a
+  // ParallelPhase for each pool run. Checked where FTS_PHASE_CHECKS is defined (the
+  // sanitized and ThreadSanitizer builds: kPhaseChecks): a call out of phase throws
+  // std::logic_error naming it (a pool rethrows it on its caller).
+  class ParallelPhase {
+   public:
+    explicit ParallelPhase(ServerEndpoint& e) : e_(e) { e_.parallel_ = true; }
+    ~ParallelPhase() { e_.parallel_ = false; }
+    ParallelPhase(const ParallelPhase&) = delete;
+    ParallelPhase& operator=(const ParallelPhase&) = delete;
+
+   private:
+    ServerEndpoint& e_;
+  };
+#ifdef FTS_PHASE_CHECKS
+  static constexpr bool kPhaseChecks = true;
+#else
+  static constexpr bool kPhaseChecks = false;
+#endif
+
  private:
+  bool parallel_ = false;  // a pool's jobs run (ParallelPhase)
+  void serial_only(const char* call) const {
+    if (kPhaseChecks && parallel_)
+      throw std::logic_error(std::string("ServerEndpoint::") + call + " called while a pool's jobs run on the endpoint");
+  }
   struct Session {
     std::uint32_t player_id = 0;
     std::string name;
