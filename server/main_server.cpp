@@ -18,7 +18,7 @@
 #include "app/profile_setup.hpp"
 #include "app/room_journals.hpp"
 #include "fleet/fleet_names.hpp"
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 #include "fts/room/record.hpp"
 #include "fts/room/text.hpp"
 #include "net/console.hpp"
@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
   if (!options.record_dir.empty()) host.record_dir(options.record_dir, FTS_VERSION);
   if (!options.record_path.empty()) host.record_to(options.record_path, FTS_VERSION);
   if (journal_root) {
-    host::JournalConfig jc;
+    store::JournalConfig jc;
     jc.dir = options.journal_dir;
     jc.version = FTS_VERSION;
     jc.sync_ms = options.journal_sync_ms;

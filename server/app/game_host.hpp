@@ -96,14 +96,14 @@ class GameHost {
   // every room journals into base.dir/<room code>/ from its opening on (base gives the
   // sync, checkpoint and queue settings); a room that closes finishes its journal (the
   // directory goes, on the writer's thread: the tick never waits for the disk).
-  void journal_rooms(host::JournalConfig base);
-  // Opens a room rebuilt from its journal (host::read_journal): its code, id (a fresh one
+  void journal_rooms(store::JournalConfig base);
+  // Opens a room rebuilt from its journal (store::read_journal): its code, id (a fresh one
   // if that id is taken), privacy, seed, match and event numbering; its sessions come back
   // away until their clients return with their tokens. False (logged): the code is not a
   // room code or is taken, or the server has max_rooms rooms.
-  bool resume_room(const host::ResumedRoom& room, std::uint64_t now_ms);
-  const host::JournalWriter* journal(std::uint32_t room_id) const;
-  host::JournalWriter* journal(std::uint32_t room_id);
+  bool resume_room(const store::ResumedRoom& room, std::uint64_t now_ms);
+  const store::JournalWriter* journal(std::uint32_t room_id) const;
+  store::JournalWriter* journal(std::uint32_t room_id);
   // Writers of closed rooms still finishing (removed each tick once stopped).
   std::size_t closing_journals() const { return closing_journals_.size(); }
   // The wire events of one step, as the room stepper numbers them (benchmarks that write
@@ -176,8 +176,8 @@ class GameHost {
   bool draining_ = false;
   bool refuse_players_ = false;
   ChatRelay chat_;
-  std::optional<host::JournalConfig> journal_base_;  // journal_rooms(): dir is the root
-  std::vector<std::unique_ptr<host::JournalWriter>> closing_journals_;
+  std::optional<store::JournalConfig> journal_base_;  // journal_rooms(): dir is the root
+  std::vector<std::unique_ptr<store::JournalWriter>> closing_journals_;
   Bans bans_;
   std::string first_record_;  // --record: room 1's record directory
   std::string record_dir_;

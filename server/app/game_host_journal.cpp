@@ -14,7 +14,7 @@ std::uint32_t GameHost::wire_event_count(std::int64_t tick, const sim::TickOutpu
   return static_cast<std::uint32_t>(wire.size());
 }
 
-void GameHost::journal_rooms(host::JournalConfig base) {
+void GameHost::journal_rooms(store::JournalConfig base) {
   journal_base_ = std::move(base);
   for (auto& [id, r] : rooms_)
     if (!r->journal()) start_journal(*r);
@@ -27,7 +27,7 @@ bool GameHost::journal_exists(const std::string& code) const {
 
 void GameHost::start_journal(Room& r) {
   if (!journal_base_) return;
-  host::JournalConfig c = *journal_base_;
+  store::JournalConfig c = *journal_base_;
   c.dir = journal_base_->dir / r.code();
   c.room = r.code();
   c.room_id = r.id();
@@ -55,7 +55,7 @@ void GameHost::finish_journal(Room& r) {
   if (auto j = r.finish_record()) closing_journals_.push_back(std::move(j));
 }
 
-bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_ms) {
+bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_ms) {
   auto refused = [&](const std::string& why) {
     log_record(spdlog::level::err, "resume_refused", {{"code", resumed.room}, {"reason", why}});
     return false;
@@ -89,12 +89,12 @@ bool GameHost::resume_room(const host::ResumedRoom& resumed, std::uint64_t now_m
   return true;
 }
 
-const host::JournalWriter* GameHost::journal(std::uint32_t room_id) const {
+const store::JournalWriter* GameHost::journal(std::uint32_t room_id) const {
   auto it = rooms_.find(room_id);
   return it == rooms_.end() ? nullptr : it->second->journal();
 }
 
-host::JournalWriter* GameHost::journal(std::uint32_t room_id) {
+store::JournalWriter* GameHost::journal(std::uint32_t room_id) {
   auto it = rooms_.find(room_id);
   return it == rooms_.end() ? nullptr : it->second->journal();
 }

@@ -36,7 +36,7 @@ struct Options {
   std::uint32_t idle_timeout_ms = 120000;  // no real input this long while playing: dropped (0: never)
   std::uint32_t stats_interval_ms = 10000;
   double time_scale = 1.0;  // ticks run this many times faster than real time (tests)
-  // Crash-safe rooms (server/host/journal.hpp): "" : no journal.
+  // Crash-safe rooms (server/store/journal.hpp): "" : no journal.
   std::string journal_dir;
   std::uint32_t journal_sync_ms = 100;       // fdatasync at most this often
   std::uint32_t journal_checkpoint_s = 5;    // a checkpoint (new segment) this often (bounds a resume's replay)

@@ -46,8 +46,8 @@ Room::Room(std::uint32_t id, std::string code, bool is_private, std::uint64_t se
 
 bool Room::record_to(const std::string& dir, const std::string& version) {
   std::error_code ec;
-  for (const auto& [n, path] : host::list_segments(dir)) std::filesystem::remove(path, ec);  // a record starts afresh
-  host::JournalConfig c;
+  for (const auto& [n, path] : store::list_segments(dir)) std::filesystem::remove(path, ec);  // a record starts afresh
+  store::JournalConfig c;
   c.dir = dir;
   c.room = code_;
   c.room_id = id_;
@@ -55,8 +55,8 @@ bool Room::record_to(const std::string& dir, const std::string& version) {
   c.version = version;
   c.seed = seed_;
   c.keep_all = true;
-  recorder_ = std::make_unique<host::JournalWriter>(std::move(c), stepper_.match().cfg, stepper_.match(),
-                                                    stepper_.event_seq(), std::vector<host::JournalSession>{});
+  recorder_ = std::make_unique<store::JournalWriter>(std::move(c), stepper_.match().cfg, stepper_.match(),
+                                                    stepper_.event_seq(), std::vector<store::JournalSession>{});
   if (!recorder_->stats().error.empty()) {
     recorder_.reset();
     return false;
@@ -65,7 +65,7 @@ bool Room::record_to(const std::string& dir, const std::string& version) {
   return true;
 }
 
-std::unique_ptr<host::JournalWriter> Room::finish_record() {
+std::unique_ptr<store::JournalWriter> Room::finish_record() {
   if (!recorder_) return nullptr;
   recorder_->hash_now(stepper_.match(), stepper_.event_seq());
   recorder_->finish();
@@ -300,20 +300,20 @@ void Room::flush() {
   if (journal_) journal_->flush();
 }
 
-void Room::resume_from(const host::ResumedRoom& room) { stepper_ = room::RoomStepper(room.state, room.event_seq); }
+void Room::resume_from(const store::ResumedRoom& room) { stepper_ = room::RoomStepper(room.state, room.event_seq); }
 
-void Room::journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint) {
-  std::vector<host::JournalSession> sessions;
+void Room::journal_to(store::JournalConfig config, const protocol::ServerEndpoint& endpoint) {
+  std::vector<store::JournalSession> sessions;
   for (const auto& s : endpoint.sessions())
     if (s.room == id_ && !s.spectator)
       sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected, s.identity,
                           careers_.saved(s.player_id)});
-  journal_ = std::make_unique<host::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),
+  journal_ = std::make_unique<store::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),
                                                    std::move(sessions));
   watch_journal();  // a directory locked by another server: the room plays on without a journal, said once
 }
 
-std::unique_ptr<host::JournalWriter> Room::finish_journal() {
+std::unique_ptr<store::JournalWriter> Room::finish_journal() {
   if (journal_) journal_->finish();
   return std::move(journal_);
 }
@@ -323,7 +323,7 @@ void Room::journal_session(const protocol::ServerEvent& e, const protocol::Serve
   using K = protocol::ServerEvent::Kind;
   if (e.kind == K::released) return journal_->released(stepper_.match().tick, e.player_id);
   const bool quit = e.kind == K::disconnected && e.quit;
-  host::JournalSession s{e.player_id, e.name, endpoint.session_verifier(e.player_id), quit,
+  store::JournalSession s{e.player_id, e.name, endpoint.session_verifier(e.player_id), quit,
                          endpoint.session_identity(e.player_id), careers_.saved(e.player_id)};
   journaled_[e.player_id] = s;
   journal_->session(stepper_.match().tick, s);
@@ -336,7 +336,7 @@ void Room::journal_careers(const std::vector<std::uint32_t>& players, const prot
   for (std::uint32_t p : players) {
     auto it = journaled_.find(p);
     if (it == journaled_.end()) {
-      host::JournalSession s{p, shown_name(p, ""), endpoint.session_verifier(p), false, endpoint.session_identity(p), ""};
+      store::JournalSession s{p, shown_name(p, ""), endpoint.session_verifier(p), false, endpoint.session_identity(p), ""};
       if (s.verifier.empty()) continue;
       it = journaled_.emplace(p, s).first;
     }
@@ -374,7 +374,7 @@ void Room::watch_journal() {
   if (st.failures != journal_failures_) {
     log_record(spdlog::level::err, "journal_failed",
                {{"error", st.error}, {"durable_tick", st.durable_tick}, {"failures", st.failures}, {"room", id_},
-                {"code", code_}, {"retry_ms", host::JournalWriter::kRetryEvery.count()}});
+                {"code", code_}, {"retry_ms", store::JournalWriter::kRetryEvery.count()}});
     journal_failures_ = st.failures;
   }
   if (journal_failing_ && !st.failing)

@@ -18,7 +18,7 @@
 #include "app/stats.hpp"
 #include "fts/protocol/server.hpp"
 #include "fts/sim/match.hpp"
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 #include "fts/room/record.hpp"
 #include "fts/room/stepper.hpp"
 #include "profiles/writer.hpp"
@@ -54,12 +54,12 @@ class Room {
        const sim::MatchConfig& config);
 
   // Records the match from now on into the directory `dir`: a journal that keeps every
-  // segment (host/journal.hpp), written by its own thread, never by the tick; segments
+  // segment (store/journal.hpp), written by its own thread, never by the tick; segments
   // of an earlier record there are removed first. False: the directory cannot be used.
   bool record_to(const std::string& dir, const std::string& version);
   // The room closes: the record's last hash line (the state it ends on), then its writer,
   // finishing on its own thread (nullptr without a record).
-  std::unique_ptr<host::JournalWriter> finish_record();
+  std::unique_ptr<store::JournalWriter> finish_record();
 
   // What the endpoint reported for this room's sessions since the last tick.
   void on_event(const protocol::ServerEvent& e, const protocol::ServerEndpoint& endpoint);
@@ -82,12 +82,12 @@ class Room {
 
   // ---- crash-safe journal (issue 15). Resumes the match and the event numbering from a
   // journal (the host restores the sessions); journals this room from now on.
-  void resume_from(const host::ResumedRoom& room);
-  void journal_to(host::JournalConfig config, const protocol::ServerEndpoint& endpoint);
+  void resume_from(const store::ResumedRoom& room);
+  void journal_to(store::JournalConfig config, const protocol::ServerEndpoint& endpoint);
   // The room closes: its journal finishes (JournalWriter::finish) and is handed over.
-  std::unique_ptr<host::JournalWriter> finish_journal();
-  const host::JournalWriter* journal() const { return journal_.get(); }
-  host::JournalWriter* journal() { return journal_.get(); }
+  std::unique_ptr<store::JournalWriter> finish_journal();
+  const store::JournalWriter* journal() const { return journal_.get(); }
+  store::JournalWriter* journal() { return journal_.get(); }
   // The journal as last seen (once a second): failing (an I/O error), times it failed, why.
   bool journal_failing() const { return journal_failing_; }
   std::uint64_t journal_failures() const { return journal_failures_; }
@@ -99,7 +99,7 @@ class Room {
     profiles_ = writer;
     unix_s_ = std::move(unix_s);
   }
-  void restore_career(const host::JournalSession& s) { careers_.restore(s.player, s.identity, s.career); }
+  void restore_career(const store::JournalSession& s) { careers_.restore(s.player, s.identity, s.career); }
   // The room closes: its players' running results (closed).
   void close_careers();
   // An identity asked to be forgotten: its players here are followed no more.
@@ -153,10 +153,10 @@ class Room {
   std::map<std::uint32_t, Held> held_;
   InputTiming timing_;
   std::string record_path_;
-  std::unique_ptr<host::JournalWriter> recorder_;
+  std::unique_ptr<store::JournalWriter> recorder_;
   std::uint32_t ticks_per_snapshot_ = 5;
   RateLimitedLog refused_log_{"purchase_refused"};  // a client can make refusals at will
-  std::unique_ptr<host::JournalWriter> journal_;
+  std::unique_ptr<store::JournalWriter> journal_;
   std::uint64_t journal_dropped_logged_ = 0;
   std::uint64_t journal_failures_ = 0;  // as last seen (logged)
   bool journal_failing_ = false;        // as last seen, once a second
@@ -167,7 +167,7 @@ class Room {
   Careers careers_;
   profiles::Writer* profiles_ = nullptr;
   std::function<std::int64_t()> unix_s_;
-  std::map<std::uint32_t, host::JournalSession> journaled_;  // each player's last session record
+  std::map<std::uint32_t, store::JournalSession> journaled_;  // each player's last session record
 };
 
 // The result code (PROTOCOL.md 4.7) of the match's answer to a command.

@@ -60,7 +60,7 @@ std::vector<RoomJournalRead> read_room_journals(const fs::path& dir, const std::
     for (std::size_t i; (i = next.fetch_add(1)) < codes.size();) {
       const auto t0 = std::chrono::steady_clock::now();
       reads[i].code = codes[i];
-      reads[i].result = host::read_journal(dir / codes[i]);
+      reads[i].result = store::read_journal(dir / codes[i]);
       reads[i].ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
   };
@@ -73,9 +73,9 @@ std::vector<RoomJournalRead> read_room_journals(const fs::path& dir, const std::
 }
 
 std::optional<sim::MatchConfig> resumed_config(const std::vector<RoomJournalRead>& reads) {
-  const host::ResumedRoom* first = nullptr;
+  const store::ResumedRoom* first = nullptr;
   for (const auto& r : reads)
-    if (const auto* room = std::get_if<host::ResumedRoom>(&r.result))
+    if (const auto* room = std::get_if<store::ResumedRoom>(&r.result))
       if (!first || room->room_id < first->room_id) first = room;
   if (!first) return std::nullopt;
   return first->config;
@@ -95,7 +95,7 @@ ResumeSummary resume_rooms(GameHost& host, const std::vector<RoomJournalRead>& r
       skip(*err);
       continue;
     }
-    const auto& room = std::get<host::ResumedRoom>(read.result);
+    const auto& room = std::get<store::ResumedRoom>(read.result);
     for (const auto& why : room.skipped)
       log_record(spdlog::level::warn, "resume_segment_skipped", {{"code", read.code}, {"reason", why}});
     if (!room.damage.empty())

@@ -1,5 +1,5 @@
 // The journal directory of a server (--journal-dir DIR, issue 15): DIR/lock (one server
-// at a time), DIR/<room code>/ per room (host/journal.hpp), DIR/<code>.closed/ while a
+// at a time), DIR/<room code>/ per room (store/journal.hpp), DIR/<code>.closed/ while a
 // closed room's journal is being removed. --resume reads every room's journal, rooms in
 // parallel (each room's replay alone is deterministic), before the port opens.
 #pragma once
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "app/game_host.hpp"
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 
 namespace fts::server {
 
@@ -39,11 +39,11 @@ class JournalRoot {
 
 struct RoomJournalRead {
   std::string code;  // the directory's name
-  std::variant<host::ResumedRoom, std::string> result;
+  std::variant<store::ResumedRoom, std::string> result;
   double ms = 0;  // this room's read and replay
 };
 
-// Every room journal of `codes` under `dir` read with host::read_journal (the host's
+// Every room journal of `codes` under `dir` read with store::read_journal (the host's
 // event numbering), on up to `threads` threads; results in the order of `codes`.
 std::vector<RoomJournalRead> read_room_journals(const std::filesystem::path& dir, const std::vector<std::string>& codes,
                                                 unsigned threads);

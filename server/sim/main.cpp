@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fts/cli/option_table.hpp"
-#include "host/scene_json.hpp"
-#include "host/scene_run.hpp"
+#include "store/scene_json.hpp"
+#include "store/scene_run.hpp"
 #include "sim/match_cli.hpp"
 
 namespace {
@@ -88,7 +88,7 @@ int run_scene_mode(const std::vector<std::string>& args) {
   if (!in) return usage_error("cannot read scene file " + scene_path);
   std::stringstream text;
   text << in.rdbuf();
-  auto parsed = fts::host::parse_scene(text.str());
+  auto parsed = fts::store::parse_scene(text.str());
   if (auto* err = std::get_if<std::string>(&parsed)) {
     std::cerr << "fts-sim: " << scene_path << ": " << *err << "\n";
     return 1;

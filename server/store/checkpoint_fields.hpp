@@ -27,7 +27,7 @@
 #include "fts/sim/id.hpp"
 #include "fts/sim/rng.hpp"
 
-namespace fts::host::checkpoint {
+namespace fts::store::checkpoint {
 
 using nlohmann::json;
 
@@ -318,4 +318,4 @@ constexpr ById<Entry, K> by_id(K entry) {
   return {entry};
 }
 
-}  // namespace fts::host::checkpoint
+}  // namespace fts::store::checkpoint

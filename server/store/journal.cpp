@@ -1,4 +1,4 @@
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -13,10 +13,10 @@
 
 #include "fts/room/json_fields.hpp"
 #include "fts/room/match_config_json.hpp"
-#include "host/match_state_json.hpp"
+#include "store/match_state_json.hpp"
 #include "fts/room/text.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 // The JSON helpers and text conversions of the record format live in fts_room.
 using namespace fts::room;
@@ -435,4 +435,4 @@ void JournalWriter::run() {
   done_.notify_all();
 }
 
-}  // namespace fts::host
+}  // namespace fts::store

@@ -1,5 +1,5 @@
 // A room's journal: what a restarted server needs to resume the room where it stood.
-// It is the match record (server/host/record.hpp: seed, config, input lines, hashes)
+// It is the match record (server/store/record.hpp: seed, config, input lines, hashes)
 // cut into segments that each begin with a checkpoint (the whole MatchState and its hash),
 // plus what the inputs do not carry: the sessions (player id, name, a verifier of the
 // reconnect token, never the token) and the event sequence number.
@@ -45,7 +45,7 @@
 #include "fts/room/record.hpp"
 #include "fts/sim/match.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 // The format, the segments' names and their listing are the history reader's (fts_room),
 // which reads a journal that keeps every segment as a whole match.
@@ -194,7 +194,7 @@ class JournalWriter {
   std::thread thread_;
 };
 
-// ----- reading (host/journal_read.cpp) -----------------------------------------------------------------------
+// ----- reading (store/journal_read.cpp) -----------------------------------------------------------------------
 
 struct ResumedRoom {
   std::string room;  // the room's code
@@ -222,4 +222,4 @@ struct ResumedRoom {
 // so the resumed event numbering is the crashed server's (checked at each hash line).
 std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path& room_dir);
 
-}  // namespace fts::host
+}  // namespace fts::store

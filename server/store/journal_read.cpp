@@ -1,17 +1,17 @@
-// The journal's reader (host/journal.hpp): a room rebuilt from its newest usable
+// The journal's reader (store/journal.hpp): a room rebuilt from its newest usable
 // segment, the damage said, never a crash.
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 #include "fts/room/json_fields.hpp"
 #include "fts/room/match_config_json.hpp"
-#include "host/match_state_json.hpp"
+#include "store/match_state_json.hpp"
 #include "fts/room/stepper.hpp"
 #include "fts/room/text.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 // The JSON helpers and text conversions of the record format live in fts_room.
 using namespace fts::room;
@@ -181,4 +181,4 @@ std::variant<ResumedRoom, std::string> read_journal(const std::filesystem::path&
   return why;
 }
 
-}  // namespace fts::host
+}  // namespace fts::store

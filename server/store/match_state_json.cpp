@@ -1,8 +1,8 @@
-#include "host/match_state_json.hpp"
+#include "store/match_state_json.hpp"
 
-#include "host/checkpoint_fields.hpp"
+#include "store/checkpoint_fields.hpp"
 
-namespace fts::host {
+namespace fts::store {
 namespace {
 
 using namespace checkpoint;
@@ -114,4 +114,4 @@ std::variant<sim::MatchState, std::string> match_state_from_json(const nlohmann:
   return s;
 }
 
-}  // namespace fts::host
+}  // namespace fts::store

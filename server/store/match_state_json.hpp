@@ -12,11 +12,11 @@
 
 #include "fts/sim/match.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 nlohmann::json match_state_to_json(const sim::MatchState& state);
 // `base` is make_match(config, seed); every dynamic field is replaced by the JSON's.
 // On a missing or mistyped field: a message naming it, and nothing is returned.
 std::variant<sim::MatchState, std::string> match_state_from_json(const nlohmann::json& j, sim::MatchState base);
 
-}  // namespace fts::host
+}  // namespace fts::store

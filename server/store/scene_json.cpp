@@ -1,10 +1,10 @@
-#include "host/scene_json.hpp"
+#include "store/scene_json.hpp"
 
 #include <cmath>
 
 #include "fts/room/json_fields.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 // The JSON helpers and text conversions of the record format live in fts_room.
 using namespace fts::room;
@@ -114,4 +114,4 @@ std::variant<sim::Scene, std::string> parse_scene(const std::string& json_text) 
   }
 }
 
-}  // namespace fts::host
+}  // namespace fts::store

@@ -6,9 +6,9 @@
 
 #include "fts/sim/scene.hpp"
 
-namespace fts::host {
+namespace fts::store {
 
 // Either the scene or a message such as "balls[3].r: must be > 0, got -1".
 std::variant<sim::Scene, std::string> parse_scene(const std::string& json_text);
 
-}  // namespace fts::host
+}  // namespace fts::store

@@ -1,4 +1,4 @@
-#include "host/scene_run.hpp"
+#include "store/scene_run.hpp"
 
 #include <chrono>
 #include <cmath>

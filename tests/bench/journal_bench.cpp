@@ -27,7 +27,7 @@
 #include "app/room_codes.hpp"
 #include "app/room_journals.hpp"
 #include "fts/sim/bot_player.hpp"
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 
 using namespace fts;
 namespace fs = std::filesystem;
@@ -80,8 +80,8 @@ std::uint64_t tree_bytes(const fs::path& dir) {
   return n;
 }
 
-host::JournalConfig journal_config(const fs::path& dir, std::int64_t checkpoint_ticks) {
-  host::JournalConfig c;
+store::JournalConfig journal_config(const fs::path& dir, std::int64_t checkpoint_ticks) {
+  store::JournalConfig c;
   c.dir = dir;
   c.version = "bench";
   c.seed = 7;
@@ -91,11 +91,11 @@ host::JournalConfig journal_config(const fs::path& dir, std::int64_t checkpoint_
 }
 
 // Plays `ticks` ticks into a journal; returns the final state and the bytes written.
-std::pair<sim::MatchState, host::JournalStats> play(const host::JournalConfig& jc, const sim::MatchConfig& cfg,
+std::pair<sim::MatchState, store::JournalStats> play(const store::JournalConfig& jc, const sim::MatchConfig& cfg,
                                                     std::int64_t ticks, std::uint32_t first = 1) {
   sim::MatchState s = sim::make_match(cfg, jc.seed);
   std::uint32_t seq = 0;
-  host::JournalWriter w(jc, cfg, s, 0, {});
+  store::JournalWriter w(jc, cfg, s, 0, {});
   for (std::uint32_t id = first; id < first + kPlayers; ++id)
     w.session(0, {id, "bench" + std::to_string(id), std::string(32, 'a'), false});
   for (std::int64_t i = 0; i < ticks; ++i) {
@@ -111,11 +111,11 @@ std::pair<sim::MatchState, host::JournalStats> play(const host::JournalConfig& j
 
 double read_ms(const fs::path& dir, std::int64_t& replayed, bool& ok, std::uint64_t want_hash) {
   const auto t0 = Clock::now();
-  auto r = host::read_journal(dir);
+  auto r = store::read_journal(dir);
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  ok = std::holds_alternative<host::ResumedRoom>(r) &&
-       sim::match_hash(std::get<host::ResumedRoom>(r).state) == want_hash;
-  replayed = ok ? std::get<host::ResumedRoom>(r).ticks_replayed : -1;
+  ok = std::holds_alternative<store::ResumedRoom>(r) &&
+       sim::match_hash(std::get<store::ResumedRoom>(r).state) == want_hash;
+  replayed = ok ? std::get<store::ResumedRoom>(r).ticks_replayed : -1;
   return ms;
 }
 
@@ -168,7 +168,7 @@ void rooms_resume(const fs::path& root, const sim::MatchConfig& cfg, int rooms, 
   }
   for (const auto& rd : reads) {
     slowest_ms = std::max(slowest_ms, rd.ms);
-    if (const auto* room = std::get_if<host::ResumedRoom>(&rd.result)) replayed += room->ticks_replayed;
+    if (const auto* room = std::get_if<store::ResumedRoom>(&rd.result)) replayed += room->ticks_replayed;
   }
   std::printf("resume of %d rooms x %.1f min (checkpoint every %lld ticks, %lld ticks replayed in all, %u threads): "
               "read %.0f ms, whole resume (rooms open, journals on) %.0f ms (slowest room %.1f ms); %zu resumed, %zu hashes equal; "
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
     sim::MatchState a = sim::make_match(cfg, 7), b = sim::make_match(cfg, 7);
     auto jc = journal_config(root / "tick", cp_ticks);  // each checkpoint's copy is on the tick path
     jc.max_queued = 16384;             // the server's bound
-    host::JournalWriter w(jc, cfg, b, 0, {});
+    store::JournalWriter w(jc, cfg, b, 0, {});
     std::vector<double> plain_us, journaled_us;
     std::uint32_t seq = 0, seq_a = 0;
     // At the real tick rate, as a server runs (the writer syncs every 100 ms meanwhile).

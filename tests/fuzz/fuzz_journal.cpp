@@ -1,5 +1,5 @@
 // libFuzzer target: every byte string is a room's journal as --resume reads it. The
-// reader (host::read_journal, server/host/journal_read.cpp) takes a room's directory, so
+// reader (store::read_journal, server/store/journal_read.cpp) takes a room's directory, so
 // each input is written there as segment files: the bytes up to a line "~~" are
 // journal-000001.jsonl, the rest journal-000002.jsonl (the newer one, tried first); no
 // such line, one segment. Properties: nothing escapes (a room that cannot be resumed is a
@@ -21,8 +21,8 @@
 #include "fts/room/match_config_json.hpp"
 #include "fts/room/stepper.hpp"
 #include "fuzz_check.hpp"
-#include "host/journal.hpp"
-#include "host/match_state_json.hpp"
+#include "store/journal.hpp"
+#include "store/match_state_json.hpp"
 
 using namespace fts;
 using fuzz::check;
@@ -58,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto& dir = room_dir();
   constexpr std::string_view kNext = "\n~~\n";
   const auto cut = bytes.find(kNext);
-  const auto seg1 = dir / host::segment_name(1), seg2 = dir / host::segment_name(2);
+  const auto seg1 = dir / store::segment_name(1), seg2 = dir / store::segment_name(2);
   std::error_code ec;
   if (cut == std::string_view::npos) {
     write_file(seg1, bytes);
@@ -70,12 +70,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t files = cut == std::string_view::npos ? 1 : 2;
 
   try {
-    auto read = host::read_journal(dir);
+    auto read = store::read_journal(dir);
     if (const auto* err = std::get_if<std::string>(&read)) {
       check(!err->empty(), "a refused room says why");
       return 0;
     }
-    const host::ResumedRoom& r = std::get<host::ResumedRoom>(read);
+    const store::ResumedRoom& r = std::get<store::ResumedRoom>(read);
     check(r.state.tick >= r.checkpoint_tick, "the resumed state is at or after its checkpoint");
     check(r.skipped.size() < files, "at most the newer segment is skipped");
     check(r.damage.empty() || r.damage.rfind("journal-", 0) == 0, "the damage names the segment");
@@ -91,7 +91,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     // The resumed state as the next checkpoint: written and read back bit for bit.
     const std::uint64_t hash = sim::match_hash(r.state);
-    auto state_again = host::match_state_from_json(nlohmann::json::parse(host::match_state_to_json(r.state).dump()),
+    auto state_again = store::match_state_from_json(nlohmann::json::parse(store::match_state_to_json(r.state).dump()),
                                                    sim::make_match(r.config, r.seed));
     if (const auto* err = std::get_if<std::string>(&state_again)) fail("the resumed state read back is refused: " + *err);
     check(sim::match_hash(std::get<sim::MatchState>(state_again)) == hash, "the state is unchanged through JSON");

@@ -1,5 +1,5 @@
 // libFuzzer target: every byte string is a physics scene file (fts-sim SCENE.json), read
-// by host::parse_scene. Properties: nothing escapes (a bad scene is a message); what
+// by store::parse_scene. Properties: nothing escapes (a bad scene is a message); what
 // parses is written back as a scene file (below, from the fields of sim::Scene) that
 // parses to the same scene; a small scene builds and steps as fts-sim runs it.
 // Built and run by .ci/fuzz.sh (clang, -DFTS_FUZZ=ON).
@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz_check.hpp"
-#include "host/scene_json.hpp"
-#include "host/scene_run.hpp"
+#include "store/scene_json.hpp"
+#include "store/scene_run.hpp"
 
 using namespace fts;
 using fuzz::check;
@@ -68,7 +68,7 @@ bool same(const sim::Scene& a, const sim::Scene& b) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    auto parsed = host::parse_scene(text);
+    auto parsed = store::parse_scene(text);
     if (const auto* err = std::get_if<std::string>(&parsed)) {
       check(!err->empty(), "an error says what is wrong");
       return 0;
@@ -77,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check(!scene.balls.empty() || !scene.generators.empty(), "a scene has bodies");
 
     const std::string again_text = scene_json(scene).dump();
-    auto again = host::parse_scene(again_text);
+    auto again = store::parse_scene(again_text);
     if (const auto* err = std::get_if<std::string>(&again)) fail("the written-back scene is refused: " + *err);
     if (!same(scene, std::get<sim::Scene>(again))) fail("the scene changed through JSON: " + again_text);
 

@@ -14,7 +14,7 @@ import os, re, sys
 CLIENT_LIBRARIES = {"fts_client_predict", "fts_client_net", "fts_client_term", "fts_client_ui",
                     "fts_client_replay", "fts_bot_core"}
 CLIENT_TARGETS = CLIENT_LIBRARIES | {"fts-client", "fts-bot"}
-SERVER_LIBRARIES = {"fts_host", "fts_server_app", "fts_fleet", "fts-server", "fts-sim"}
+SERVER_LIBRARIES = {"fts_store", "fts_server_app", "fts_fleet", "fts-server", "fts-sim"}
 # The client's folders, as its files include them ("net/net_timing.hpp").
 CLIENT_FOLDERS = ("predict/", "net/", "term/", "ui/", "bot/", "replay/")
 # (targets, libraries they may never link through any library, why). The layers from the
@@ -44,10 +44,10 @@ LINK_RULES = [
 # socket and knows no client; in client/, the folders follow LINK_RULES (term/'s library
 # part only: terminal.cpp and io.cpp paint ui/'s screens and belong to fts-client).
 SOURCE_RULES = [
-    ("common/", ("fts/protocol/", "fts/io/", "fts/room/", "host/", "app/") + CLIENT_FOLDERS,
+    ("common/", ("fts/protocol/", "fts/io/", "fts/room/", "store/", "app/") + CLIENT_FOLDERS,
      "a layer above common/"),
-    ("protocol/", ("fts/room/", "host/", "app/") + CLIENT_FOLDERS, "a layer above protocol/"),
-    ("room/", ("fts/io/", "host/", "app/") + CLIENT_FOLDERS, "a layer above room/"),
+    ("protocol/", ("fts/room/", "store/", "app/") + CLIENT_FOLDERS, "a layer above protocol/"),
+    ("room/", ("fts/io/", "store/", "app/") + CLIENT_FOLDERS, "a layer above room/"),
     ("client/predict/", ("fts/io/", "net/", "term/", "ui/", "bot/", "replay/"),
      "a layer above client/predict/"),
     ("client/net/", ("fts/io/", "term/", "ui/", "bot/", "replay/"), "a layer above client/net/"),

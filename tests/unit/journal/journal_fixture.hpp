@@ -14,7 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include "../../support/temp_dir.hpp"
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 #include "fts/room/snapshot_build.hpp"
 
 namespace fts::test {
@@ -51,7 +51,7 @@ struct Played {
   std::map<std::int64_t, std::uint64_t> hash_at;  // state.tick -> match_hash
   std::map<std::int64_t, std::uint32_t> seq_at;
 
-  void play(host::JournalWriter& w, std::int64_t ticks) {
+  void play(store::JournalWriter& w, std::int64_t ticks) {
     for (std::int64_t i = 0; i < ticks; ++i) {
       const auto in = inputs_at(state.tick);
       if (state.tick == 0) {
@@ -68,8 +68,8 @@ struct Played {
   }
 };
 
-inline host::JournalConfig config_in(const std::filesystem::path& dir, std::int64_t checkpoint_every) {
-  host::JournalConfig c;
+inline store::JournalConfig config_in(const std::filesystem::path& dir, std::int64_t checkpoint_every) {
+  store::JournalConfig c;
   c.dir = dir;
   c.room = "main";
   c.version = "test";
@@ -79,10 +79,10 @@ inline host::JournalConfig config_in(const std::filesystem::path& dir, std::int6
   return c;
 }
 
-inline host::ResumedRoom read_ok(const std::filesystem::path& dir) {
-  auto r = host::read_journal(dir);
+inline store::ResumedRoom read_ok(const std::filesystem::path& dir) {
+  auto r = store::read_journal(dir);
   if (auto* err = std::get_if<std::string>(&r)) FAIL(*err);
-  return std::get<host::ResumedRoom>(std::move(r));
+  return std::get<store::ResumedRoom>(std::move(r));
 }
 
 inline std::vector<std::string> lines_of(const std::filesystem::path& file) {

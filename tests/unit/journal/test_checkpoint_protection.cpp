@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../match/match_test_util.hpp"
-#include "host/match_state_json.hpp"
+#include "store/match_state_json.hpp"
 
 using namespace fts;
 using namespace fts::test;
@@ -27,10 +27,10 @@ TEST_CASE("Checkpoint: spawn protection is kept, and a restored blow steps on bi
   add_enemy(s, {at.x + 80, at.y}, {-400, 0}, 200.0);
   run(s, 5);
 
-  const auto j = host::match_state_to_json(s);
+  const auto j = store::match_state_to_json(s);
   CHECK(j.dump().find("null") == std::string::npos);  // no infinite mass was written
   CHECK(j["players"][0]["protected_until_tick"] == until);
-  auto back = host::match_state_from_json(nlohmann::json::parse(j.dump()), make_match(s.cfg, 99));
+  auto back = store::match_state_from_json(nlohmann::json::parse(j.dump()), make_match(s.cfg, 99));
   REQUIRE(std::holds_alternative<MatchState>(back));
   MatchState b = std::get<MatchState>(back);
   CHECK(b.players[0].protected_until_tick == until);
@@ -45,7 +45,7 @@ TEST_CASE("Checkpoint: spawn protection is kept, and a restored blow steps on bi
 
   auto old = j;
   old["players"][0].erase("protected_until_tick");
-  auto read_old = host::match_state_from_json(old, make_match(s.cfg, 99));
+  auto read_old = store::match_state_from_json(old, make_match(s.cfg, 99));
   REQUIRE(std::holds_alternative<MatchState>(read_old));
   CHECK(std::get<MatchState>(read_old).players[0].protected_until_tick == -1);
 }

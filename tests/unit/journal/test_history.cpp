@@ -15,7 +15,7 @@ namespace {
 void journal_every_segment(const std::filesystem::path& dir, Played& p, std::int64_t ticks) {
   auto c = test::config_in(dir, 100);
   c.keep_segments = 1000;
-  host::JournalWriter w(c, p.cfg, p.state, 0, {});
+  store::JournalWriter w(c, p.cfg, p.state, 0, {});
   p.play(w, ticks);
   w.flush();
 }

@@ -29,7 +29,7 @@ protocol::ServerKey key(std::uint8_t b) {
 }
 
 struct Rig : test::HostRig {
-  host::JournalConfig jc;
+  store::JournalConfig jc;
   Rig(const fs::path& root, std::uint8_t key_byte) {
     options.seed = 11;
     options.max_players = 2;
@@ -190,13 +190,13 @@ TEST_CASE("Host resume: a room with nothing usable or another config is skipped,
   sim::MatchConfig cfg, other;
   other.player_lives = cfg.player_lives + 3;
   auto write = [&](const std::string& code, std::uint32_t id, const sim::MatchConfig& c) {
-    host::JournalConfig jc;
+    store::JournalConfig jc;
     jc.dir = root / code;
     jc.room = code;
     jc.room_id = id;
     jc.seed = 100 + id;
     sim::MatchState s = sim::make_match(c, jc.seed);
-    host::JournalWriter w(jc, c, s, 0, {{1, "ann", std::string(32, 'a'), false}});
+    store::JournalWriter w(jc, c, s, 0, {{1, "ann", std::string(32, 'a'), false}});
     for (int i = 0; i < 30; ++i) {
       w.inputs(s.tick, {});
       sim::step(s, {});
@@ -207,7 +207,7 @@ TEST_CASE("Host resume: a room with nothing usable or another config is skipped,
   const auto good = write("BCDEF", 4, cfg);
   write("CDEFG", 5, other);
   fs::create_directories(root / "DEFGH");
-  std::ofstream(root / "DEFGH" / host::segment_name(1)) << "{\"fts_journal\":1\n";
+  std::ofstream(root / "DEFGH" / store::segment_name(1)) << "{\"fts_journal\":1\n";
   const std::vector<std::string> codes{"BCDEF", "CDEFG", "DEFGH"};
   const auto reads = server::read_room_journals(root, codes, 3);
   REQUIRE(reads.size() == 3);

@@ -1,4 +1,4 @@
-// The room journal (server/host/journal.hpp): written by JournalWriter as the host does
+// The room journal (server/store/journal.hpp): written by JournalWriter as the host does
 // it, read back by read_journal; damaged journals resume to their last good tick.
 #include <catch2/catch.hpp>
 
@@ -11,9 +11,9 @@
 #include <thread>
 #include <chrono>
 
-#include "host/journal.hpp"
+#include "store/journal.hpp"
 #include "journal_fixture.hpp"
-#include "host/match_state_json.hpp"
+#include "store/match_state_json.hpp"
 #include "fts/room/snapshot_build.hpp"
 #include "fts/room/text.hpp"
 
@@ -25,17 +25,17 @@ using namespace fts::test;
 TEST_CASE("Journal: a match state survives JSON bit for bit", "[journal]") {
   Played p;
   TempDir d;
-  host::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
+  store::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
   p.play(w, 700);
-  const auto j = host::match_state_to_json(p.state);
-  auto back = host::match_state_from_json(nlohmann::json::parse(j.dump()), sim::make_match(p.cfg, 7));
+  const auto j = store::match_state_to_json(p.state);
+  auto back = store::match_state_from_json(nlohmann::json::parse(j.dump()), sim::make_match(p.cfg, 7));
   REQUIRE(std::holds_alternative<sim::MatchState>(back));
   CHECK(sim::match_hash(std::get<sim::MatchState>(back)) == sim::match_hash(p.state));
   CHECK(!p.state.world.balls.empty());
 
   auto broken = j;
   broken["players"][0]["eco"] = "rich";
-  auto bad = host::match_state_from_json(broken, sim::make_match(p.cfg, 7));
+  auto bad = store::match_state_from_json(broken, sim::make_match(p.cfg, 7));
   REQUIRE(std::holds_alternative<std::string>(bad));
   CHECK(std::get<std::string>(bad) == "checkpoint: players: 0: eco: must be an array of 15 values");
 
@@ -43,7 +43,7 @@ TEST_CASE("Journal: a match state survives JSON bit for bit", "[journal]") {
   auto error_of = [&](auto edit) {
     auto k = j;
     edit(k);
-    auto r = host::match_state_from_json(k, sim::make_match(p.cfg, 7));
+    auto r = store::match_state_from_json(k, sim::make_match(p.cfg, 7));
     return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string("read");
   };
   CHECK_THAT(error_of([](auto& k) { k["balls"][0][2] = "up"; }), Catch::StartsWith("checkpoint: balls: 0: y: "));
@@ -60,7 +60,7 @@ TEST_CASE("Journal: round trip to the last tick, sessions and event numbers incl
   TempDir d;
   Played p;
   {
-    host::JournalWriter w(config_in(d.path, 250), p.cfg, p.state, 0, {});
+    store::JournalWriter w(config_in(d.path, 250), p.cfg, p.state, 0, {});
     p.play(w, 1234);
     w.released(p.state.tick, 2);
     w.session(p.state.tick, {1, "ann", std::string(32, 'a'), true});
@@ -82,9 +82,9 @@ TEST_CASE("Journal: round trip to the last tick, sessions and event numbers incl
   CHECK(r.ticks_replayed == 234);
   CHECK(r.hashes_checked == 23);
   REQUIRE(r.sessions.size() == 1);
-  CHECK(r.sessions[0] == host::JournalSession{1, "ann", std::string(32, 'a'), true});
+  CHECK(r.sessions[0] == store::JournalSession{1, "ann", std::string(32, 'a'), true});
   // Compaction: only the newest two segments are kept.
-  const auto segs = host::list_segments(d.path);
+  const auto segs = store::list_segments(d.path);
   REQUIRE(segs.size() == 2);
   CHECK(segs[0].first == 4);
   CHECK(segs[1].first == 5);
@@ -94,11 +94,11 @@ TEST_CASE("Journal: checkpoint plus replay equals a straight replay", "[journal]
   TempDir straight, checkpoints;
   Played a, b;
   {
-    host::JournalWriter w(config_in(straight.path, 1'000'000), a.cfg, a.state, 0, {});
+    store::JournalWriter w(config_in(straight.path, 1'000'000), a.cfg, a.state, 0, {});
     a.play(w, 2000);
   }
   {
-    host::JournalWriter w(config_in(checkpoints.path, 170), b.cfg, b.state, 0, {});
+    store::JournalWriter w(config_in(checkpoints.path, 170), b.cfg, b.state, 0, {});
     b.play(w, 2000);
   }
   const auto ra = read_ok(straight.path);
@@ -116,10 +116,10 @@ TEST_CASE("Journal: a torn last line resumes to the line before it", "[journal]"
   TempDir d;
   Played p;
   {
-    host::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
+    store::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
     p.play(w, 345);
   }
-  const fs::path file = host::list_segments(d.path).back().second;
+  const fs::path file = store::list_segments(d.path).back().second;
   auto lines = lines_of(file);
   // The last complete input line is for tick 344; cut the line half way.
   std::string last = lines.back();
@@ -144,10 +144,10 @@ TEST_CASE("Journal: a hash that differs rolls back to the last hash that matched
   TempDir d;
   Played p;
   {
-    host::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
+    store::JournalWriter w(config_in(d.path, 100000), p.cfg, p.state, 0, {});
     p.play(w, 500);
   }
-  const fs::path file = host::list_segments(d.path).back().second;
+  const fs::path file = store::list_segments(d.path).back().second;
   auto lines = lines_of(file);
   bool changed = false;
   for (auto& line : lines) {
@@ -170,10 +170,10 @@ TEST_CASE("Journal: a damaged newest checkpoint falls back to the segment before
   TempDir d;
   Played p;
   {
-    host::JournalWriter w(config_in(d.path, 200), p.cfg, p.state, 0, {});
+    store::JournalWriter w(config_in(d.path, 200), p.cfg, p.state, 0, {});
     p.play(w, 450);
   }
-  auto segs = host::list_segments(d.path);
+  auto segs = store::list_segments(d.path);
   REQUIRE(segs.size() == 2);  // ticks 200 and 400
   auto lines = lines_of(segs.back().second);
   lines[1] = lines[1].substr(0, 100);  // the checkpoint line torn
@@ -188,14 +188,14 @@ TEST_CASE("Journal: a damaged newest checkpoint falls back to the segment before
 
 TEST_CASE("Journal: nothing usable is reported, never a crash", "[journal]") {
   TempDir d;
-  auto none = host::read_journal(d.path);
+  auto none = store::read_journal(d.path);
   REQUIRE(std::holds_alternative<std::string>(none));
   CHECK_THAT(std::get<std::string>(none), Catch::Contains("no journal segments"));
 
-  write_lines(d.path / host::segment_name(1), {"{\"fts_journal\":1", "garbage"});
-  write_lines(d.path / host::segment_name(2), {R"({"fts_journal":9,"room":"main"})", "{}"});
-  write_lines(d.path / host::segment_name(3), {});
-  auto bad = host::read_journal(d.path);
+  write_lines(d.path / store::segment_name(1), {"{\"fts_journal\":1", "garbage"});
+  write_lines(d.path / store::segment_name(2), {R"({"fts_journal":9,"room":"main"})", "{}"});
+  write_lines(d.path / store::segment_name(3), {});
+  auto bad = store::read_journal(d.path);
   REQUIRE(std::holds_alternative<std::string>(bad));
   const std::string& why = std::get<std::string>(bad);
   CHECK_THAT(why, Catch::Contains("no usable journal segment"));
@@ -211,7 +211,7 @@ TEST_CASE("Journal: a full queue drops records until a new checkpoint, and stays
   cfg.max_queued = 8;
   cfg.sync_ms = 10000;  // the writer waits 10 s between syncs: the queue fills at once
   {
-    host::JournalWriter w(cfg, p.cfg, p.state, 0, {});
+    store::JournalWriter w(cfg, p.cfg, p.state, 0, {});
     p.play(w, 100);
     CHECK(w.stats().dropped > 0);
   }
@@ -224,24 +224,24 @@ TEST_CASE("Journal: a full queue drops records until a new checkpoint, and stays
 TEST_CASE("Journal: a second writer on the same room directory is refused", "[journal]") {
   TempDir d;
   Played p;
-  host::JournalWriter first(config_in(d.path, 1000), p.cfg, p.state, 0, {});
-  host::JournalWriter second(config_in(d.path, 1000), p.cfg, p.state, 0, {});
+  store::JournalWriter first(config_in(d.path, 1000), p.cfg, p.state, 0, {});
+  store::JournalWriter second(config_in(d.path, 1000), p.cfg, p.state, 0, {});
   CHECK(first.stats().error.empty());
   CHECK_THAT(second.stats().error, Catch::Contains("in use by another process"));
   second.inputs(0, inputs_at(0));
   second.flush();  // returns at once
   first.flush();
-  CHECK(host::list_segments(d.path).size() == 1);
+  CHECK(store::list_segments(d.path).size() == 1);
 }
 
 TEST_CASE("Journal: finish writes what is queued, then removes the room's directory", "[journal]") {
   TempDir d;
   Played p;
   const fs::path room = d.path / "ABCDE";
-  host::JournalWriter w(config_in(room, 1000), p.cfg, p.state, 0, {});
+  store::JournalWriter w(config_in(room, 1000), p.cfg, p.state, 0, {});
   p.play(w, 50);
   w.flush();
-  REQUIRE(host::list_segments(room).size() == 1);
+  REQUIRE(store::list_segments(room).size() == 1);
   w.finish();
   w.inputs(p.state.tick, inputs_at(p.state.tick));  // after finish: nothing is queued
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);

@@ -27,7 +27,7 @@ void write_bytes(const fs::path& file, const std::string& bytes) {
 }
 
 // The room read back is one the live run went through.
-void check_real(const Played& p, const host::ResumedRoom& r, const std::string& what) {
+void check_real(const Played& p, const store::ResumedRoom& r, const std::string& what) {
   INFO(what << ": resumed at tick " << r.state.tick << ", damage \"" << r.damage << "\"");
   REQUIRE(p.hash_at.count(r.state.tick) == 1);
   CHECK(sim::match_hash(r.state) == p.hash_at.at(r.state.tick));
@@ -44,10 +44,10 @@ struct TwoSegments {
   std::string bytes;  // the newest segment as written
   TwoSegments() {
     {
-      host::JournalWriter w(config_in(d.path, 200), p.cfg, p.state, 0, {});
+      store::JournalWriter w(config_in(d.path, 200), p.cfg, p.state, 0, {});
       p.play(w, 445);
     }
-    const auto segs = host::list_segments(d.path);
+    const auto segs = store::list_segments(d.path);
     REQUIRE(segs.size() == 2);
     older = segs.front().second;
     newest = segs.back().second;
@@ -110,7 +110,7 @@ TEST_CASE("Journal cuts: both segments garbled, the room is refused with each se
     bad[bad.find('\n') / 2] = '\0';  // the header
     write_bytes(seg, bad);
   }
-  const auto r = host::read_journal(t.d.path);
+  const auto r = store::read_journal(t.d.path);
   REQUIRE(std::holds_alternative<std::string>(r));
   const std::string& why = std::get<std::string>(r);
   CHECK_THAT(why, Catch::Contains("no usable journal segment"));
@@ -120,7 +120,7 @@ TEST_CASE("Journal cuts: both segments garbled, the room is refused with each se
   // Cut to nothing, both: refused the same way.
   write_bytes(t.older, "");
   write_bytes(t.newest, "");
-  const auto empty = host::read_journal(t.d.path);
+  const auto empty = store::read_journal(t.d.path);
   REQUIRE(std::holds_alternative<std::string>(empty));
   CHECK_THAT(std::get<std::string>(empty), Catch::Contains("no usable journal segment"));
 }

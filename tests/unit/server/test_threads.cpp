@@ -63,7 +63,7 @@ Played play(unsigned threads) {
   p.jobs = rig.host->workers().jobs_per_thread();
   rig.host.reset();  // the records are flushed and closed
   for (const auto& room : fs::directory_iterator(dir))  // room-<id>/: a journal's segments
-    for (const auto& [n, segment] : host::list_segments(room.path())) {
+    for (const auto& [n, segment] : store::list_segments(room.path())) {
       std::ifstream in(segment, std::ios::binary);
       std::stringstream bytes;
       bytes << in.rdbuf();

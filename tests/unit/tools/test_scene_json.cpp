@@ -1,9 +1,9 @@
 // Scene files: a bad scene names the field and the value; a good one builds.
 #include <catch2/catch.hpp>
 
-#include "host/scene_json.hpp"
+#include "store/scene_json.hpp"
 
-using fts::host::parse_scene;
+using fts::store::parse_scene;
 
 namespace {
 std::string error_of(const std::string& text) {

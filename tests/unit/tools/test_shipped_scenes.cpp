@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "host/scene_json.hpp"
-#include "host/scene_run.hpp"
+#include "store/scene_json.hpp"
+#include "store/scene_run.hpp"
 
 using namespace fts;
 
@@ -17,7 +17,7 @@ sim::Scene load(const std::string& name) {
   REQUIRE(in);
   std::stringstream text;
   text << in.rdbuf();
-  auto r = host::parse_scene(text.str());
+  auto r = store::parse_scene(text.str());
   if (auto* e = std::get_if<std::string>(&r)) FAIL(name << ": " << *e);
   return std::get<sim::Scene>(r);
 }

@@ -2,7 +2,7 @@
 // described by a table, a std::tuple of rows, each naming one member once with its key,
 // its kind (how the value is written, read or hashed: each user brings its own kinds) and
 // whether it may be absent. The wire's messages (protocol/src/fields.hpp), the checkpoint
-// (server/host/checkpoint_fields.hpp), the match configuration (fts/sim/config_fields.hpp)
+// (server/store/checkpoint_fields.hpp), the match configuration (fts/sim/config_fields.hpp)
 // and the state hash (common/src/match_hash.cpp) are tables of these rows.
 //
 // Every table is checked at compile time to name every member of the struct it describes:

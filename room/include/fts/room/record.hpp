@@ -2,11 +2,11 @@
 // hashes to check; a seed plus this log reproduces the match bit for bit. Two formats on
 // disk, one reader (load_history: fts-server --replay checks it, fts-sim --inputs goes on
 // from it, fts-client --replay plays it), which says which format it read:
-//   a journal (server/host/journal.hpp): a directory of segments, each a header and a
+//   a journal (server/store/journal.hpp): a directory of segments, each a header and a
 //     checkpoint, then input, hash (every 10 ticks) and session lines; one that keeps
 //     every segment from the first is a whole history;
 //   the record of format 1 (one file, below), which servers wrote before issue 38.
-// The one writer is the journal's (server/host/journal.hpp, a record keeps every segment);
+// The one writer is the journal's (server/store/journal.hpp, a record keeps every segment);
 // RecordWriter writes format 1 only so that tests can make such files.
 //
 //   {"fts_record":1,"version":"0.1.0","seed":7,"config":{...MatchConfig...}}
