@@ -79,10 +79,13 @@ if wait_ready free; then
   stop_server
   dead=$PORT
   probe "$dead"
-  if ((PROBE_RC == 1)) && [[ -n $PROBE_ERR ]] && ((PROBE_S <= 4)); then
+  # The probe gives up after its own 2 s without a snapshot (or at once on an error) and
+  # says why. The process's wall time adds start-up and exit (seconds for a sanitized
+  # build on a loaded machine), so the wall bound here only catches a hang.
+  if ((PROBE_RC == 1)) && [[ -n $PROBE_ERR ]] && ((PROBE_S <= 30)); then
     ok "probe against the dead port exits 1 in ${PROBE_S}s with a reason: $PROBE_ERR"
   else
-    bad "probe against the dead port: exit $PROBE_RC after ${PROBE_S}s, stderr: '$PROBE_ERR' (want 1, a reason, <= 4 s)"
+    bad "probe against the dead port: exit $PROBE_RC after ${PROBE_S}s, stderr: '$PROBE_ERR' (want 1, a reason, <= 30 s)"
   fi
 else
   bad "server on --port 0 never logged ready"
