@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "fts/protocol/client.hpp"
+#include "net/clock.hpp"
 #include "ui/forget.hpp"
 #include "ui/sanitize.hpp"
 
@@ -13,11 +14,6 @@ namespace fts::client {
 namespace proto = fts::protocol;
 
 namespace {
-
-std::uint64_t now_ms() {
-  using namespace std::chrono;
-  return static_cast<std::uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
-}
 
 constexpr std::uint64_t kAnswerMs = 15000;
 

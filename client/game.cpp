@@ -10,15 +10,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 
 #include "fts/protocol/connection.hpp"
+#include "net/clock.hpp"
 #include "net/interpolate.hpp"
 #include "net/link_meters.hpp"
+#include "net/link_stats.hpp"
 #include "net/net_timing.hpp"
 #include "net/session_store.hpp"
 #include "term/io.hpp"
@@ -39,11 +40,6 @@ namespace proto = fts::protocol;
 using namespace fts::client;
 
 namespace {
-
-std::uint64_t now_ms() {
-  using namespace std::chrono;
-  return static_cast<std::uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
-}
 
 // The game loop: keys in, commands and input out through the connection, snapshots in,
 // a frame drawn. The socket is fts_io's, the reconnect rule and the input pacing the
@@ -491,16 +487,6 @@ class Game {
 }  // namespace
 
 namespace fts::client {
-
-bool write_stats_file(const std::string& path, const std::string& json) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << json << "\n";
-    if (!out.flush()) return false;
-  }
-  return std::rename(tmp.c_str(), path.c_str()) == 0;
-}
 
 GameEnd play(asio::io_context& io, const Options& opts, const udp::endpoint& server) {
   GameEnd end;

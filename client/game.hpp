@@ -16,10 +16,6 @@ struct GameEnd {
   std::string stats_json;  // --stats-file's figures ("" without the flag)
 };
 
-// Writes --stats-file's figures whole: to PATH.tmp, then renamed over PATH, so that a
-// reader never sees half a file. The client writes them every second and at exit.
-bool write_stats_file(const std::string& path, const std::string& json);
-
 GameEnd play(fts::io::asio::io_context& io, const Options& opts, const fts::io::udp::endpoint& server);
 
 }  // namespace fts::client

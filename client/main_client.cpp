@@ -18,6 +18,7 @@
 #include "forget_me.hpp"
 #include "game.hpp"
 #include "net/identity_store.hpp"
+#include "net/link_stats.hpp"
 #include "net/session_store.hpp"
 #include "replay/replay_loop.hpp"
 #include "term/terminal.hpp"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 namespace fts::client {
 
@@ -98,6 +99,16 @@ std::string link_stats_json(const LinkSummary& s) {
   const auto& r = s.response.samples_ms();
   for (std::size_t i = 0; i < r.size() && i < 200; ++i) out += (i ? "," : "") + std::to_string(static_cast<long long>(r[i]));
   return out + "]}";
+}
+
+bool write_stats_file(const std::string& path, const std::string& json) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << json << "\n";
+    if (!out.flush()) return false;
+  }
+  return std::rename(tmp.c_str(), path.c_str()) == 0;
 }
 
 }  // namespace fts::client

@@ -64,4 +64,8 @@ struct LinkSummary {
 // One JSON object (the keys are the matrix's columns).
 std::string link_stats_json(const LinkSummary& s);
 
+// Writes --stats-file's figures whole: to PATH.tmp, then renamed over PATH, so that a
+// reader never sees half a file (fts-client writes them every second and at exit).
+bool write_stats_file(const std::string& path, const std::string& json);
+
 }  // namespace fts::client

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "replay/replay.hpp"
+#include "net/clock.hpp"
 #include "term/io.hpp"
 #include "term/terminal.hpp"
 #include "ui/hud.hpp"
@@ -15,11 +16,6 @@
 namespace fts::client {
 
 namespace {
-
-std::uint64_t now_ms() {
-  using namespace std::chrono;
-  return static_cast<std::uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
-}
 
 void note(ViewState& view, std::string text, std::uint64_t now) {
   view.messages.push_back(LogLine{std::move(text), now});
