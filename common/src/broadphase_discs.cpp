@@ -17,9 +17,9 @@ constexpr double kGiantFactor = 4.0;
 // Window widths (slots tested without branches) for the two ranges of the stencil;
 // longer ranges are walked. With 2-diameter cells of the gas (about one disc per cell)
 // the right range holds 1.5 discs on average, the upper one 3.
-constexpr std::uint32_t kRightWindow = 4;
-constexpr std::uint32_t kUpWindow = 6;
-constexpr std::uint32_t kWindowPad = kUpWindow;
+constexpr std::uint32_t kDiscRightWindow = 4;
+constexpr std::uint32_t kDiscUpWindow = 6;
+constexpr std::uint32_t kWindowPad = kDiscUpWindow;
 constexpr double kFar = 1e300;
 
 }  // namespace
@@ -158,9 +158,9 @@ void DiscGrid::touching_pairs(const std::vector<Ball>& balls, std::vector<std::p
     const std::uint32_t right_end = begin[c + 2];
     const std::uint32_t up0 = begin[c + stride - 1], up1 = begin[c + stride + 2];
     const std::uint32_t n_right = right_end - (p + 1), n_up = up1 - up0;
-    if (n_right > kRightWindow || window_touches<kRightWindow>(xs, ys, rs, p + 1, x, y, r))
+    if (n_right > kDiscRightWindow || window_touches<kDiscRightWindow>(xs, ys, rs, p + 1, x, y, r))
       walk(p, p + 1, right_end);
-    if (n_up > kUpWindow || window_touches<kUpWindow>(xs, ys, rs, up0, x, y, r)) walk(p, up0, up1);
+    if (n_up > kDiscUpWindow || window_touches<kDiscUpWindow>(xs, ys, rs, up0, x, y, r)) walk(p, up0, up1);
   }
   // Giants meet everything: filed discs, then later giants.
   for (std::size_t g = 0; g < giants_.size(); ++g) {

@@ -20,7 +20,7 @@ using fts::protocol::Snapshot;
 
 namespace {
 
-BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner, double radius, double mass = 40) {
+BallState fine_ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner, double radius, double mass = 40) {
   return test::make_ball(id, x, y, kind, owner, mass, radius);
 }
 
@@ -66,8 +66,8 @@ TEST_CASE("Fine field: two balls 1 unit apart are drawn apart at 80x24", "[clien
     INFO((across ? "side by side" : "one above the other"));
     Snapshot s = test::seed_snapshot(Phase::play);
     // Two enemies of radius 16 whose edges are 1 u apart (issue 37's `#50#48`).
-    const BallState a = ball(10, 200, 150, BallKind::enemy, 0, 16, 50);
-    BallState b = ball(11, across ? 233 : 200, across ? 150 : 117, BallKind::enemy, 0, 16, 48);
+    const BallState a = fine_ball(10, 200, 150, BallKind::enemy, 0, 16, 50);
+    BallState b = fine_ball(11, across ? 233 : 200, across ? 150 : 117, BallKind::enemy, 0, 16, 48);
     s.balls = {a, b};
     const Viewport v = arena_viewport(size, view, s);
     const Screen screen = render(s, s, 0, size, view);
@@ -90,7 +90,7 @@ TEST_CASE("Fine field: two balls 1 unit apart are drawn apart at 80x24", "[clien
   }
   // The same two in ASCII run together: the reason for the dots.
   Snapshot s = test::seed_snapshot(Phase::play);
-  s.balls = {ball(10, 200, 150, BallKind::enemy, 0, 16, 50), ball(11, 233, 150, BallKind::enemy, 0, 16, 48)};
+  s.balls = {fine_ball(10, 200, 150, BallKind::enemy, 0, 16, 50), fine_ball(11, 233, 150, BallKind::enemy, 0, 16, 48)};
   ViewState ascii = fine_view();
   ascii.fine = false;
   const Viewport v = arena_viewport(size, ascii, s);
@@ -103,7 +103,7 @@ TEST_CASE("Fine field: a ball keeps its round shape and its mass label", "[clien
     INFO(size.cols << "x" << size.rows);
     const ViewState view = fine_view();
     Snapshot s = test::seed_snapshot(Phase::play);
-    s.balls = {ball(1, 250, 150, BallKind::player, 1, 24, 99)};
+    s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 24, 99)};
     const Viewport v = arena_viewport(size, view, s);
     const Screen screen = render(s, s, 0, size, view);
     const auto dots = field_dots(screen, v);
@@ -139,7 +139,7 @@ TEST_CASE("Fine field: a moving ball changes its drawing in steps smaller than a
       const Viewport v = arena_viewport(size, view, s);
       std::vector<std::string> last;
       for (double dx = 0; dx <= v.units_per_col(); dx += 0.25) {
-        s.balls = {ball(1, 200.3 + dx, y, BallKind::player, 1, 16)};
+        s.balls = {fine_ball(1, 200.3 + dx, y, BallKind::player, 1, 16)};
         const auto lines = render(s, s, 0, size, view).lines();
         if (!last.empty() && lines != last) ++changes[fine ? 1 : 0];
         last = lines;
@@ -164,7 +164,7 @@ TEST_CASE("Fine field: dots only where the terminal shows them", "[client][fine]
   ViewState view = fine_view();
   view.color = false;
   Snapshot s = test::seed_snapshot(Phase::play);
-  s.balls = {ball(1, 250, 150, BallKind::player, 1, 16), ball(2, 100, 100, BallKind::enemy, 0, 16)};
+  s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 16), fine_ball(2, 100, 100, BallKind::enemy, 0, 16)};
   std::string text;
   for (const auto& l : render(s, s, 0, {80, 24}, view).lines()) text += l;
   CHECK(text.find('@') != std::string::npos);
@@ -178,7 +178,7 @@ TEST_CASE("Fine field: dots only where the terminal shows them", "[client][fine]
 TEST_CASE("a frame rewrites only the rows that changed", "[client][fine]") {
   ViewState view = fine_view();
   Snapshot s = test::seed_snapshot(Phase::play);
-  s.balls = {ball(1, 250, 150, BallKind::player, 1, 16)};
+  s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 16)};
   std::vector<std::string> last;
   const Screen first = render(s, s, 0, {80, 24}, view);
   const std::string all = repaint(first, last, true);
@@ -201,10 +201,10 @@ TEST_CASE("Fine field: balls on the edges, past them and odd sizes stay on the f
       for (const double y : {-40.0, 0.0, 0.01, 150.0, 299.99, 300.0, 340.0})
       {
         ++id;
-        s.balls.push_back(ball(id, x, y, id % 2 == 0 ? BallKind::enemy : BallKind::player, 1 + id % 3, 1 + id % 30));
+        s.balls.push_back(fine_ball(id, x, y, id % 2 == 0 ? BallKind::enemy : BallKind::player, 1 + id % 3, 1 + id % 30));
       }
-    s.balls.push_back(ball(id++, 250, 150, BallKind::enemy, 0, 1e9));
-    s.balls.push_back(ball(id++, 250, 150, BallKind::rocket, 1, 0));
+    s.balls.push_back(fine_ball(id++, 250, 150, BallKind::enemy, 0, 1e9));
+    s.balls.push_back(fine_ball(id++, 250, 150, BallKind::rocket, 1, 0));
     const Screen screen = render(s, s, 0, size, view);
     const Viewport v = arena_viewport(size, view, s);
     // Dots only on the platform and its frame.

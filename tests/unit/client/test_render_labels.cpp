@@ -19,7 +19,7 @@ using fts::protocol::Snapshot;
 
 namespace {
 
-BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner = 0) {
+BallState label_ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner = 0) {
   const bool enemy = kind == BallKind::enemy;
   return test::make_ball(id, x, y, kind, owner, enemy ? 34 : 40, enemy ? 15 : 16);
 }
@@ -37,11 +37,11 @@ Snapshot crowded() {
     p.name = names[i];
     s.players.push_back(p);
   }
-  s.balls = {ball(1, 250, 150, BallKind::player, 1), ball(2, 100, 292, BallKind::player, 2),
-             ball(3, 8, 150, BallKind::player, 3),   ball(4, 400, 6, BallKind::player, 4),
-             ball(5, 380, 150, BallKind::player, 5), ball(6, 412, 150, BallKind::player, 6),
-             ball(7, 250, 195, BallKind::enemy),     ball(8, 120, 250, BallKind::enemy),
-             ball(9, 300, 60, BallKind::enemy),      ball(10, 100, 255, BallKind::enemy)};
+  s.balls = {label_ball(1, 250, 150, BallKind::player, 1), label_ball(2, 100, 292, BallKind::player, 2),
+             label_ball(3, 8, 150, BallKind::player, 3),   label_ball(4, 400, 6, BallKind::player, 4),
+             label_ball(5, 380, 150, BallKind::player, 5), label_ball(6, 412, 150, BallKind::player, 6),
+             label_ball(7, 250, 195, BallKind::enemy),     label_ball(8, 120, 250, BallKind::enemy),
+             label_ball(9, 300, 60, BallKind::enemy),      label_ball(10, 100, 255, BallKind::enemy)};
   return s;
 }
 

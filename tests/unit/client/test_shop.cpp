@@ -21,12 +21,12 @@ bool screen_has(const Screen& s, const std::string& text) {
 
 TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[client][shop]") {
   const std::vector<std::string>& seed = fts::test::seed_shop_lines();
-  CHECK(shop_screen_lines(test::seed_player(), 3) == seed);
+  CHECK(shop_screen_lines(fts::client::test::seed_player(), 3) == seed);
 
   ViewState view;
   view.my_player_id = 1;
   SECTION("a tall terminal shows every line in the slide's order, groups spaced") {
-    const Screen s = render(test::seed_snapshot(Phase::shop), test::seed_snapshot(Phase::shop), 0, {90, 50}, view);
+    const Screen s = render(fts::client::test::seed_snapshot(Phase::shop), fts::client::test::seed_snapshot(Phase::shop), 0, {90, 50}, view);
     const auto lines = s.lines();
     std::size_t row = 0;
     for (const auto& want : seed) {
@@ -40,15 +40,15 @@ TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[cl
     CHECK(screen_has(s, "Buy: m s a r l x b   Ready: Enter   Chat: t   Quit: q"));
   }
   SECTION("a 24-row terminal still shows every price") {
-    const Screen s = render(test::seed_snapshot(Phase::shop), test::seed_snapshot(Phase::shop), 0, {80, 24}, view);
+    const Screen s = render(fts::client::test::seed_snapshot(Phase::shop), fts::client::test::seed_snapshot(Phase::shop), 0, {80, 24}, view);
     for (std::size_t i = 3; i < seed.size(); ++i) {
       INFO(seed[i]);
       CHECK(screen_has(s, seed[i]));
     }
   }
   SECTION("a purchase's result and who is ready are shown") {
-    auto snap = test::seed_snapshot(Phase::shop);
-    auto bob = test::seed_player();
+    auto snap = fts::client::test::seed_snapshot(Phase::shop);
+    auto bob = fts::client::test::seed_player();
     bob.id = 2;
     bob.name = "bob";
     bob.ready = true;
@@ -65,7 +65,7 @@ TEST_CASE("the shop screen of the seed's situation gives the seed's lines", "[cl
     CHECK(screen_has(s, "Ready: ann (shopping), bob (ready)"));
   }
   SECTION("owned rockets and bank drop their offers") {
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.weapon = fts::protocol::Weapon::rockets;
     p.bank = true;
     const auto lines = shop_screen_lines(p, 3);
@@ -85,10 +85,10 @@ TEST_CASE("the shop shows the standings whenever the slide can leave room for th
   } cases[] = {{2, {80, 30}}, {2, {80, 40}}, {8, {80, 45}}, {2, {100, 40}}, {8, {110, 45}}};
   for (const auto& c : cases) {
     INFO(c.players << " players at " << c.size.cols << "x" << c.size.rows);
-    auto snap = test::seed_snapshot(Phase::shop);
+    auto snap = fts::client::test::seed_snapshot(Phase::shop);
     snap.players.clear();
     for (std::size_t i = 0; i < c.players; ++i) {
-      auto p = test::seed_player();
+      auto p = fts::client::test::seed_player();
       p.id = static_cast<std::uint32_t>(i + 1);
       p.name = names[i];
       snap.players.push_back(p);

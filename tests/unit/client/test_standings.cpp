@@ -19,14 +19,14 @@ using fts::protocol::Snapshot;
 namespace {
 
 Snapshot two_players(Phase phase) {
-  Snapshot s = test::seed_snapshot(phase);
+  Snapshot s = fts::client::test::seed_snapshot(phase);
   s.players.clear();
-  auto bot = test::seed_player();
+  auto bot = fts::client::test::seed_player();
   bot.id = 1;
   bot.name = "shopper";
   bot.coins = 65;
   bot.lives = 1;
-  auto late = test::seed_player();
+  auto late = fts::client::test::seed_player();
   late.id = 2;
   late.name = "latecomer";
   late.coins = 1767;

@@ -80,6 +80,13 @@ std::vector<Kind> of(const std::vector<Event>& ev) {
   return out;
 }
 
+// Whether `p` fell in `ev`.
+inline bool fell(const std::vector<Event>& ev, PlayerId p) {
+  for (const auto& f : of<PlayerFell>(ev))
+    if (f.player == p) return true;
+  return false;
+}
+
 inline Command buy(std::string item) { return {CommandKind::buy, std::move(item)}; }
 
 }  // namespace fts::test

@@ -10,12 +10,6 @@ using namespace fts::test;
 
 namespace {
 
-bool fell(const std::vector<Event>& ev, PlayerId p) {
-  for (const auto& f : of<PlayerFell>(ev))
-    if (f.player == p) return true;
-  return false;
-}
-
 // The tick of the first LevelStarted in `ev` (-1: none).
 std::int64_t level_start_tick(MatchState& s, int max_ticks, bool& restart) {
   for (int i = 0; i < max_ticks; ++i) {

@@ -45,12 +45,6 @@ BallId hit_from_right(MatchState& s) {
   return add_enemy(s, {at.x + 80, at.y}, {-400, 0}, 200.0);
 }
 
-bool fell(const std::vector<Event>& ev, PlayerId p) {
-  for (const auto& f : of<PlayerFell>(ev))
-    if (f.player == p) return true;
-  return false;
-}
-
 TickInputs move(PlayerId p, std::int8_t x, bool fire = false) {
   TickInputs in;
   in.players.push_back({p, {x, 0, fire}, {}});

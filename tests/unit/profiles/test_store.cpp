@@ -9,6 +9,7 @@
 #include <random>
 
 #include "../../support/temp_dir.hpp"
+#include "open_store.hpp"
 #include "pg_rig.hpp"
 #include "profiles/store.hpp"
 
@@ -17,13 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fts::test::open_ok;
 using fts::test::TempDir;
-
-std::unique_ptr<Store> open_ok(const std::string& url) {
-  auto r = Store::open(url);
-  if (auto* e = std::get_if<std::string>(&r)) FAIL("open: " << *e);
-  return std::move(std::get<std::unique_ptr<Store>>(r));
-}
 
 std::string open_error(const std::string& url) {
   auto r = Store::open(url);

@@ -7,6 +7,7 @@
 #include <future>
 
 #include "../../support/temp_dir.hpp"
+#include "open_store.hpp"
 #include "pg_rig.hpp"
 #include "profiles/writer.hpp"
 
@@ -15,6 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fts::test::open_ok;
 using fts::test::TempDir;
 
 MatchResult result(int i, const std::string& fp) {
@@ -28,12 +30,6 @@ MatchResult result(int i, const std::string& fp) {
   r.knocks = 1;
   r.ending = Ending::quit;
   return r;
-}
-
-std::unique_ptr<Store> open_ok(const std::string& url) {
-  auto r = Store::open(url);
-  if (auto* e = std::get_if<std::string>(&r)) FAIL("open: " << *e);
-  return std::move(std::get<std::unique_ptr<Store>>(r));
 }
 
 const std::string kAnn = "aaaa0000000000000000000000000001";

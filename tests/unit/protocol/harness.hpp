@@ -119,4 +119,6 @@ class Harness {
   std::uint64_t now = 100;
 };
 
+inline bool connected(const Peer& p) { return p.client.state() == ClientState::connected; }
+
 }  // namespace fts::protocol::test

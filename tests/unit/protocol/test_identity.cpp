@@ -16,7 +16,7 @@ using namespace fts::protocol::test;
 namespace {
 
 // One server and clients on their own addresses, stepped by hand.
-struct Rig {
+struct IdentityRig {
   ServerEndpoint server{ServerConfig{}};
   std::uint64_t now = 1000;
   void pump(ClientEndpoint& c, const Address& addr) {
@@ -87,7 +87,7 @@ TEST_CASE("Identity: the file's text reads back; anything else does not", "[prot
 
 TEST_CASE("Identity: the server knows a proven player by its fingerprint; a guest has none",
           "[protocol][identity][handshake]") {
-  Rig r;
+  IdentityRig r;
   const Identity id = new_identity();
   ClientEndpoint ann(with_identity("ann", id)), bob(with_identity("bob", std::nullopt));
   ann.connect(r.now);
@@ -106,7 +106,7 @@ TEST_CASE("Identity: the server knows a proven player by its fingerprint; a gues
 }
 
 TEST_CASE("Identity: a proof that does not verify is refused bad_identity", "[protocol][identity][handshake]") {
-  Rig r;
+  IdentityRig r;
   ClientEndpoint eve(with_identity("eve", new_identity()));
   eve.connect(r.now);
   // The challenge arrives; the cookie hello's id is then spoiled on its way.
@@ -128,7 +128,7 @@ TEST_CASE("Identity: a proof that does not verify is refused bad_identity", "[pr
 }
 
 TEST_CASE("Identity: a returning identity without its token is the same player", "[protocol][identity][reconnect]") {
-  Rig r;
+  IdentityRig r;
   const Identity id = new_identity();
   ClientEndpoint first(with_identity("ann", id));
   first.connect(r.now);
@@ -164,7 +164,7 @@ TEST_CASE("Identity: a returning identity without its token is the same player",
 
 TEST_CASE("Identity: a restored player (--resume) is taken back by its identity with a new token",
           "[protocol][identity][restore]") {
-  Rig r;
+  IdentityRig r;
   const Identity id = new_identity();
   RestoredSession rs;
   rs.player_id = 7;

@@ -12,7 +12,6 @@ using namespace fts::protocol::test;
 
 namespace {
 
-bool connected(const Peer& p) { return p.client.state() == ClientState::connected; }
 
 std::size_t released(const std::vector<ServerEvent>& events, std::uint32_t player, const std::string& reason) {
   std::size_t n = 0;

@@ -10,7 +10,6 @@ using namespace fts::protocol::test;
 
 namespace {
 
-bool connected(const Peer& p) { return p.client.state() == ClientState::connected; }
 
 std::vector<std::uint8_t> padded_hello() {
   Header h;

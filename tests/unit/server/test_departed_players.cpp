@@ -14,8 +14,8 @@ namespace {
 constexpr protocol::InputFrame kLeft{0, -1, 0, false};
 constexpr protocol::InputFrame kFire{0, 0, 0, true};  // real input that moves nothing (no rockets)
 
-struct Rig : test::HostRig {
-  explicit Rig(std::uint32_t idle_ms, std::uint32_t window_ms) {
+struct DepartedRig : test::HostRig {
+  explicit DepartedRig(std::uint32_t idle_ms, std::uint32_t window_ms) {
     options.seed = 5;
     options.idle_timeout_ms = idle_ms;
     options.reconnect_window_ms = window_ms;
@@ -53,7 +53,7 @@ struct Rig : test::HostRig {
 }  // namespace
 
 TEST_CASE("Out of lives: a watcher is never dropped for idling; an idle player still is", "[server][idle]") {
-  Rig rig(/*idle_ms=*/2000, /*window_ms=*/60000);
+  DepartedRig rig(/*idle_ms=*/2000, /*window_ms=*/60000);
   rig.config.player_lives = 1;
   rig.start();
   rig.add("ann");   // falls off once: out of lives, watches
@@ -75,7 +75,7 @@ TEST_CASE("Out of lives: a watcher is never dropped for idling; an idle player s
 
 TEST_CASE("Out of lives: a player who quits a running match and comes back after the window is the same player",
           "[server][departed]") {
-  Rig rig(/*idle_ms=*/0, /*window_ms=*/1000);
+  DepartedRig rig(/*idle_ms=*/0, /*window_ms=*/1000);
   rig.add("ann");
   rig.add("bob");
   REQUIRE(rig.connect_all());
@@ -115,7 +115,7 @@ TEST_CASE("Out of lives: a player who quits a running match and comes back after
 
 TEST_CASE("Out of lives: a connection lost for longer than the window keeps the player for the match",
           "[server][departed]") {
-  Rig rig(/*idle_ms=*/0, /*window_ms=*/1000);
+  DepartedRig rig(/*idle_ms=*/0, /*window_ms=*/1000);
   rig.options.timeout_ms = 500;
   rig.start();
   rig.add("ann");
@@ -144,7 +144,7 @@ TEST_CASE("Out of lives: a connection lost for longer than the window keeps the 
 
 TEST_CASE("Out of lives: outside a running match (the lobby) the reconnect window still frees the player",
           "[server][departed]") {
-  Rig rig(/*idle_ms=*/0, /*window_ms=*/1000);
+  DepartedRig rig(/*idle_ms=*/0, /*window_ms=*/1000);
   rig.add("ann");
   rig.add("bob");
   REQUIRE(rig.connect_all());
@@ -159,7 +159,7 @@ TEST_CASE("Out of lives: outside a running match (the lobby) the reconnect windo
 TEST_CASE("Out of lives: once nobody plays the match on, the window frees the departed players",
           "[server][departed]") {
   // Else a watcher would wait for ever on a level that everyone with lives has left.
-  Rig rig(/*idle_ms=*/0, /*window_ms=*/1000);
+  DepartedRig rig(/*idle_ms=*/0, /*window_ms=*/1000);
   rig.config.player_lives = 1;
   rig.start();
   rig.add("ann");

@@ -13,8 +13,8 @@ using namespace fts;
 
 namespace {
 
-struct Rig : test::HostRig {
-  Rig() {
+struct GameHostRig : test::HostRig {
+  GameHostRig() {
     options.seed = 5;
     start();
   }
@@ -23,7 +23,7 @@ struct Rig : test::HostRig {
 }  // namespace
 
 TEST_CASE("Game host: clients join, ready up and the level starts", "[server][host]") {
-  Rig rig;
+  GameHostRig rig;
   auto& a = rig.add("ann");
   auto& b = rig.add("bob");
   for (int i = 0; i < 50 && (a.state() != protocol::ClientState::connected || b.state() != protocol::ClientState::connected); ++i)
@@ -47,7 +47,7 @@ TEST_CASE("Game host: clients join, ready up and the level starts", "[server][ho
 }
 
 TEST_CASE("Game host: a purchase in the wrong phase is refused with its reason", "[server][host]") {
-  Rig rig;
+  GameHostRig rig;
   auto& a = rig.add("ann");
   for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
   REQUIRE(a.state() == protocol::ClientState::connected);
@@ -61,7 +61,7 @@ TEST_CASE("Game host: a purchase in the wrong phase is refused with its reason",
 }
 
 TEST_CASE("Game host: each command is answered with the step's result, by its rid", "[server][host]") {
-  Rig rig;
+  GameHostRig rig;
   auto& a = rig.add("ann");
   for (int i = 0; i < 50 && a.state() != protocol::ClientState::connected; ++i) rig.tick();
   REQUIRE(a.state() == protocol::ClientState::connected);
@@ -81,7 +81,7 @@ TEST_CASE("Game host: each command is answered with the step's result, by its ri
 }
 
 TEST_CASE("Game host: the record of a session replays with every hash equal", "[server][host]") {
-  Rig rig;
+  GameHostRig rig;
   test::RecordDir record("game-host");
   rig.host->record_to(record.path.string(), "test");
   auto& a = rig.add("ann");
@@ -139,7 +139,7 @@ TEST_CASE("Replay: a damaged record is refused with the line, not simulated for 
 
 TEST_CASE("Game host: a chat line is relayed to every player with its sender, cleaned and rate-limited",
           "[server][host][chat]") {
-  Rig rig;
+  GameHostRig rig;
   auto& a = rig.add("ann");
   auto& b = rig.add("bob");
   for (int i = 0; i < 50 && (a.state() != protocol::ClientState::connected || b.state() != protocol::ClientState::connected); ++i)

@@ -11,7 +11,7 @@ using namespace fts;
 
 namespace {
 
-struct Rig {
+struct SessionsRig {
   server::Options options;
   sim::MatchConfig config;
   std::unique_ptr<server::GameHost> host;
@@ -20,7 +20,7 @@ struct Rig {
   std::uint64_t now = 1000;
   const std::string address = "10.0.0.1:5000";
 
-  explicit Rig(sim::MatchConfig cfg = {}) : config(cfg), client(named("ann")) {
+  explicit SessionsRig(sim::MatchConfig cfg = {}) : config(cfg), client(named("ann")) {
     options.seed = 5;
     host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{});
     client.connect(now);
@@ -67,7 +67,7 @@ struct Rig {
 
 TEST_CASE("Host sessions: a command that cannot be applied is answered, and the next one too",
           "[server][host][sessions]") {
-  Rig rig;
+  SessionsRig rig;
   // A datagram with an unknown op, a buy of an unknown item and a buy without an item,
   // then a good command: hand-made on the client's own session.
   rig.client.send_input({0, 0, 0, false}, rig.now);
@@ -94,7 +94,7 @@ TEST_CASE("Host sessions: a command that cannot be applied is answered, and the 
 
 TEST_CASE("Host sessions: a client killed while holding a key loses no life", "[server][host][sessions]") {
   sim::MatchConfig cfg;
-  Rig rig(cfg);
+  SessionsRig rig(cfg);
   rig.play();
   const auto lives = rig.me().eco.lives;
   rig.hold_up_then_die();
@@ -111,11 +111,11 @@ TEST_CASE("Host sessions: a client killed while holding a key loses no life", "[
 TEST_CASE("Host sessions: with the expiry off (huge), the same crash drives the ball off", "[server][host][sessions]") {
   // The control for the test above: the expiry is what saves the life.
   sim::MatchConfig cfg;
-  Rig rig(cfg);
+  SessionsRig rig(cfg);
   rig.host.reset();
   rig.options.input_expiry_ms = 10000;
   rig.host = std::make_unique<server::GameHost>(rig.options, rig.config, protocol::ServerKey{});
-  rig.client = protocol::ClientEndpoint(Rig::named("ann"));
+  rig.client = protocol::ClientEndpoint(SessionsRig::named("ann"));
   rig.client.connect(rig.now);
   for (int i = 0; i < 50 && rig.client.state() != protocol::ClientState::connected; ++i) rig.tick();
   rig.tick();
@@ -127,7 +127,7 @@ TEST_CASE("Host sessions: with the expiry off (huge), the same crash drives the 
 }
 
 TEST_CASE("Host sessions: a quit takes the ball off at once and keeps the coins", "[server][host][sessions]") {
-  Rig rig;
+  SessionsRig rig;
   rig.play();
   REQUIRE(rig.me().ball != 0);
   const auto lives = rig.me().eco.lives;

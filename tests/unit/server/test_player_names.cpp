@@ -16,8 +16,8 @@ using protocol::EventKind;
 
 namespace {
 
-struct Rig : test::HostRig {
-  Rig() {
+struct NamesRig : test::HostRig {
+  NamesRig() {
     options.seed = 5;
     options.reconnect_window_ms = 200;  // a quit player's slot is released soon
     start();
@@ -36,7 +36,7 @@ struct Rig : test::HostRig {
 }  // namespace
 
 TEST_CASE("Names: the console's players and chat lines name a player as its screen does", "[server][names]") {
-  Rig rig;
+  NamesRig rig;
   auto& first = rig.join("ann");
   auto& second = rig.join("ann");
   REQUIRE(first.state() == ClientState::connected);

@@ -15,8 +15,8 @@ namespace {
 constexpr const char* kFlooder = "10.6.6.6";
 constexpr const char* kOther = "10.5.5.5";
 
-struct Rig : test::HostRig {
-  Rig() {
+struct FloodRig : test::HostRig {
+  FloodRig() {
     options.seed = 5;
     options.max_players = 4;
     options.max_rooms = 8;
@@ -43,7 +43,7 @@ struct Rig : test::HostRig {
 }  // namespace
 
 TEST_CASE("Room flood: one host making rooms and leaving them leaves rooms for everyone", "[server][rooms][flood]") {
-  Rig rig;
+  FloodRig rig;
   std::size_t other_asks = 0;
   for (int i = 0; i < 60; ++i) {  // 12 s: a create and a bye every 0.2 s
     const std::uint64_t at = rig.now;
@@ -68,7 +68,7 @@ TEST_CASE("Room flood: one host making rooms and leaving them leaves rooms for e
 }
 
 TEST_CASE("Room flood: a room that holds nobody closes in seconds; one with a player's progress waits", "[server][rooms][flood]") {
-  Rig rig;  // --room-idle-ms is the default minute
+  FloodRig rig;  // --room-idle-ms is the default minute
   REQUIRE(rig.options.room_idle_ms == 60000);
   auto& left = rig.ask(kOther, "create");  // shook hands and left
   auto& played = rig.ask(kOther, "create");  // played (a command), then left
@@ -88,7 +88,7 @@ TEST_CASE("Room flood: a room that holds nobody closes in seconds; one with a pl
 }
 
 TEST_CASE("Room flood: a host with its rooms all held gets address_full; others still get rooms", "[server][rooms][flood]") {
-  Rig rig;
+  FloodRig rig;
   for (std::uint32_t i = 0; i < rig.options.max_rooms_per_host; ++i) {
     auto& a = rig.ask(kFlooder, "create");
     REQUIRE(a.state() == ClientState::connected);
@@ -107,7 +107,7 @@ TEST_CASE("Room flood: a host with its rooms all held gets address_full; others 
 }
 
 TEST_CASE("Room flood: at --max-rooms, the room empty longest is closed for a new one", "[server][rooms][flood]") {
-  Rig rig;
+  FloodRig rig;
   rig.options.max_rooms_per_host = 8;
   rig.start();
   std::vector<std::string> codes;

@@ -16,8 +16,8 @@ using protocol::ClientState;
 
 namespace {
 
-struct Rig : test::HostRig {
-  explicit Rig(std::uint32_t seats = 2, std::uint32_t max_rooms = 4) {
+struct RoomsRig : test::HostRig {
+  explicit RoomsRig(std::uint32_t seats = 2, std::uint32_t max_rooms = 4) {
     options.seed = 5;
     options.max_players = seats;
     options.max_rooms = max_rooms;
@@ -45,16 +45,16 @@ struct Rig : test::HostRig {
 }  // namespace
 
 TEST_CASE("Rooms: quick play fills the fullest open room, then makes a new one", "[server][rooms]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add();
   auto& b = rig.add("quick");
   auto& c = rig.add("quick");
   REQUIRE(a.state() == ClientState::connected);
   REQUIRE(b.state() == ClientState::connected);
   REQUIRE(c.state() == ClientState::connected);
-  CHECK(Rig::room_of(a).size() == 5);
-  CHECK(Rig::room_of(b) == Rig::room_of(a));  // a's room had a free seat
-  CHECK(Rig::room_of(c) != Rig::room_of(a));  // full: a new room
+  CHECK(RoomsRig::room_of(a).size() == 5);
+  CHECK(RoomsRig::room_of(b) == RoomsRig::room_of(a));  // a's room had a free seat
+  CHECK(RoomsRig::room_of(c) != RoomsRig::room_of(a));  // full: a new room
   CHECK(rig.host->room_ids() == std::vector<std::uint32_t>{1, 2});
   // A private room with one player is never picked by quick play; the public room with
   // one player is (the fullest with a free seat).
@@ -62,7 +62,7 @@ TEST_CASE("Rooms: quick play fills the fullest open room, then makes a new one",
   REQUIRE(d.state() == ClientState::connected);
   auto& e = rig.add("quick");
   REQUIRE(e.state() == ClientState::connected);
-  CHECK(Rig::room_of(e) == Rig::room_of(c));
+  CHECK(RoomsRig::room_of(e) == RoomsRig::room_of(c));
   rig.tick();
   // Each room's match holds its own players only.
   const auto* r1 = rig.host->room(1);
@@ -76,13 +76,13 @@ TEST_CASE("Rooms: quick play fills the fullest open room, then makes a new one",
 }
 
 TEST_CASE("Rooms: join by code, and the refusals room_full, no_such_room, server_full", "[server][rooms]") {
-  Rig rig(2, 2);
+  RoomsRig rig(2, 2);
   auto& owner = rig.add("create");
   REQUIRE(owner.state() == ClientState::connected);
-  const std::string code = Rig::room_of(owner);
+  const std::string code = RoomsRig::room_of(owner);
   auto& friend_ = rig.add("join", code);
   REQUIRE(friend_.state() == ClientState::connected);
-  CHECK(Rig::room_of(friend_) == code);
+  CHECK(RoomsRig::room_of(friend_) == code);
   // Codes are typed by people: lower case is the same code.
   std::string lower = code;
   for (char& ch : lower) ch = static_cast<char>(ch - 'A' + 'a');
@@ -112,14 +112,14 @@ TEST_CASE("Rooms: join by code, and the refusals room_full, no_such_room, server
 }
 
 TEST_CASE("Rooms: a spectator has no ball and no seat, sees the room's snapshots, and is capped", "[server][rooms]") {
-  Rig rig(1);
+  RoomsRig rig(1);
   auto& player = rig.add("create");
   REQUIRE(player.state() == ClientState::connected);
-  const std::string code = Rig::room_of(player);
+  const std::string code = RoomsRig::room_of(player);
   auto& watcher = rig.add("spectate", code);
   REQUIRE(watcher.state() == ClientState::connected);
   CHECK(watcher.welcome()->spectator);
-  CHECK(Rig::room_of(watcher) == code);
+  CHECK(RoomsRig::room_of(watcher) == code);
   auto& second = rig.add("spectate", code);  // the cap is one
   REQUIRE(second.state() == ClientState::refused);
   CHECK(second.error()->code == "room_full");
@@ -150,10 +150,10 @@ TEST_CASE("Rooms: a spectator has no ball and no seat, sees the room's snapshots
 }
 
 TEST_CASE("Rooms: an empty room closes after room_idle_ms, and its code is gone", "[server][rooms]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add("create");
   REQUIRE(a.state() == ClientState::connected);
-  const std::string code = Rig::room_of(a);
+  const std::string code = RoomsRig::room_of(a);
   a.disconnect(rig.now);
   rig.ticks(50);  // 500 ms: still open
   CHECK(rig.host->room_ids().size() == 1);
@@ -165,7 +165,7 @@ TEST_CASE("Rooms: an empty room closes after room_idle_ms, and its code is gone"
 }
 
 TEST_CASE("Rooms: the room list is a command's result, after the handshake", "[server][rooms]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add();
   auto& b = rig.add("create");  // private: not listed
   REQUIRE(a.state() == ClientState::connected);
@@ -180,9 +180,9 @@ TEST_CASE("Rooms: the room list is a command's result, after the handshake", "[s
   CHECK(results[0].command_rid == rid);
   CHECK(results[0].ok);
   const std::string& list = results[0].message;
-  CHECK(list.rfind(Rig::room_of(a) + " 1/2 ", 0) == 0);
+  CHECK(list.rfind(RoomsRig::room_of(a) + " 1/2 ", 0) == 0);
   CHECK(list.find("lobby") != std::string::npos);
-  CHECK(list.find(Rig::room_of(b)) == std::string::npos);
+  CHECK(list.find(RoomsRig::room_of(b)) == std::string::npos);
 }
 
 TEST_CASE("Room codes: five letters without look-alikes, redrawn on a collision", "[server][rooms]") {
@@ -211,7 +211,7 @@ TEST_CASE("Room codes: five letters without look-alikes, redrawn on a collision"
 }
 
 TEST_CASE("Console: rooms, players, kick (told why), close, drain and bad input", "[server][rooms][console]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add();
   auto& b = rig.add("create");
   REQUIRE(a.state() == ClientState::connected);
@@ -220,9 +220,9 @@ TEST_CASE("Console: rooms, players, kick (told why), close, drain and bad input"
   auto rooms = rig.console(R"({"cmd":"rooms"})");
   REQUIRE(rooms["ok"] == true);
   REQUIRE(rooms["rooms"].size() == 2);
-  CHECK(rooms["rooms"][0]["code"] == Rig::room_of(a));
+  CHECK(rooms["rooms"][0]["code"] == RoomsRig::room_of(a));
   CHECK(rooms["rooms"][1]["private"] == true);
-  auto players = rig.console(R"({"cmd":"players","room":")" + Rig::room_of(b) + R"("})");
+  auto players = rig.console(R"({"cmd":"players","room":")" + RoomsRig::room_of(b) + R"("})");
   REQUIRE(players["players"].size() == 1);
   CHECK(players["players"][0]["player"] == b.welcome()->player_id);
 
@@ -243,7 +243,7 @@ TEST_CASE("Console: rooms, players, kick (told why), close, drain and bad input"
   CHECK(a.error()->code == "kicked");
   CHECK(a.error()->message == "kicked by the host: spamming");
 
-  auto closed = rig.console(R"({"cmd":"close","room":")" + Rig::room_of(b) + R"("})");
+  auto closed = rig.console(R"({"cmd":"close","room":")" + RoomsRig::room_of(b) + R"("})");
   CHECK(closed["ok"] == true);
   REQUIRE(b.error());
   CHECK(b.error()->code == "room_closed");
@@ -261,7 +261,7 @@ TEST_CASE("Console: rooms, players, kick (told why), close, drain and bad input"
 }
 
 TEST_CASE("Console: a ban drops the address's sessions and datagrams", "[server][rooms][console]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add();
   REQUIRE(a.state() == ClientState::connected);
   auto banned = rig.console(R"({"cmd":"ban","address":"10.0.0.1","minutes":1})");
@@ -277,11 +277,11 @@ TEST_CASE("Console: a ban drops the address's sessions and datagrams", "[server]
 }
 
 TEST_CASE("Rooms: a token takes the player back into its own room", "[server][rooms]") {
-  Rig rig(2);
+  RoomsRig rig(2);
   auto& a = rig.add();           // room 1
   auto& b = rig.add("create");   // room 2, private
   REQUIRE(b.state() == ClientState::connected);
-  const std::string code = Rig::room_of(b);
+  const std::string code = RoomsRig::room_of(b);
   const auto id = b.welcome()->player_id;
   rig.ticks(3);
   // b's process restarts: a new client from a new port with the token, asking for
@@ -297,7 +297,7 @@ TEST_CASE("Rooms: a token takes the player back into its own room", "[server][ro
   REQUIRE(back.state() == ClientState::connected);
   CHECK(back.welcome()->reconnected);
   CHECK(back.welcome()->player_id == id);
-  CHECK(Rig::room_of(back) == code);
+  CHECK(RoomsRig::room_of(back) == code);
   rig.ticks(3);
   CHECK(sim::find_player(rig.host->room(2)->match(), id) != nullptr);
   CHECK(sim::find_player(rig.host->room(1)->match(), id) == nullptr);
@@ -305,10 +305,10 @@ TEST_CASE("Rooms: a token takes the player back into its own room", "[server][ro
 }
 
 TEST_CASE("Rooms: a host guessing room codes is refused after 10 misses, then gets 6 a minute", "[server][rooms]") {
-  Rig rig(8);
+  RoomsRig rig(8);
   auto& owner = rig.add("create");
   REQUIRE(owner.state() == ClientState::connected);
-  const std::string code = Rig::room_of(owner);
+  const std::string code = RoomsRig::room_of(owner);
   const auto& rejects = rig.host->endpoint().rejects();
   // Every guess is a new hello from the same host (its own port): 10 wrong codes are
   // answered no_such_room, then even the right code is refused before it is looked at.
@@ -334,7 +334,7 @@ TEST_CASE("Rooms: a host guessing room codes is refused after 10 misses, then ge
   rig.next_host = "10.8.8.8";
   auto& friend_ = rig.add("join", code);
   REQUIRE(friend_.state() == ClientState::connected);
-  CHECK(Rig::room_of(friend_) == code);
+  CHECK(RoomsRig::room_of(friend_) == code);
   // 10 s later the guesser has one more miss (6 a minute): the right code gets in, and
   // a right code costs nothing.
   rig.next_host = "10.9.9.9";
@@ -364,7 +364,7 @@ TEST_CASE("Rooms: a spectator flood fills the room's spectator cap and no more; 
   REQUIRE(rig.connect_all());
   b.name = "bob";
   b.join = "join";
-  b.room = Rig::room_of(ann);
+  b.room = RoomsRig::room_of(ann);
   auto& bob = rig.connect(b);
   REQUIRE(rig.connect_all());
   // 400 spectators from 400 hosts and 40 from one host ask at once.
