@@ -17,6 +17,8 @@
 #  6. The counters (fts-ssh-play --status) say what happened; q, y quit both players.
 #  7. `ssh -t HOST forget-me` with alice's key: asked, yes, her profile is erased (the
 #     server keeps profiles in a SQLite file of the test's), bob's stays.
+#  8. bob a day later (the server restarted with its clock a day on): the same player,
+#     the same profile with a second match.
 # sshd runs the ForceCommand as the logged-in user, and switches users only as root:
 # the test logs in as root through a `Match User root` block, and is skipped otherwise.
 #
@@ -304,4 +306,45 @@ wait_log "$WORK/server.log" 5 'profile_forget player=[0-9]+'
 [[ $(profiles_named alice) == 0 && $(profiles_named bob) == 1 ]] || fail "after forget-me: alice $(profiles_named alice), bob $(profiles_named bob)"
 [[ $(counter forgets) == 1 && $(counter refused_command) == 2 ]] || fail "counters: $(status | tr '\n' ' ')"
 echo "forget-me over ssh erased alice's profile (bob's stays)"
+
+# 8. bob a day later (issue 41): the server restarted on the same port with its clock a day
+# on (FTS_TEST_CLOCK_OFFSET_S) and the same profiles. His key is the same player: his name
+# kept, the same profile with a second match, first and last seen a day apart.
+profile_of_bob() {
+  python3 -c 'import sqlite3, sys; print(*sqlite3.connect(sys.argv[1]).execute(
+    "SELECT fingerprint, matches, first_seen, last_seen FROM fts_profiles WHERE name = ?",
+    ("bob",)).fetchone() or ())' "$WORK/profiles.sqlite"
+}
+# (A match a player quit is his result once his reconnect window ends, or when the
+# server stops: each stop below writes it.)
+read -r bob_fp _ bob_first _ <<<"$(profile_of_bob)"
+[[ -n $bob_fp ]] || fail "bob has no profile before the day passes"
+kill "$BOT_PID" 2>/dev/null || true
+kill "$SERVER_PID"
+wait "$SERVER_PID" 2>/dev/null || true
+mv "$WORK/server.log" "$WORK/server-day1.log"
+FTS_TEST_CLOCK_OFFSET_S=86400 start_server "$SERVER" --port "$PORT" --time-scale 4 --config "$WORK/config.json" \
+  --profiles "$WORK/profiles.sqlite"
+PANES=(bob2)
+play bob2 bob NO_COLOR=1
+wait_for bob2 10 'pick a room'
+pane bob2 | grep -q 'Your name' && fail "bob was asked for his name again (his key's name is kept)"
+tm send-keys -t bob2 2 Enter
+wait_for bob2 10 '^Level:? [0-9]+ +Coins:? '
+wait_log "$WORK/server.log" 5 " connect player=[0-9]+ name=bob room="
+# Ready, and a level played (a match he only looked at is no result).
+tm send-keys -t bob2 Enter
+wait_log "$WORK/server.log" 10 "level_start .*level=1"
+tm send-keys -t bob2 Right
+tm send-keys -t bob2 q
+wait_for bob2 5 'Quit\?'
+tm send-keys -t bob2 y
+wait_for bob2 5 '^SSH_EXIT=0'
+kill "$SERVER_PID"
+wait "$SERVER_PID" 2>/dev/null || true
+SERVER_PID=""
+read -r fp matches first last <<<"$(profile_of_bob)"
+[[ $fp == "$bob_fp" && $matches == 2 && $first == "$bob_first" ]] && ((last - first >= 86400)) ||
+  fail "a day later bob is not the same player: was $bob_fp (first seen $bob_first), now $(profile_of_bob)"
+echo "bob a day later over ssh: the same profile ($fp), $matches matches, first and last seen $((last - first)) s apart"
 echo "PASS in $((SECONDS - started)) s"
