@@ -44,4 +44,21 @@ std::string_view host_of(std::string_view address) {
   return address.substr(0, colon);
 }
 
+AddressLimits::Host* AddressLimits::of(std::string_view host, std::uint64_t now_ms) {
+  if (auto it = hosts_.find(host); it != hosts_.end()) return &it->second;
+  if (hosts_.size() >= rates_.max_hosts) return nullptr;
+  const Rates& r = rates_;
+  Host h{TokenBucket(r.datagrams_per_s, r.datagram_burst, now_ms), TokenBucket(r.hellos_per_s, r.hello_burst, now_ms),
+         TokenBucket(r.takeovers_per_s, r.takeover_burst, now_ms),
+         TokenBucket::per_minute(r.code_misses_per_min, r.code_miss_burst, now_ms)};
+  return &hosts_.emplace(std::string(host), h).first->second;
+}
+
+void AddressLimits::forget_quiet(std::uint64_t now_ms) {
+  std::erase_if(hosts_, [&](const auto& kv) {
+    const Host& h = kv.second;
+    return h.datagrams.full(now_ms) && h.hellos.full(now_ms) && h.takeovers.full(now_ms) && h.code_misses.full(now_ms);
+  });
+}
+
 }  // namespace fts::protocol

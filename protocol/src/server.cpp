@@ -1,6 +1,7 @@
 #include "fts/protocol/server.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace fts::protocol {
 namespace {
@@ -11,12 +12,26 @@ bool hello_of_version(std::span<const std::uint8_t> bytes, std::uint16_t version
          bytes[7] == 0 && bytes[8] == 0 && bytes[9] == 0 && bytes[10] == 0;
 }
 
+AddressLimits::Rates address_rates(const ServerConfig& c) {
+  AddressLimits::Rates r;
+  r.datagrams_per_s = c.address_datagrams_per_s, r.datagram_burst = c.address_datagram_burst;
+  r.hellos_per_s = c.hellos_per_s, r.hello_burst = c.hello_burst;
+  r.takeovers_per_s = c.takeovers_per_s;
+  r.takeover_burst = c.takeover_burst != 0 ? c.takeover_burst : static_cast<std::uint32_t>(c.max_sessions_per_address);
+  r.code_misses_per_min = c.room_code_misses_per_min, r.code_miss_burst = c.room_code_miss_burst;
+  r.max_hosts = c.max_tracked_addresses;
+  return r;
+}
+
 }  // namespace
 
 ServerEndpoint::ServerEndpoint(ServerConfig config)
     : config_(std::move(config)),
       kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
-      kx_hex_(public_key_hex(kx_.public_key)) {}
+      kx_hex_(public_key_hex(kx_.public_key)),
+      limits_(address_rates(config_)) {
+  if (!config_.admit) throw std::invalid_argument("ServerConfig::admit is required: the host picks a new player's room");
+}
 
 void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > kMaxDatagramBytes) return;  // never sent; the limits make it unreachable
@@ -69,27 +84,6 @@ void ServerEndpoint::observe_time(std::uint64_t now_ms) {
   last_call_ms_ = std::max(last_call_ms_, now_ms);
 }
 
-ServerEndpoint::AddressState* ServerEndpoint::address_state(std::string_view host, std::uint64_t now_ms) {
-  if (auto it = addresses_.find(host); it != addresses_.end()) return &it->second;
-  if (addresses_.size() >= config_.max_tracked_addresses) return nullptr;
-  AddressState a{TokenBucket(config_.address_datagrams_per_s, config_.address_datagram_burst, now_ms),
-                 TokenBucket(config_.hellos_per_s, config_.hello_burst, now_ms),
-                 TokenBucket(config_.takeovers_per_s,
-                             config_.takeover_burst != 0 ? config_.takeover_burst
-                                                         : static_cast<std::uint32_t>(config_.max_sessions_per_address),
-                             now_ms),
-                 TokenBucket::per_minute(config_.room_code_misses_per_min, config_.room_code_miss_burst, now_ms)};
-  return &addresses_.emplace(std::string(host), a).first->second;
-}
-
-// A host whose buckets are full again has been quiet for a while: nothing to remember.
-void ServerEndpoint::forget_quiet_addresses(std::uint64_t now_ms) {
-  std::erase_if(addresses_, [&](const auto& kv) {
-    return kv.second.datagrams.full(now_ms) && kv.second.hellos.full(now_ms) && kv.second.takeovers.full(now_ms) &&
-           kv.second.code_misses.full(now_ms);
-  });
-}
-
 void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> bytes,
                              std::uint64_t now_ms) {
   serial_only("receive");
@@ -115,7 +109,7 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
                              "); see PROTOCOL.md section 4.1";
     reply_unconnected(from, encoding, 0, make_error(ErrorCode::bad_hello, text), bytes.size());
   };
-  AddressState* host = address_state(host_of(from), now_ms);
+  AddressLimits::Host* host = limits_.of(host_of(from), now_ms);
   if (host && !host->datagrams.take(now_ms)) return drop(Reject::rate_limited);
   auto header = read_header_any_version(bytes);
   if (!header) {
@@ -174,12 +168,6 @@ void ServerEndpoint::handle_opened(Session& s, const Decoded<Datagram>& d, std::
 std::size_t ServerEndpoint::sessions_from(std::string_view host, bool spectators) const {
   return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
     return !kv.second.quit && kv.second.spectator == spectators && host_of(kv.second.address) == host;
-  }));
-}
-
-std::size_t ServerEndpoint::seats_taken() const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [](const auto& kv) {
-    return !kv.second.quit && !kv.second.spectator;
   }));
 }
 
@@ -374,7 +362,7 @@ void ServerEndpoint::update(std::uint64_t now_ms) {
   serial_only("update");
   observe_time(now_ms);
   if (now_ms >= last_forget_ms_ + 1000) {
-    forget_quiet_addresses(now_ms);
+    limits_.forget_quiet(now_ms);
     last_forget_ms_ = now_ms;
   }
   std::vector<std::uint32_t> expired;

@@ -123,7 +123,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   if (!hello.token.empty()) {
     // Reconnects are rate limited per host: a token cannot be tried, or a player taken
     // back and forth, faster than this.
-    if (AddressState* host = address_state(host_of(from), now_ms); host && !host->takeovers.take(now_ms)) {
+    if (AddressLimits::Host* host = limits_.of(host_of(from), now_ms); host && !host->takeovers.take(now_ms)) {
       rejects_.add(Reject::takeover_limited);
       reply_unconnected(from, enc, 0, make_error(ErrorCode::rate_limited, "too many reconnects from this address; try again soon"),
                         request_bytes);
@@ -179,9 +179,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
       s.verifier = token_verifier(s.token);
     }
     // A player who quit gave its seat up: it comes back only to a free one.
-    if (s.quit && !s.spectator &&
-        (config_.admit ? seats_in_room(s.room) : seats_taken()) >= config_.max_players) {
-      if (!config_.admit) return refuse_full(from, enc, request_bytes);
+    if (s.quit && !s.spectator && seats_in_room(s.room) >= config_.max_players) {
       rejects_.add(Reject::join_refused);
       reply_unconnected(from, enc, 0,
                         make_error(ErrorCode::room_full, "room " + s.room_code + " has no free seat; try again later"),
@@ -198,8 +196,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     send_welcome(s, true, request_bytes, now_ms);
     return;
   }
-  if ((!config_.admit && seats_taken() >= config_.max_players) || sessions_.size() >= config_.max_sessions())
-    return refuse_full(from, enc, request_bytes);
+  if (sessions_.size() >= config_.max_sessions()) return refuse_full(from, enc, request_bytes);
   // A spectate hello asks for no seat: it is held to the host's spectator cap instead.
   const bool watching = hello.join == "spectate";
   const std::size_t cap = watching ? config_.max_spectators_per_address : config_.max_sessions_per_address;
@@ -214,31 +211,27 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
   // sessions in one process life) the server takes nobody new.
   if (next_player_id_ == kNoPlayerIdLeft) return refuse_full(from, enc, request_bytes);
   // The host picks the room last: a refused hello above creates no room.
-  Admission admission;
-  if (config_.admit) {
-    // A host that named too many rooms that do not exist is guessing codes (10.1).
-    const bool by_code = hello.join == "join" || watching;
-    AddressState* host = by_code ? address_state(host_of(from), now_ms) : nullptr;
-    if (host && !host->code_misses.has(now_ms)) {
-      rejects_.add(Reject::code_limited);
-      reply_unconnected(from, enc, 0,
-                        make_error(ErrorCode::rate_limited, "too many unknown room codes from this address; try again in a minute"),
-                        request_bytes);
-      return;
-    }
-    admission = config_.admit(JoinAsk{hello.join, hello.room, from});
-    if (admission.error || admission.room == 0) {
-      const bool unknown = admission.error == ErrorCode::no_such_room;
-      if (unknown && host) (void)host->code_misses.take(now_ms);
-      rejects_.add(unknown ? Reject::unknown_room : Reject::join_refused);
-      reply_unconnected(from, enc, 0,
-                        make_error(admission.error.value_or(ErrorCode::refused),
-                                   admission.message.substr(0, kMaxTextBytes)),
-                        request_bytes);
-      return;
-    }
-    room_ticks_[admission.room] = admission.server_tick;
+  // A host that named too many rooms that do not exist is guessing codes (10.1).
+  const bool by_code = hello.join == "join" || watching;
+  AddressLimits::Host* host = by_code ? limits_.of(host_of(from), now_ms) : nullptr;
+  if (host && !host->code_misses.has(now_ms)) {
+    rejects_.add(Reject::code_limited);
+    reply_unconnected(from, enc, 0,
+                      make_error(ErrorCode::rate_limited, "too many unknown room codes from this address; try again in a minute"),
+                      request_bytes);
+    return;
   }
+  const Admission admission = config_.admit(JoinAsk{hello.join, hello.room, from});
+  if (admission.error || admission.room == 0) {
+    const bool unknown = admission.error == ErrorCode::no_such_room;
+    if (unknown && host) (void)host->code_misses.take(now_ms);
+    rejects_.add(unknown ? Reject::unknown_room : Reject::join_refused);
+    reply_unconnected(from, enc, 0,
+                      make_error(admission.error.value_or(ErrorCode::refused), admission.message.substr(0, kMaxTextBytes)),
+                      request_bytes);
+    return;
+  }
+  room_ticks_[admission.room] = admission.server_tick;
   const std::uint32_t player_id = next_player_id_;
   reserve_player_ids(player_id);
   Session& s = sessions_[player_id];
@@ -257,10 +250,9 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
 
 void ServerEndpoint::refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes) {
   rejects_.add(Reject::server_full);
-  const std::string text = config_.admit ? "the server has no room for more players; try again later"
-                                         : "the server is full (" + std::to_string(config_.max_players) +
-                                               " players); try again later";
-  reply_unconnected(to, encoding, 0, make_error(ErrorCode::server_full, text), request_bytes);
+  reply_unconnected(to, encoding, 0,
+                    make_error(ErrorCode::server_full, "the server has no room for more players; try again later"),
+                    request_bytes);
 }
 
 }  // namespace fts::protocol

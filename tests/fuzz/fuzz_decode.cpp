@@ -19,8 +19,16 @@ using namespace fts::protocol;
 
 namespace {
 
+// The host's part: every new player goes to room 1 (seats are the host's business).
+Admission room_one(const JoinAsk&) {
+  Admission a;
+  a.room = 1;
+  return a;
+}
+
 ServerConfig fuzz_server_config() {
   ServerConfig config;
+  config.admit = room_one;
   for (std::size_t i = 0; i < config.key.size(); ++i) config.key[i] = static_cast<std::uint8_t>(i);
   config.session_datagrams_per_s = config.session_datagram_burst = 1'000'000;
   config.address_datagrams_per_s = config.address_datagram_burst = 1'000'000;
@@ -123,6 +131,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The server, before and after a client is connected, and a client in each state.
   static ServerEndpoint* server = [] {
     ServerConfig config;
+    config.admit = room_one;
     for (std::size_t i = 0; i < config.key.size(); ++i) config.key[i] = static_cast<std::uint8_t>(i);
     return new ServerEndpoint(config);
   }();

@@ -67,6 +67,24 @@ inline ServerConfig test_server_config() {
   return c;
 }
 
+// The host's part in these tests: one room (1) of max_players seats, whatever the hello
+// asks for; a full room answers server_full. `server` is read only when a hello comes, so
+// an endpoint may be handed its own config: ServerEndpoint s(one_room(config, s)).
+inline ServerConfig one_room(ServerConfig config, const ServerEndpoint& server) {
+  const std::uint32_t seats = config.max_players;
+  config.admit = [&server, seats](const JoinAsk&) {
+    Admission a;
+    if (server.seats_in_room(1) >= seats) {
+      a.error = ErrorCode::server_full;
+      a.message = "the server is full (" + std::to_string(seats) + " players); try again later";
+    } else {
+      a.room = 1;
+    }
+    return a;
+  };
+  return config;
+}
+
 struct Peer {
   std::string address;
   ClientEndpoint client;
@@ -76,7 +94,7 @@ struct Peer {
 
 class Harness {
  public:
-  explicit Harness(ServerConfig config = test_server_config()) : server(std::move(config)) {}
+  explicit Harness(ServerConfig config = test_server_config()) : server(one_room(std::move(config), server)) {}
 
   Peer& add_client(ClientConfig config, LinkConfig link = {}, std::string address = "") {
     if (address.empty()) address = "10.0.0." + std::to_string(peers.size() + 1) + ":5000";

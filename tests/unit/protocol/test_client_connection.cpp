@@ -16,7 +16,7 @@ struct Rig {
   bool link_up = true;
   std::uint64_t now = 100;
 
-  explicit Rig(bool resume) : server(config()), conn(client_config(), resume) { conn.connect(now); }
+  explicit Rig(bool resume) : server(test::one_room(config(), server)), conn(client_config(), resume) { conn.connect(now); }
 
   static ServerConfig config() {
     ServerConfig c = test::test_server_config();

@@ -33,7 +33,7 @@ void print(const char* direction, const std::vector<std::uint8_t>& bytes, const 
 
 TEST_CASE("example exchange", "[.example]") {
   ServerConfig config = test_server_config();
-  ServerEndpoint server(config);
+  ServerEndpoint server(one_room(config, server));
   ClientConfig cc;
   cc.encoding = Encoding::json;
   cc.name = "ann";

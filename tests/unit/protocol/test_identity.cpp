@@ -4,6 +4,7 @@
 // player back without a token (a client that lost it: another machine, a day later).
 #include <catch2/catch.hpp>
 
+#include "harness.hpp"
 #include "fts/protocol/client.hpp"
 #include "fts/protocol/cookie.hpp"
 #include "fts/protocol/identity.hpp"
@@ -17,7 +18,7 @@ namespace {
 
 // One server and clients on their own addresses, stepped by hand.
 struct IdentityRig {
-  ServerEndpoint server{ServerConfig{}};
+  ServerEndpoint server{test::one_room(ServerConfig{}, server)};
   std::uint64_t now = 1000;
   void pump(ClientEndpoint& c, const Address& addr) {
     for (auto& d : c.take_datagrams()) server.receive(addr, d, now);

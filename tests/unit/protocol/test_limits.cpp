@@ -206,7 +206,7 @@ TEST_CASE("Limits: a host over its datagram rate is refused before any parse", "
   ServerConfig config = test_server_config();
   config.address_datagrams_per_s = 100;
   config.address_datagram_burst = 20;
-  ServerEndpoint server(config);
+  ServerEndpoint server(one_room(config, server));
   const std::vector<std::uint8_t> junk(40, 'x');
   for (int port = 1; port <= 30; ++port) server.receive("198.51.100.9:" + std::to_string(port), junk, 1000);
   CHECK(server.rejects()[Reject::wrong_protocol_id] == 20);
@@ -222,7 +222,7 @@ TEST_CASE("Limits: hosts tracked are bounded and quiet ones forgotten", "[protoc
   config.address_datagrams_per_s = 10;
   config.address_datagram_burst = 1;
   config.max_tracked_addresses = 2;
-  ServerEndpoint server(config);
+  ServerEndpoint server(one_room(config, server));
   const std::vector<std::uint8_t> junk(40, 'x');
   server.receive("10.0.0.1:1", junk, 1000);
   server.receive("10.0.0.2:1", junk, 1000);

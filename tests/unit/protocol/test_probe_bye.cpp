@@ -1,6 +1,7 @@
 // A health check's bye frees its slot at once; an ordinary bye holds it for a reconnect.
 #include <catch2/catch.hpp>
 
+#include "harness.hpp"
 #include "fts/protocol/client.hpp"
 #include "fts/protocol/server.hpp"
 
@@ -10,7 +11,7 @@ namespace {
 // Connects one client to the server over a perfect in-memory link; returns the events.
 std::vector<ServerEvent> connect_then_bye(const std::string& reason) {
   ServerConfig sc;
-  ServerEndpoint server(sc);
+  ServerEndpoint server(test::one_room(sc, server));
   ClientConfig cc;
   cc.name = "probe";
   ClientEndpoint client(cc);

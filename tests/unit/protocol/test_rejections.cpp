@@ -212,10 +212,10 @@ TEST_CASE("server rejections change nothing", "[protocol][reject]") {
     REQUIRE(c.h.server.take_inputs().size() == 1);
     c.expect_rejected(c.valid, Reject::replayed, from);
   }
-  SECTION("server full") {
+  SECTION("server full: every session slot taken") {
     ServerConfig config = test_server_config();
-    config.max_players = 1;
-    ServerEndpoint server(config);
+    config.max_sessions_total = 1;
+    ServerEndpoint server(one_room(config, server));
     const auto hello = [&](const std::string& addr) {
       server.receive(addr, padded_hello(""), 1000);
       auto out = server.take_datagrams();
@@ -233,7 +233,7 @@ TEST_CASE("server rejections change nothing", "[protocol][reject]") {
 }
 
 TEST_CASE("before the handshake no reply is larger than its request", "[protocol][reject]") {
-  ServerEndpoint server(test_server_config());
+  ServerEndpoint server(one_room(test_server_config(), server));
   const auto hello = padded_hello("");
   REQUIRE(hello.size() >= kMinHelloBytes);
   server.receive("1.1.1.1:1", hello, 1000);

@@ -93,7 +93,7 @@ TEST_CASE("mutated datagrams never crash or change a session", "[protocol][rejec
 
   std::uint64_t r = 12345;
   auto next = [&r] { return r = r * 6364136223846793005ull + 1442695040888963407ull, r >> 33; };
-  ServerEndpoint server(test_server_config());
+  ServerEndpoint server(one_room(test_server_config(), server));
   ClientEndpoint client;
   client.connect(0);
   for (int i = 0; i < 20000; ++i) {

@@ -3,13 +3,14 @@
 // input sequence, so the new client's inputs were dropped as stale).
 #include <catch2/catch.hpp>
 
+#include "harness.hpp"
 #include "fts/protocol/client.hpp"
 #include "fts/protocol/server.hpp"
 
 using namespace fts::protocol;
 
 TEST_CASE("Reconnect: a restarted client on the same address is taken back with fresh state", "[protocol][reconnect]") {
-  ServerEndpoint server(ServerConfig{});
+  ServerEndpoint server(test::one_room(ServerConfig{}, server));
   std::uint64_t now = 1000;
   const Address addr = "10.0.0.2:7000";
   auto pump = [&](ClientEndpoint& c) {

@@ -51,7 +51,7 @@ TEST_CASE("Slots: a host past its session cap gets address_full, others still jo
 TEST_CASE("Slots: the address_full refusal is smaller than the hello", "[protocol][slots]") {
   ServerConfig config = test_server_config();
   config.max_sessions_per_address = 0;
-  ServerEndpoint server(config);
+  ServerEndpoint server(one_room(config, server));
   ClientEndpoint c(named("ann"));
   c.connect(100);
   for (int i = 0; i < 3; ++i)
@@ -68,7 +68,7 @@ TEST_CASE("Slots: the address_full refusal is smaller than the hello", "[protoco
 }
 
 TEST_CASE("Slots: hellos from one host are rate limited", "[protocol][slots]") {
-  ServerEndpoint server(test_server_config());  // 10/s, burst 10
+  ServerEndpoint server(one_room(test_server_config(), server));  // 10/s, burst 10
   const auto hello = padded_hello();
   for (int port = 1; port <= 30; ++port) server.receive("203.0.113.5:" + std::to_string(port), hello, 1000);
   CHECK(server.take_datagrams().size() == 10);  // challenges
@@ -119,13 +119,13 @@ TEST_CASE("Slots: a session without real input is dropped as idle", "[protocol][
   }
   SECTION("never while paused (lobby, shop), and the clock restarts after") {
     Harness h(config);
-    h.server.set_idle_paused(true);
+    h.server.set_idle_paused(1, true);  // one_room's room
     Peer& p = h.add_client(named("ann"));
     p.client.connect(h.now);
     REQUIRE(h.run_until([&] { return connected(p); }, 1000));
     h.run_until([&] { return false; }, h.now + 10000);
     CHECK(connected(p));
-    h.server.set_idle_paused(false);
+    h.server.set_idle_paused(1, false);
     const std::uint64_t from = h.now;
     REQUIRE(h.run_until([&] { return p.client.state() == ClientState::refused; }, from + 4000));
     CHECK(h.now - from >= 2900);

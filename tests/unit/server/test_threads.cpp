@@ -118,7 +118,13 @@ TEST_CASE("Threads: the pool runs every job once per run and rethrows a job's ex
 
 TEST_CASE("Threads: while a pool runs on the endpoint, a serial call is refused by name",
           "[threads]") {
-  protocol::ServerEndpoint e(protocol::ServerConfig{});
+  protocol::ServerConfig config;
+  config.admit = [](const protocol::JoinAsk&) {
+    protocol::Admission a;
+    a.room = 1;
+    return a;
+  };
+  protocol::ServerEndpoint e(config);
   {
     const protocol::ServerEndpoint::ParallelPhase parallel(e);
     if constexpr (protocol::ServerEndpoint::kPhaseChecks) {

@@ -2,7 +2,10 @@
 // address, which the per-address limits are keyed by (PROTOCOL.md 10).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -36,5 +39,39 @@ class TokenBucket {
 
 // "192.0.2.7:40000" -> "192.0.2.7"; "[::1]:5000" -> "[::1]"; no port: the address itself.
 std::string_view host_of(std::string_view address);
+
+// The per-host limits (PROTOCOL.md 10.1): a host's datagrams, its hellos, its reconnects
+// that take a player over and its misses of room codes. The one part of the server's
+// screening that the sessions of a host share; everything else is a session's own. At
+// most `max_hosts` hosts are tracked: past it a new host is not limited until quiet ones
+// are forgotten (forget_quiet, once a second), so that a spoofed flood cannot lock new
+// players out.
+class AddressLimits {
+ public:
+  struct Rates {
+    std::uint32_t datagrams_per_s = 0, datagram_burst = 0;
+    std::uint32_t hellos_per_s = 0, hello_burst = 0;
+    std::uint32_t takeovers_per_s = 0, takeover_burst = 0;
+    std::uint32_t code_misses_per_min = 0, code_miss_burst = 0;
+    std::size_t max_hosts = 0;
+  };
+  struct Host {
+    TokenBucket datagrams;
+    TokenBucket hellos;
+    TokenBucket takeovers;
+    TokenBucket code_misses;  // room codes that named no open room
+  };
+
+  explicit AddressLimits(const Rates& rates) : rates_(rates) {}
+  // `host`'s buckets (made full on first sight); nullptr while max_hosts are tracked.
+  Host* of(std::string_view host, std::uint64_t now_ms);
+  // Forgets the hosts whose buckets are all full again (quiet for a while).
+  void forget_quiet(std::uint64_t now_ms);
+  std::size_t tracked() const { return hosts_.size(); }
+
+ private:
+  Rates rates_;
+  std::map<std::string, Host, std::less<>> hosts_;
+};
 
 }  // namespace fts::protocol

@@ -74,9 +74,10 @@ struct ServerConfig {
     return max_sessions_total != 0 ? max_sessions_total : 4 * static_cast<std::size_t>(max_players);
   }
   std::size_t max_sessions_total = 0;  // 0: 4 * max_players (one room)
-  // Rooms (PROTOCOL.md 4.6). When set, a new player's hello is passed to the host, which
-  // picks its room (max_players is then a room's seats, checked by the host through
-  // seats_in_room); when unset, the endpoint has one room (0) of max_players seats.
+  // Rooms (PROTOCOL.md 4.6), required (the constructor throws without it): a new
+  // player's hello is passed to the host, which picks its room or refuses it. max_players
+  // is a room's seats: the host checks them through seats_in_room; a player who quit and
+  // comes back is held to them here (room_full).
   std::function<Admission(const JoinAsk&)> admit;
   // Bounds on what one session may make the server hold (PROTOCOL.md 10). A session over
   // either cap is dropped at once with error "overflow" (counted as overflow).
@@ -266,9 +267,8 @@ class ServerEndpoint {
   std::string session_identity(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
-  // While paused (the host's lobby, shop and game-over phases) nobody idles: every
-  // session's idle clock restarts when the pause ends.
-  void set_idle_paused(bool paused) { set_idle_paused(0, paused); }
+  // While a room is paused (the host's lobby, shop and game-over phases) none of its
+  // sessions idles: their idle clocks restart when the pause ends.
   void set_idle_paused(std::uint32_t room, bool paused) {
     serial_only("set_idle_paused");
     if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
@@ -398,15 +398,6 @@ class ServerEndpoint {
     bool kept = false;       // past its reconnect window, kept while its room's match runs
   };
 
-  struct AddressState {
-    TokenBucket datagrams;
-    TokenBucket hellos;
-    TokenBucket takeovers;
-    TokenBucket code_misses;  // room codes that named no open room
-  };
-
-  AddressState* address_state(std::string_view host, std::uint64_t now_ms);
-  void forget_quiet_addresses(std::uint64_t now_ms);
   void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
   void answer_fault(Session& s, const Command& c, std::uint64_t now_ms);
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
@@ -425,7 +416,6 @@ class ServerEndpoint {
   void start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
                      const SessionKeys& keys, std::uint64_t now_ms);
   void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
-  std::size_t seats_taken() const;
   std::size_t sessions_from(std::string_view host, bool spectators) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
@@ -448,7 +438,7 @@ class ServerEndpoint {
   std::map<std::uint32_t, Session> sessions_;  // by player id
   std::map<Address, std::uint32_t> by_address_;
   std::map<std::uint32_t, std::uint32_t> by_session_id_;
-  std::map<std::string, AddressState, std::less<>> addresses_;  // by host
+  AddressLimits limits_;  // the per-host limits: the one part the sessions of a host share
   std::uint64_t last_forget_ms_ = 0;
   std::set<std::uint32_t> idle_paused_rooms_;
   std::set<std::uint32_t> keeping_rooms_;  // set_keeps_departed
