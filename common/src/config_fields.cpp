@@ -2,6 +2,9 @@
 
 namespace fts::sim {
 
+static_assert(fields::names_every_member<MatchConfig>(kMatchConfigFields),
+              "kMatchConfigFields must have a row for every MatchConfig member");
+
 MatchConfig client_part(const MatchConfig& cfg) {
   MatchConfig out;
   fields::for_each(kMatchConfigFields, [&](const auto& f) {

@@ -7,6 +7,12 @@
 #include "fts/io/address.hpp"
 
 namespace fts::server {
+
+// Every member of Options has a row, but these, which the library sets from what it
+// parsed (--help, --help-markdown, the rows given).
+static_assert(fields::names_every_member<Options>(kOptionTable, &Options::help, &Options::markdown, &Options::given),
+              "a member of fts::server::Options has no row in kOptionTable");
+
 namespace {
 
 constexpr std::uint16_t kAgonesDefaultPort = 9358;  // the SDK server's REST default
