@@ -55,9 +55,9 @@ trap 'kill "$fuzz_build" "$process_tests" 2>/dev/null || true' EXIT
 # core at once, as on an idle machine, and the compile takes every cycle the tests leave.
 nice -n 10 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
 stage "unit tests (sanitized)"
-# At nice 10 too: the process tests still running (the RUN_SERIAL ones come last) measure
+# At nice 19 (as the fuzz build): the process tests still running (the RUN_SERIAL ones last) measure
 # what a player feels through a relay, and get their core at once.
-nice -n 10 ctest --test-dir build-asan -L '^fts_' -LE '^(soak|container)$' -j "$((jobs * 2))" --output-on-failure --timeout 900
+nice -n 19 ctest --test-dir build-asan -L '^fts_' -LE '^(soak|container)$' -j "$((jobs * 2))" --output-on-failure --timeout 900
 stage "process tests (waiting for them)"
 if ! wait "$process_tests"; then
   cat build-asan/process-tests.log
