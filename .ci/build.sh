@@ -11,6 +11,11 @@ jobs=${FTS_JOBS:-$(nproc)}
 # (the PCH's own macros and __TIME__ are then trusted to match; CMake rebuilds the PCH
 # whenever its headers change).
 export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
+# Depend mode: ccache keys a result by the compiler's own -MD dependency list instead of
+# running the preprocessor first, which on a cache miss (every file on a new machine)
+# cost about 10 % on top of the compile (protocol's second unity batch, sanitized: 21.5 s
+# of CPU against 19.8 s; with depend mode 19.9 s).
+export CCACHE_DEPEND=${CCACHE_DEPEND:-1}
 targets=()
 for t in ${FTS_TARGETS:-}; do targets+=(--target "$t"); done
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"

@@ -7,7 +7,7 @@ set -euo pipefail
 image=(build-essential cmake ninja-build pkg-config
        libboost-dev nlohmann-json3-dev libspdlog-dev libsodium-dev libcli11-dev
        prometheus-cpp-dev libcpp-httplib-dev libsoci-dev libsqlite3-dev libpq-dev)
-packages=("${image[@]}" ccache catch2 clang libclang-rt-14-dev tmux gnuplot-nox python3
+packages=("${image[@]}" ccache lld catch2 clang libclang-rt-14-dev tmux gnuplot-nox python3
           prometheus python3-yaml python3-nacl python3-msgpack libbenchmark-dev
           openssh-server openssh-client stress-ng postgresql)
 if [[ ${1:-} == --image ]]; then

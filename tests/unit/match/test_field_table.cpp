@@ -47,15 +47,11 @@ static_assert(!names_every_member<Probe>(kForgetsE));
 static_assert(!names_every_member<Probe>(kTwiceA));
 static_assert(names_every_member<Probe>(kForgetsE, &Probe::e));  // left out, on purpose
 
-// The match configuration's table without its last row.
-template <class Tuple, std::size_t... I>
-constexpr auto first(const Tuple& t, std::index_sequence<I...>) {
-  return std::make_tuple(std::get<I>(t)...);
-}
+// The match configuration's table itself is checked where it is defined
+// (common/src/config_fields.cpp): the check costs about 7 s of compile for 105 rows, so it
+// runs once, not in every file that could.
 constexpr auto kConfigFields = fts::sim::kMatchConfigFields;
 constexpr std::size_t kConfigRows = std::tuple_size_v<decltype(kConfigFields)>;
-static_assert(names_every_member<fts::sim::MatchConfig>(kConfigFields));
-static_assert(!names_every_member<fts::sim::MatchConfig>(first(kConfigFields, std::make_index_sequence<kConfigRows - 1>{})));
 
 }  // namespace
 
