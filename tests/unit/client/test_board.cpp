@@ -39,7 +39,7 @@ Leaderboard hostile_board() {
 }
 
 ViewState lobby_view(const Leaderboard& b) {
-  ViewState v = test::plain_view();
+  ViewState v = fts::client::test::plain_view();
   v.board = b;
   return v;
 }
@@ -59,7 +59,7 @@ bool printable(const std::string& text) {
 }  // namespace
 
 TEST_CASE("Board: the waiting screen shows the top 10 and your place, at 80x24 and 120x40", "[client][board]") {
-  const Snapshot s = test::seed_snapshot(Phase::lobby);
+  const Snapshot s = fts::client::test::seed_snapshot(Phase::lobby);
   const ViewState v = lobby_view(hostile_board());
   for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}}) {
     INFO(size.cols << "x" << size.rows);
@@ -115,7 +115,7 @@ TEST_CASE("Board: the board's lines fit the columns and keep your line when rows
 }
 
 TEST_CASE("Board: a guest, a player without a match, an empty board, no board", "[client][board]") {
-  const Snapshot s = test::seed_snapshot(Phase::lobby);
+  const Snapshot s = fts::client::test::seed_snapshot(Phase::lobby);
   ViewState guest = lobby_view(hostile_board());
   guest.board->rank = 0;
   guest.guest = true;
@@ -129,7 +129,7 @@ TEST_CASE("Board: a guest, a player without a match, an empty board, no board", 
   CHECK(text.find("(0 players)") != std::string::npos);
   CHECK(text.find("No match recorded yet.") != std::string::npos);
   // No board (a server without profiles): the waiting screen as before it.
-  ViewState none = test::plain_view();
+  ViewState none = fts::client::test::plain_view();
   const std::string before = screen_text(render(s, s, 0, {80, 24}, none));
   CHECK(before.find("Waiting for the match") != std::string::npos);
   CHECK(before.find("Best levels") == std::string::npos);
@@ -138,7 +138,7 @@ TEST_CASE("Board: a guest, a player without a match, an empty board, no board", 
 }
 
 TEST_CASE("Board: the level-end screen shows your best", "[client][board]") {
-  Snapshot s = test::seed_snapshot(Phase::shop);  // level 3 complete
+  Snapshot s = fts::client::test::seed_snapshot(Phase::shop);  // level 3 complete
   ViewState v = lobby_view(hostile_board());       // best level 3, #5,717
   for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}}) {
     INFO(size.cols << "x" << size.rows);
@@ -164,7 +164,7 @@ TEST_CASE("Board: the level-end screen shows your best", "[client][board]") {
 }
 
 TEST_CASE("Board: the game-over screen shows your place under the standings", "[client][board]") {
-  Snapshot s = test::seed_snapshot(Phase::over);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::over);
   const ViewState v = lobby_view(hostile_board());
   for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}}) {
     INFO(size.cols << "x" << size.rows);
@@ -175,7 +175,7 @@ TEST_CASE("Board: the game-over screen shows your place under the standings", "[
     CHECK(text.find("You: #5,717 of 10,000, best level 3 (1,234 coins)") != std::string::npos);
   }
   // No board: the screen as before it.
-  const std::string none = screen_text(render(s, s, 0, {80, 24}, test::plain_view()));
+  const std::string none = screen_text(render(s, s, 0, {80, 24}, fts::client::test::plain_view()));
   CHECK(none.find("You: #") == std::string::npos);
 }
 

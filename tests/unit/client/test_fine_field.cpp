@@ -21,7 +21,7 @@ using fts::protocol::Snapshot;
 namespace {
 
 BallState fine_ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner, double radius, double mass = 40) {
-  return test::make_ball(id, x, y, kind, owner, mass, radius);
+  return fts::client::test::make_ball(id, x, y, kind, owner, mass, radius);
 }
 
 ViewState fine_view() {
@@ -64,7 +64,7 @@ TEST_CASE("Fine field: two balls 1 unit apart are drawn apart at 80x24", "[clien
   const ViewState view = fine_view();
   for (const bool across : {true, false}) {
     INFO((across ? "side by side" : "one above the other"));
-    Snapshot s = test::seed_snapshot(Phase::play);
+    Snapshot s = fts::client::test::seed_snapshot(Phase::play);
     // Two enemies of radius 16 whose edges are 1 u apart (issue 37's `#50#48`).
     const BallState a = fine_ball(10, 200, 150, BallKind::enemy, 0, 16, 50);
     BallState b = fine_ball(11, across ? 233 : 200, across ? 150 : 117, BallKind::enemy, 0, 16, 48);
@@ -89,7 +89,7 @@ TEST_CASE("Fine field: two balls 1 unit apart are drawn apart at 80x24", "[clien
         if (screen.at(col, row).braille() && screen.at(col, row).dots != 0) CHECK(screen.at(col, row).style.fg == Color::red);
   }
   // The same two in ASCII run together: the reason for the dots.
-  Snapshot s = test::seed_snapshot(Phase::play);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {fine_ball(10, 200, 150, BallKind::enemy, 0, 16, 50), fine_ball(11, 233, 150, BallKind::enemy, 0, 16, 48)};
   ViewState ascii = fine_view();
   ascii.fine = false;
@@ -102,7 +102,7 @@ TEST_CASE("Fine field: a ball keeps its round shape and its mass label", "[clien
   for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}}) {
     INFO(size.cols << "x" << size.rows);
     const ViewState view = fine_view();
-    Snapshot s = test::seed_snapshot(Phase::play);
+    Snapshot s = fts::client::test::seed_snapshot(Phase::play);
     s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 24, 99)};
     const Viewport v = arena_viewport(size, view, s);
     const Screen screen = render(s, s, 0, size, view);
@@ -135,7 +135,7 @@ TEST_CASE("Fine field: a moving ball changes its drawing in steps smaller than a
     for (const bool fine : {false, true}) {
       ViewState view = fine_view();
       view.fine = fine;
-      Snapshot s = test::seed_snapshot(Phase::play);
+      Snapshot s = fts::client::test::seed_snapshot(Phase::play);
       const Viewport v = arena_viewport(size, view, s);
       std::vector<std::string> last;
       for (double dx = 0; dx <= v.units_per_col(); dx += 0.25) {
@@ -163,7 +163,7 @@ TEST_CASE("Fine field: dots only where the terminal shows them", "[client][fine]
   // Without colour the dots would not tell an enemy from a player: ASCII.
   ViewState view = fine_view();
   view.color = false;
-  Snapshot s = test::seed_snapshot(Phase::play);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 16), fine_ball(2, 100, 100, BallKind::enemy, 0, 16)};
   std::string text;
   for (const auto& l : render(s, s, 0, {80, 24}, view).lines()) text += l;
@@ -177,7 +177,7 @@ TEST_CASE("Fine field: dots only where the terminal shows them", "[client][fine]
 
 TEST_CASE("a frame rewrites only the rows that changed", "[client][fine]") {
   ViewState view = fine_view();
-  Snapshot s = test::seed_snapshot(Phase::play);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {fine_ball(1, 250, 150, BallKind::player, 1, 16)};
   std::vector<std::string> last;
   const Screen first = render(s, s, 0, {80, 24}, view);
@@ -195,7 +195,7 @@ TEST_CASE("Fine field: balls on the edges, past them and odd sizes stay on the f
   // Read beyond the dots of the frame once (the e2e run's heap overflow, under ASan).
   const ViewState view = fine_view();
   for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{60, 20}}) {
-    Snapshot s = test::seed_snapshot(Phase::play);
+    Snapshot s = fts::client::test::seed_snapshot(Phase::play);
     std::uint32_t id = 1;
     for (const double x : {-40.0, 0.0, 0.01, 250.0, 499.99, 500.0, 540.0})
       for (const double y : {-40.0, 0.0, 0.01, 150.0, 299.99, 300.0, 340.0})

@@ -104,12 +104,12 @@ BallState player_ball(std::uint32_t id, std::uint32_t owner, double x, double y)
 // Players 2 and 3 named `a` and `b` with me ("me", 1) in `phase`; in play their balls
 // are on the field (their names beside them), and when `me_out` I am out (watching 2).
 Snapshot scene(Phase phase, const std::string& a, const std::string& b, bool me_out) {
-  Snapshot s = test::seed_snapshot(phase);
+  Snapshot s = fts::client::test::seed_snapshot(phase);
   s.players[0].name = "me";
   if (me_out) s.players[0].lives = 0, s.players[0].alive = false;
   const std::pair<std::uint32_t, std::string> others[] = {{2, a}, {3, b}};
   for (const auto& [id, name] : others) {
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.id = id;
     p.name = name;
     p.ready = id == 2;

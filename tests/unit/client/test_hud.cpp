@@ -8,7 +8,7 @@ using namespace fts::client;
 using fts::protocol::Phase;
 
 TEST_CASE("HUD line in the original's words", "[client][hud]") {
-  auto snap = test::seed_snapshot(Phase::play);
+  auto snap = fts::client::test::seed_snapshot(Phase::play);
   ViewState view;
   view.my_player_id = 1;
   SECTION("without connection figures") { CHECK(hud_line(snap, view) == "Level: 3   Coins: 286   Lives: 1"); }
@@ -40,8 +40,8 @@ TEST_CASE("HUD line in the original's words", "[client][hud]") {
 }
 
 TEST_CASE("players line lists every player with coins and lives", "[client][hud]") {
-  auto snap = test::seed_snapshot(Phase::play);
-  auto bob = test::seed_player();
+  auto snap = fts::client::test::seed_snapshot(Phase::play);
+  auto bob = fts::client::test::seed_player();
   bob.id = 2;
   bob.name = "bob";
   bob.coins = 1;
@@ -53,7 +53,7 @@ TEST_CASE("players line lists every player with coins and lives", "[client][hud]
 }
 
 TEST_CASE("the rendered screen carries the HUD, the players and the help line", "[client][hud]") {
-  auto snap = test::seed_snapshot(Phase::play);
+  auto snap = fts::client::test::seed_snapshot(Phase::play);
   ViewState view;
   view.my_player_id = 1;
   view.ping_ms = 12;
@@ -70,7 +70,7 @@ TEST_CASE("the rendered screen carries the HUD, the players and the help line", 
 }
 
 TEST_CASE("events are described for the message line", "[client][hud]") {
-  auto snap = test::seed_snapshot(Phase::play);
+  auto snap = fts::client::test::seed_snapshot(Phase::play);
   using fts::protocol::Event;
   using fts::protocol::EventKind;
   CHECK(describe_event(Event{1, 1, EventKind::purchase, 1, 'm', 35}, snap, 1) == "You bought mass for 35 coins.");

@@ -16,11 +16,11 @@ using namespace fts::client;
 using fts::protocol::Phase;
 
 TEST_CASE("An out player's footer says when it plays again, in the shop and while watching", "[client][watch]") {
-  auto s = test::seed_snapshot(Phase::shop);
+  auto s = fts::client::test::seed_snapshot(Phase::shop);
   s.players[0].lives = 0;
   s.players[0].alive = false;
   s.players[0].coins = 0;
-  auto other = test::seed_player();
+  auto other = fts::client::test::seed_player();
   other.id = 2;
   other.name = "bob";
   s.players.push_back(other);
@@ -41,7 +41,7 @@ TEST_CASE("An out player's footer says when it plays again, in the shop and whil
 }
 
 TEST_CASE("A buy refused for the phase tells an out player why, not 'the shop is closed'", "[client][hud]") {
-  auto me = test::seed_player();
+  auto me = fts::client::test::seed_player();
   me.lives = 0;
   CHECK(refusal_text("phase", "", 'm', &me) == "you are out of lives: you play again when this match ends");
   me.lives = 2;
@@ -50,8 +50,8 @@ TEST_CASE("A buy refused for the phase tells an out player why, not 'the shop is
 
 TEST_CASE("An away player is marked in the legend, not shown as playing", "[client][watch]") {
   // Issue 26: away players looked live in the legend.
-  auto s = test::seed_snapshot(Phase::play);
-  auto bob = test::seed_player();
+  auto s = fts::client::test::seed_snapshot(Phase::play);
+  auto bob = fts::client::test::seed_player();
   bob.id = 2;
   bob.name = "bob";
   bob.away = true;

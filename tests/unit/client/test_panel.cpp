@@ -26,10 +26,10 @@ namespace {
 const char* const kNames[8] = {"ann", "bob", "charlotte", "dmitri", "eve", "sixteen_letters_", "gwen", "hiro"};
 
 Snapshot eight_players() {
-  Snapshot s = test::seed_snapshot(Phase::play);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.players.clear();
   for (std::uint32_t i = 0; i < 8; ++i) {
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.id = i + 1;
     p.name = kNames[i];
     p.coins = 1234 * (i + 1);
@@ -92,7 +92,7 @@ TEST_CASE("with 8 players nothing is cut at 80x24, 120x40 and 200x60", "[client]
     const Viewport& v = L.arena;
     for (const auto& b : snap.balls) {
       const std::string name = std::string(kNames[b.owner - 1]).substr(0, kNameOnFieldChars);
-      const int row = test::top_row(v, b) - 1;
+      const int row = fts::client::test::top_row(v, b) - 1;
       INFO(name << " at row " << row);
       CHECK(screen.line(row).find(name) != std::string::npos);
     }
@@ -201,7 +201,7 @@ TEST_CASE("a host announcement stays in the log while the level's own lines pour
 }
 
 TEST_CASE("refusals are said in words", "[client][hud]") {
-  const auto me = test::seed_player();  // 286 coins; mass costs 35, rockets 1,000,000
+  const auto me = fts::client::test::seed_player();  // 286 coins; mass costs 35, rockets 1,000,000
   CHECK(refusal_text("coins", "", 'r', &me) == "not enough coins: rockets costs 1,000,000, you have 286");
   CHECK(refusal_text("phase", "wrong_phase", 'm', &me) == "not now: the shop is closed");
   CHECK(refusal_text("owned", "", 'b', &me) == "you already have bank: it is bought once");

@@ -19,10 +19,10 @@ using fts::protocol::Snapshot;
 namespace {
 
 Snapshot players(int n, Phase phase) {
-  Snapshot s = test::seed_snapshot(phase);
+  Snapshot s = fts::client::test::seed_snapshot(phase);
   s.players.clear();
   for (int i = 0; i < n; ++i) {
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.id = static_cast<std::uint32_t>(i + 1);
     p.name = i == 0 ? "ann" : "player" + std::to_string(i + 1);
     s.players.push_back(p);
@@ -58,7 +58,7 @@ TEST_CASE("80x24: every footer fits whole", "[client][layout]") {
     for (const int variant : {0, 1, 2}) {  // 0: playing, mouse steering; 1: out of lives; 2: watching
       Snapshot s = players(3, phase);
       s.players[1].name = "sixteen_letters_";
-      ViewState v = test::plain_view();
+      ViewState v = fts::client::test::plain_view();
       v.mouse_steering = variant == 0;
       if (variant == 1) s.players[0].lives = 0, s.players[0].alive = false;
       if (variant == 2) v.my_player_id = 99;
@@ -78,7 +78,7 @@ TEST_CASE("80x24: the field takes the rows between the legend and the log", "[cl
   for (const int n : {1, 2, 4, 8}) {
     INFO(n << " players");
     const Snapshot s = players(n, Phase::play);
-    const FrameLayout L = frame_layout({80, 24}, test::plain_view(), s);
+    const FrameLayout L = frame_layout({80, 24}, fts::client::test::plain_view(), s);
     CHECK_FALSE(L.side);
     // Frame just under the legend, just over the log: no empty row between them.
     CHECK(L.arena.row0 - 1 == L.legend_row0 + L.legend_rows);
@@ -95,7 +95,7 @@ TEST_CASE("100x30: the side panel shows, as the docs say", "[client][layout]") {
     INFO(n << " players");
     for (const Phase phase : {Phase::lobby, Phase::play, Phase::shop}) {
       const Snapshot s = players(n, phase);
-      const FrameLayout L = frame_layout({100, 30}, test::plain_view(), s);
+      const FrameLayout L = frame_layout({100, 30}, fts::client::test::plain_view(), s);
       CHECK(L.side);
       CHECK(L.log_rows >= 10);
     }
@@ -104,7 +104,7 @@ TEST_CASE("100x30: the side panel shows, as the docs say", "[client][layout]") {
 
 TEST_CASE("the shop's log follows the chat at 120x40 and keeps rows at 80x24", "[client][layout][shop]") {
   const Snapshot s = players(3, Phase::shop);
-  ViewState v = test::plain_view();
+  ViewState v = fts::client::test::plain_view();
   v.now_ms = 100'000;
   for (int i = 0; i < 8; ++i) v.messages.push_back(LogLine{"bob: chat line " + std::to_string(i), 90'000 + 1000u * i});
   std::string text;
@@ -118,7 +118,7 @@ TEST_CASE("the shop's log follows the chat at 120x40 and keeps rows at 80x24", "
 
 TEST_CASE("a purchase's result goes after a while", "[client][shop]") {
   const Snapshot s = players(1, Phase::shop);
-  ViewState v = test::plain_view();
+  ViewState v = fts::client::test::plain_view();
   v.shop_result = "Cannot buy: not enough coins.";
   v.shop_result_ms = 50'000;
   const auto shown = [&](std::uint64_t now) {

@@ -14,7 +14,7 @@ using fts::protocol::Snapshot;
 namespace {
 
 BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner = 0, double mass = 40) {
-  return test::make_ball(id, x, y, kind, owner, mass, 11 + std::floor(mass / 8));
+  return fts::client::test::make_ball(id, x, y, kind, owner, mass, 11 + std::floor(mass / 8));
 }
 
 }  // namespace
@@ -22,7 +22,7 @@ BallState ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_
 TEST_CASE("the platform keeps its aspect ratio at several terminal sizes", "[client][render]") {
   const TerminalSize sizes[] = {{80, 24}, {120, 40}, {200, 50}, {60, 60}, {300, 30}, {60, 20}};
   for (const auto size : sizes) {
-    const Viewport v = arena_viewport(size, test::plain_view());
+    const Viewport v = arena_viewport(size, fts::client::test::plain_view());
     INFO(size.cols << "x" << size.rows << " -> " << v.cols << "x" << v.rows);
     // A cell is twice as tall as wide: 500 x 300 u wants cols / (2 rows) = 5 / 3.
     const double ratio = v.cols / (kCellAspect * v.rows);
@@ -40,11 +40,11 @@ TEST_CASE("the platform keeps its aspect ratio at several terminal sizes", "[cli
 
 TEST_CASE("balls at the platform's corners land in the corner cells", "[client][render]") {
   const TerminalSize size{120, 40};
-  const Viewport v = arena_viewport(size, test::plain_view());
+  const Viewport v = arena_viewport(size, fts::client::test::plain_view());
   Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {ball(1, 0.01, 0.01, BallKind::enemy, 0, 5), ball(2, 499.99, 0.01, BallKind::enemy, 0, 5),
              ball(3, 0.01, 299.99, BallKind::enemy, 0, 5), ball(4, 499.99, 299.99, BallKind::enemy, 0, 5)};
-  const Screen screen = render(s, s, 0, size, test::plain_view());
+  const Screen screen = render(s, s, 0, size, fts::client::test::plain_view());
   const int left = v.col0, right = v.col0 + v.cols - 1, top = v.row0, bottom = v.row0 + v.rows - 1;
   CHECK(v.col_of(0.01) == left);
   CHECK(v.col_of(499.99) == right);
@@ -57,7 +57,7 @@ TEST_CASE("balls at the platform's corners land in the corner cells", "[client][
   CHECK(screen.at(right, top).ch == '5');
   // Without balls, the frame's corners sit just outside the platform's corner cells.
   s.balls.clear();
-  const Screen empty = render(s, s, 0, size, test::plain_view());
+  const Screen empty = render(s, s, 0, size, fts::client::test::plain_view());
   CHECK(empty.at(left - 1, top - 1).ch == '+');
   CHECK(empty.at(right + 1, bottom + 1).ch == '+');
   CHECK(empty.at(left, top).ch == kPlatformChar);
@@ -67,12 +67,12 @@ TEST_CASE("balls at the platform's corners land in the corner cells", "[client][
 
 TEST_CASE("balls are drawn at their positions with their mass, yours distinct", "[client][render]") {
   const TerminalSize size{120, 40};
-  const Viewport v = arena_viewport(size, test::plain_view());
+  const Viewport v = arena_viewport(size, fts::client::test::plain_view());
   Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {ball(1, 100, 150, BallKind::player, 1, 40), ball(2, 250, 150, BallKind::enemy, 0, 36),
              ball(3, 400, 150, BallKind::player, 2, 41), ball(4, 250, 60, BallKind::rocket, 1, 5)};
   s.balls[3].radius = 3;
-  const Screen screen = render(s, s, 0, size, test::plain_view());
+  const Screen screen = render(s, s, 0, size, fts::client::test::plain_view());
   const int row = v.row_of(150);
   CHECK(screen.line(row).substr(static_cast<std::size_t>(v.col_of(100)), 2) == "40");
   CHECK(screen.line(row).substr(static_cast<std::size_t>(v.col_of(250)), 2) == "36");
@@ -99,7 +99,7 @@ TEST_CASE("colour output follows NO_COLOR", "[client][render]") {
   CHECK_FALSE(color_wanted(nullptr, "dumb"));
   Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.balls = {ball(1, 100, 150, BallKind::player, 1, 40)};
-  const Screen screen = render(s, s, 0, {80, 24}, test::plain_view());
+  const Screen screen = render(s, s, 0, {80, 24}, fts::client::test::plain_view());
   const std::string plain = to_ansi(screen, false);
   const std::string coloured = to_ansi(screen, true);
   CHECK(plain.find("\x1b[0;") == std::string::npos);
@@ -108,7 +108,7 @@ TEST_CASE("colour output follows NO_COLOR", "[client][render]") {
 
 TEST_CASE("game over and lobby overlays", "[client][render]") {
   Snapshot s = fts::client::test::seed_snapshot(Phase::over);
-  const Screen screen = render(s, s, 0, {80, 24}, test::plain_view());
+  const Screen screen = render(s, s, 0, {80, 24}, fts::client::test::plain_view());
   bool over = false;
   for (const auto& l : screen.lines()) over = over || l.find("GAME OVER at level 3") != std::string::npos;
   CHECK(over);
@@ -116,7 +116,7 @@ TEST_CASE("game over and lobby overlays", "[client][render]") {
   s.phase = Phase::lobby;
   s.players[0].ready = true;
   bool lobby = false;
-  for (const auto& l : render(s, s, 0, {80, 24}, test::plain_view()).lines()) lobby = lobby || l.find("Ready: ann (ready)") != std::string::npos;
+  for (const auto& l : render(s, s, 0, {80, 24}, fts::client::test::plain_view()).lines()) lobby = lobby || l.find("Ready: ann (ready)") != std::string::npos;
   CHECK(lobby);
 }
 
@@ -127,7 +127,7 @@ TEST_CASE("tiny and odd terminals and hostile numbers draw without harm", "[clie
   s.balls[2].radius = 1e200;
   s.balls[1].mass = std::nan("");
   s.players[0].mass = std::numeric_limits<double>::infinity();
-  ViewState odd = test::plain_view();
+  ViewState odd = fts::client::test::plain_view();
   odd.arena_width_u = std::nan("");
   odd.arena_height_u = -4;
   CHECK(arena_viewport({80, 24}, odd).cols > 10);
@@ -135,7 +135,7 @@ TEST_CASE("tiny and odd terminals and hostile numbers draw without harm", "[clie
   for (const auto size : sizes) {
     for (Phase phase : {Phase::play, Phase::shop, Phase::lobby, Phase::over}) {
       s.phase = phase;
-      const Screen screen = render(s, s, 0.5, size, test::plain_view());
+      const Screen screen = render(s, s, 0.5, size, fts::client::test::plain_view());
       CHECK(screen.cols() >= 1);
       CHECK(screen.rows() >= 1);
       CHECK_FALSE(to_ansi(screen, true).empty());

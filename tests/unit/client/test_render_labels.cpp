@@ -21,18 +21,18 @@ namespace {
 
 BallState label_ball(std::uint32_t id, double x, double y, BallKind kind, std::uint32_t owner = 0) {
   const bool enemy = kind == BallKind::enemy;
-  return test::make_ball(id, x, y, kind, owner, enemy ? 34 : 40, enemy ? 15 : 16);
+  return fts::client::test::make_ball(id, x, y, kind, owner, enemy ? 34 : 40, enemy ? 15 : 16);
 }
 
 // Six players (lower-case names: any letter on a ball or the frame is a name) and four
 // enemies: you in the middle under an enemy, bob against the top edge, cleo against the
 // left edge, dora on the bottom edge, eve and fay side by side.
 Snapshot crowded() {
-  Snapshot s = test::seed_snapshot(Phase::play);
+  Snapshot s = fts::client::test::seed_snapshot(Phase::play);
   s.players.clear();
   const char* names[] = {"ann", "bob", "cleo", "dora", "eve", "fay"};
   for (std::uint32_t i = 0; i < 6; ++i) {
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.id = i + 1;
     p.name = names[i];
     s.players.push_back(p);
@@ -58,10 +58,10 @@ TEST_CASE("names never cover a ball or the frame", "[client][render][labels]") {
   const Snapshot s = crowded();
   for (const TerminalSize size : {TerminalSize{60, 20}, TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{200, 60}}) {
     INFO(size.cols << "x" << size.rows);
-    const Screen screen = render(s, s, 0, size, test::plain_view());
-    const Viewport v = arena_viewport(size, test::plain_view(), s);
+    const Screen screen = render(s, s, 0, size, fts::client::test::plain_view());
+    const Viewport v = arena_viewport(size, fts::client::test::plain_view(), s);
     for (const auto& b : s.balls) {
-      for (const auto& [col, row] : test::disc_cells(v, b)) {
+      for (const auto& [col, row] : fts::client::test::disc_cells(v, b)) {
         INFO("ball " << b.id << " cell " << col << "," << row << ": " << screen.line(row));
         CHECK(ball_char(screen.at(col, row).ch));
       }
@@ -86,14 +86,14 @@ TEST_CASE("names never cover a ball or the frame", "[client][render][labels]") {
 TEST_CASE("a name sits next to its own ball, at the edges too", "[client][render][labels]") {
   const Snapshot s = crowded();
   for (const TerminalSize size : {TerminalSize{60, 20}, TerminalSize{80, 24}, TerminalSize{120, 40}, TerminalSize{200, 60}}) {
-    const Screen screen = render(s, s, 0, size, test::plain_view());
-    const Viewport v = arena_viewport(size, test::plain_view(), s);
+    const Screen screen = render(s, s, 0, size, fts::client::test::plain_view());
+    const Viewport v = arena_viewport(size, fts::client::test::plain_view(), s);
     for (const auto& b : s.balls) {
       if (b.kind != BallKind::player) continue;
       const std::string name = s.players[b.owner - 1].name;
       INFO(size.cols << "x" << size.rows << " " << name);
       // Some whole occurrence of the name on the platform touches one of the ball's cells.
-      const auto cells = test::disc_cells(v, b);
+      const auto cells = fts::client::test::disc_cells(v, b);
       bool beside = false;
       for (int row = v.row0; row < v.row0 + v.rows; ++row) {
         const std::string line = screen.line(row);
@@ -107,7 +107,7 @@ TEST_CASE("a name sits next to its own ball, at the edges too", "[client][render
             for (const auto& [bc, br] : cells) beside = beside || adjacent(col, row, bc, br);
         }
       }
-      CAPTURE(screen.line(test::top_row(v, b) - 1), screen.line(test::top_row(v, b)));
+      CAPTURE(screen.line(fts::client::test::top_row(v, b) - 1), screen.line(fts::client::test::top_row(v, b)));
       CHECK(beside);
     }
   }
@@ -117,12 +117,12 @@ TEST_CASE("at 60x20 your ball keeps its '@' and the HUD its room code", "[client
   Snapshot s = crowded();
   s.players[0].coins = 1'234'567;
   for (const char* name : {"charlotte", "sixteen_letters_"}) {  // a third legend row: a smaller platform
-    auto p = test::seed_player();
+    auto p = fts::client::test::seed_player();
     p.id = static_cast<std::uint32_t>(s.players.size() + 1);
     p.name = name;
     s.players.push_back(p);
   }
-  ViewState view = test::plain_view();
+  ViewState view = fts::client::test::plain_view();
   view.ping_ms = 123;
   view.loss_percent = 12.5;
   view.room = "Room KXBQT";
@@ -132,10 +132,10 @@ TEST_CASE("at 60x20 your ball keeps its '@' and the HUD its room code", "[client
   const int mid_col = v.col0 + v.cols / 2;
   s.balls[0].x = v.x_of(mid_col) + 0.45 * v.units_per_col();
   s.balls[0].y = v.y_of(v.row0 + v.rows / 2);
-  REQUIRE(test::disc_cells(v, s.balls[0]).size() == 2);
+  REQUIRE(fts::client::test::disc_cells(v, s.balls[0]).size() == 2);
   Screen screen = render(s, s, 0, size, view);
   bool marked = false;
-  for (const auto& [col, row] : test::disc_cells(v, s.balls[0])) marked = marked || screen.at(col, row).ch == kMyBallChar;
+  for (const auto& [col, row] : fts::client::test::disc_cells(v, s.balls[0])) marked = marked || screen.at(col, row).ch == kMyBallChar;
   CHECK(marked);
   CHECK(screen.line(0).find("Room KXBQT") != std::string::npos);
   CHECK(screen.line(0).find("1,234,567") != std::string::npos);  // shortened, not dropped
@@ -150,7 +150,7 @@ TEST_CASE("at 60x20 your ball keeps its '@' and the HUD its room code", "[client
   CHECK(render(s, s, 0, size, view).line(0).find("Watching KXBQT") != std::string::npos);
   for (int cols = 60; cols <= 200; ++cols) {
     INFO(cols);
-    const std::string hud = hud_fit(s, test::plain_view(), cols);
+    const std::string hud = hud_fit(s, fts::client::test::plain_view(), cols);
     CHECK(static_cast<int>(hud.size()) <= cols);
   }
 }
@@ -159,9 +159,9 @@ TEST_CASE("a tiny ball of yours is '@' and shows no mass over it", "[client][ren
   Snapshot s = crowded();
   s.balls[0].radius = 3;  // one or two cells at 80x24
   const TerminalSize size{80, 24};
-  const Viewport v = arena_viewport(size, test::plain_view(), s);
-  const Screen screen = render(s, s, 0, size, test::plain_view());
+  const Viewport v = arena_viewport(size, fts::client::test::plain_view(), s);
+  const Screen screen = render(s, s, 0, size, fts::client::test::plain_view());
   bool marked = false;
-  for (const auto& [col, row] : test::disc_cells(v, s.balls[0])) marked = marked || screen.at(col, row).ch == kMyBallChar;
+  for (const auto& [col, row] : fts::client::test::disc_cells(v, s.balls[0])) marked = marked || screen.at(col, row).ch == kMyBallChar;
   CHECK(marked);
 }

@@ -18,8 +18,8 @@ TEST_CASE("network text loses control and escape characters", "[client][sanitize
 }
 
 TEST_CASE("a name carrying escape sequences reaches the screen clean", "[client][sanitize]") {
-  auto snap = test::seed_snapshot(fts::protocol::Phase::play);
-  auto evil = test::seed_player();
+  auto snap = fts::client::test::seed_snapshot(fts::protocol::Phase::play);
+  auto evil = fts::client::test::seed_player();
   evil.id = 2;
   evil.name = "\x1b[31mEVIL\x1b[0m\x1b]2;title\x07";
   snap.players.push_back(evil);

@@ -87,6 +87,13 @@ inline bool fell(const std::vector<Event>& ev, PlayerId p) {
   return false;
 }
 
+// The defeat of `enemy` in `ev`, or null.
+inline const EnemyDefeated* defeat_of(const std::vector<Event>& ev, BallId enemy) {
+  for (const auto& e : ev)
+    if (const auto* d = std::get_if<EnemyDefeated>(&e); d && d->enemy == enemy) return d;
+  return nullptr;
+}
+
 inline Command buy(std::string item) { return {CommandKind::buy, std::move(item)}; }
 
 }  // namespace fts::test

@@ -10,12 +10,6 @@ using namespace fts::test;
 
 namespace {
 
-const EnemyDefeated* defeat_of(const std::vector<Event>& ev, BallId enemy) {
-  for (const auto& e : ev)
-    if (const auto* d = std::get_if<EnemyDefeated>(&e); d && d->enemy == enemy) return d;
-  return nullptr;
-}
-
 TickInputs leave(PlayerId p) {
   TickInputs in;
   in.leaves.push_back(p);

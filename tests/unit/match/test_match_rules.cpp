@@ -26,12 +26,6 @@ void place(MatchState& s, PlayerId p, Vec2 pos, Vec2 vel = {}) {
   b.vel = vel;
 }
 
-const EnemyDefeated* defeat_of(const std::vector<Event>& ev, BallId enemy) {
-  for (const auto& e : ev)
-    if (const auto* d = std::get_if<EnemyDefeated>(&e); d && d->enemy == enemy) return d;
-  return nullptr;
-}
-
 TickInputs input_for(PlayerId p, PlayerInput in, std::vector<Command> cmds = {}) {
   TickInputs t;
   t.players.push_back({p, in, std::move(cmds)});
