@@ -26,24 +26,28 @@ void JitterBuffer::on_snapshot(std::uint32_t tick, std::uint64_t now_ms) {
   int lost = 0;
   if (!started_ || tick + 1000 < last_tick_) {  // the first, or the server started again
     started_ = true;
-    best_offset_ms_ = offset;
     window_.clear();
   } else if (tick > last_tick_) {
     lost = std::max(0, static_cast<int>(std::lround((tick - last_tick_) / ticks_per_snapshot_)) - 1);
   } else {
     return;  // old or duplicate: says nothing new about the link
   }
-  // The least delayed arrival is the reference; it creeps up by 1 ms a second (0.1 % of
-  // the time), so that a clock running slower than the server's is followed too.
-  best_offset_ms_ = std::min(best_offset_ms_ + 0.001 * 1000.0 / tick_rate_hz_ * ticks_per_snapshot_, offset);
   last_tick_ = std::max(last_tick_, tick);
-  window_.push_back({now_ms, offset - best_offset_ms_, lost});
+  window_.push_back({now_ms, offset, lost});
   while (!window_.empty() && window_.front().at_ms + kWindowMs < now_ms) window_.pop_front();
+  // Lateness against the least delayed arrival of the window, not of the session: a
+  // server that falls behind its schedule (a loaded host skips ticks, and its tick count
+  // then runs slower than the clock) moves every later offset up for good, which against
+  // the session's best read as lateness growing without end (1.8 s after a minute through
+  // the 150 ms relay on a busy machine, 2026-12-06). Against the window's best, a
+  // schedule that slips adds at most what it slips in the window.
+  double best = window_.front().offset_ms;
+  for (const auto& a : window_) best = std::min(best, a.offset_ms);
   std::vector<double> late;
   late.reserve(window_.size());
   burst_ = 0;
   for (const auto& a : window_) {
-    late.push_back(a.late_ms);
+    late.push_back(a.offset_ms - best);
     burst_ = std::max(burst_, a.lost_before);
   }
   const auto p95 = late.begin() + static_cast<std::ptrdiff_t>((late.size() - 1) * 95 / 100);

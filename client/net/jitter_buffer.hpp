@@ -4,7 +4,7 @@
 // has not arrived yet and the balls stall (or are extrapolated); too long, and they lag.
 //
 // The delay is one snapshot interval, plus the lateness of arrivals (how much later than
-// the least delayed one a snapshot comes: its 95th percentile over the last 3 s), plus one
+// the least delayed one of the last 3 s a snapshot comes: its 95th percentile), plus one
 // more interval for each snapshot lost in a row recently (a lost snapshot leaves a gap of
 // two intervals to bridge), plus a small margin. It moves toward that target gradually (up
 // by at most 25 % of the time that passes, down by at most 5 %), so the drawn clock never
@@ -41,10 +41,9 @@ class JitterBuffer {
   double delay_ms_ = 100;                // the current delay
   std::uint64_t last_ms_ = 0;            // when delay_ms() was last asked
   bool started_ = false;
-  double best_offset_ms_ = 0;            // least delayed arrival: local ms - tick time
   struct Arrival {
     std::uint64_t at_ms;
-    double late_ms;
+    double offset_ms;  // local ms - the tick's time: larger is later
     int lost_before;
   };
   std::deque<Arrival> window_;           // the last 3 s of arrivals
