@@ -59,6 +59,7 @@ struct LinkSummary {
   std::uint64_t duration_ms = 0;
   double rtt_ms = 0, loss_percent = 0, jitter_ms = 0, delay_ms = 0;
   std::uint64_t bytes_sent = 0, bytes_received = 0, frames = 0;
+  std::uint64_t longest_gap_ms = 0;  // the longest time between two snapshots' arrivals
 };
 
 // One JSON object (the keys are the matrix's columns).

@@ -15,12 +15,16 @@ void NetTiming::on_welcome(const protocol::Welcome& w) {
   loss_ = LossMeter();
   shown_tick_ = 0;
   delay_ms_ = 0;
+  last_arrival_ms_ = 0;
   // The prediction steps the match's physics as the server configured it: everything the
   // welcome carries of its configuration (platform, tick rate, model, sub-steps, friction).
   predictor_ = OwnBallPredictor(w.match, tuning_);
 }
 
 void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms) {
+  if (last_arrival_ms_ != 0 && now_ms > last_arrival_ms_)
+    longest_gap_ms_ = std::max(longest_gap_ms_, now_ms - last_arrival_ms_);
+  last_arrival_ms_ = now_ms;
   clock_.observe(s.tick, now_ms);
   jitter_.on_snapshot(s.tick, now_ms);
   loss_.on_snapshot(s.tick, ticks_per_snapshot_);
@@ -55,7 +59,8 @@ void NetTiming::drawn(double vx, double vy, std::uint64_t now_ms) {
 std::string NetTiming::stats_json(std::uint64_t duration_ms, double rtt_ms, double loss_percent,
                                   std::uint64_t bytes_sent, std::uint64_t bytes_received) const {
   return link_stats_json(LinkSummary{predict_, predictor_.stats(), stalls_, response_, duration_ms, rtt_ms, loss_percent,
-                                     jitter_.jitter_ms(), delay_ms_, bytes_sent, bytes_received, frames_});
+                                     jitter_.jitter_ms(), delay_ms_, bytes_sent, bytes_received, frames_,
+                                     longest_gap_ms_});
 }
 
 void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own) {

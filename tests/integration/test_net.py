@@ -152,13 +152,14 @@ def client_run(relay, work, name, extra):
         # each for the answer through the relay (about 0.3 s without prediction). On a loaded
         # machine tmux delivers keys late and some answers are not measurable (a ball at a
         # wall, a fall), so the keys go on until the stats file (written every second) counts
-        # six answers, or for 40 s (60 s from snapshots); the checks want four of each run.
-        # Without prediction the next key waits 2 s: a new key starts a new measurement, and
-        # the remote-ball delay the client draws at grew to 1.5 s in 45 s through this relay
-        # (its jitter estimate: see issue 37's notes), so at 0.8 s most answers were cut off.
+        # six answers, or for 40 s; the checks want four of each run.
+        # A new key starts a new measurement, so an answer slower than the pause is cut off:
+        # without prediction it is the round trip and the remote balls' delay, about 0.4 s
+        # here. (That delay once grew to 1.8 s in a minute on a busy machine: the jitter
+        # estimate took a server skipping ticks for a late link; client/net/jitter_buffer.cpp.)
         keys = ["Right", "Up", "Left", "Down"]
-        pause = 2.0 if "--no-predict" in extra else 0.8
-        deadline = time.monotonic() + (60 if "--no-predict" in extra else 40)
+        pause = 0.8
+        deadline = time.monotonic() + 40
         sent = 0
         while time.monotonic() < deadline and (sent < 4 or read_stats(stats).get("responses", 0) < 6):
             for _ in range(3):
@@ -191,6 +192,10 @@ def test_client_150ms():
     print(f"--no-predict: {old}")
     check(new["predict"] and not old["predict"], "the runs did not predict as asked")
     check(new["responses"] >= 4 and old["responses"] >= 4, f"too few key responses: {new['responses']}, {old['responses']}")
+    # The link's jitter is 20 ms; a loaded machine adds what its server's schedule slips
+    # in the jitter buffer's 3 s window (client/net/jitter_buffer.cpp), never seconds.
+    check(new["jitter_ms"] < 500 and old["jitter_ms"] < 500,
+          f"the jitter estimate ran away: {new['jitter_ms']} ms, {old['jitter_ms']} ms")
     check(new["response_p50_ms"] <= 2 * 1000 / 60 + 5,
           f"predicting, the own ball answered a key in {new['response_p50_ms']} ms (p50), not within two frames")
     # From snapshots the answer needs at least the 75 ms way up and a snapshot back.
@@ -198,7 +203,14 @@ def test_client_150ms():
           f"without prediction the answer took only {old['response_p50_ms']} ms: is the relay delaying?")
     check(old["response_p50_ms"] - new["response_p50_ms"] >= 40, "prediction answered no sooner than snapshots")
     check(new["free_correction_p99_radii"] <= 0.5, f"corrections p99 {new['free_correction_p99_radii']} radii")
-    check(new["stalls_over_100ms"] == 0, f"{new['stalls_over_100ms']} remote-ball stalls over 100 ms")
+    # A stall is the client's to answer for while snapshots keep coming as the relay sends
+    # them: at most 190 ms apart (95 ms one way, two lost in a row). A longer gap is the
+    # server or the machine stopping (a loaded machine: the suite beside a CPU hog), and
+    # no delay sized from the link bridges it.
+    if new["longest_snapshot_gap_ms"] <= 200:
+        check(new["stalls_over_100ms"] == 0, f"{new['stalls_over_100ms']} remote-ball stalls over 100 ms")
+    else:
+        print(f"stalls not judged: snapshots stopped for {new['longest_snapshot_gap_ms']} ms (a busy machine)")
     check(new["rtt_ms"] >= 120, f"the round trip {new['rtt_ms']} ms is not the relay's")
 
 

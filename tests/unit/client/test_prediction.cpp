@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "fts/protocol/snapshot_delta.hpp"
 #include "fts/room/snapshot_build.hpp"
@@ -12,6 +13,7 @@
 #include "fts/sim/match_view.hpp"
 #include "net/jitter_buffer.hpp"
 #include "net/link_stats.hpp"
+#include "net/net_timing.hpp"
 #include "predict/prediction.hpp"
 #include "prediction_match.hpp"
 
@@ -122,6 +124,53 @@ TEST_CASE("Jitter buffer: the delay follows the link's jitter and losses, slowly
   fixed.set_fixed(100);
   fixed.on_snapshot(5, 100);
   CHECK(fixed.delay_ms(5000) == 100);
+}
+
+TEST_CASE("Jitter buffer: a server behind its schedule is not a late link", "[client][jitter]") {
+  // A loaded host skips ticks: its tick count runs slower than the clock, here 3 % (a
+  // snapshot of 5 ticks every 51.5 ms), for a minute, with no lateness on the link. Every
+  // offset is later than the one before; against the session's first (least delayed)
+  // arrival that read as 1.8 s of jitter after the minute. Against the last 3 s's least
+  // delayed, it is what the schedule slips in 3 s: under 100 ms.
+  JitterBuffer j;
+  j.set_rates(100, 5);
+  std::uint32_t tick = 1000;
+  double now = 10000;
+  for (int i = 0; i < 60 * 1000 / 51; ++i) {
+    tick += 5;
+    now += 51.5;
+    j.on_snapshot(tick, static_cast<std::uint64_t>(now));
+  }
+  CHECK(j.jitter_ms() < 100);
+  CHECK(j.jitter_ms() > 50);  // the slip it does see: 3 % of the window
+  CHECK(j.burst() == 0);
+  // Real lateness on the same slow server still shows: 0..60 ms.
+  for (int i = 0; i < 200; ++i) {
+    tick += 5;
+    now += 51.5;
+    j.on_snapshot(tick, static_cast<std::uint64_t>(now) + static_cast<std::uint64_t>((i * 7919) % 61));
+  }
+  CHECK(j.jitter_ms() > 100);
+  CHECK(j.jitter_ms() < 170);
+}
+
+TEST_CASE("Link stats: the longest gap between two snapshots' arrivals", "[client][jitter]") {
+  // What tells a stall of the link from a stop of the server or the machine (test_net).
+  NetTiming t(false);
+  protocol::Snapshot s;
+  const auto gap = [&] {
+    return nlohmann::json::parse(t.stats_json(1000, 0, 0, 0, 0))["longest_snapshot_gap_ms"].get<std::uint64_t>();
+  };
+  s.tick = 5;
+  t.on_snapshot(s, 1, 1000);
+  CHECK(gap() == 0);
+  s.tick = 10;
+  t.on_snapshot(s, 1, 1050);
+  s.tick = 15;
+  t.on_snapshot(s, 1, 1400);
+  s.tick = 20;
+  t.on_snapshot(s, 1, 1450);
+  CHECK(gap() == 350);
 }
 
 TEST_CASE("Stall meter: frames drawn past the newest snapshot are stalls; long ones counted", "[client][jitter]") {
