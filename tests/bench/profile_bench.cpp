@@ -10,7 +10,7 @@
 //              and the writer's results/s through its whole path (spool and database)
 // PostgreSQL is a throwaway PostgreSQL 15 (tests/support/pg_temp.sh, fsync on, as a host
 // runs it); without the postgresql package only SQLite is measured.
-//   fts-profile-bench [--profiles N (1000000)] [--results N (100000)] [--batch N (500)]
+//   fts-profile-bench [--profiles N (1000000)] [--results N (100000)] [--batch N (the writer's)]
 //                     [--only sqlite|postgresql|tick] [--tick-s S (20)] [--phase-s S (2)]
 #include <algorithm>
 #include <atomic>
@@ -221,7 +221,7 @@ void tick_beside_writer(double tick_s, double phase_s, std::size_t batch) {
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each figure as it is measured, also into a file
   std::uint64_t profiles = 1000000, results = 100000;
-  std::size_t batch = 500;
+  std::size_t batch = WriterConfig{}.batch;  // as the server's writer batches
   double tick_s = 20, phase_s = 2;
   std::string only;
   for (int i = 1; i + 1 < argc; i += 2) {
