@@ -195,7 +195,8 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=2, dama
             check(not re.search(r"\bconnect player=\d+ name=", srv.text().replace("reconnect", "")),
                   "a bot came back as a new player")
         # Some play on the resumed server, then each bot says goodbye.
-        wait_for(lambda: all(r["tick"] >= upto[str(r["id"])] + play_after_s * TICK_HZ for r in rooms_now(sock)),
+        resumed_at = upto  # the last resume's tick per room
+        wait_for(lambda: all(r["tick"] >= resumed_at[str(r["id"])] + play_after_s * TICK_HZ for r in rooms_now(sock)),
                  60, f"{play_after_s} s of play in every resumed room")
         for proc, _ in groups:
             proc.send_signal(signal.SIGINT)
@@ -216,8 +217,8 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=2, dama
                 check(first_ids.get(pid) == b["name"], f"{b['name']} ended as player {pid}, started as another")
                 rid = next(r for r, c in codes.items() if c == b["room"])
                 seen = max((int(t) for t in b["snapshot_digests"]), default=-1)
-                check(seen > upto[rid], f"{b['name']}'s newest snapshot is of tick {seen}: nothing from the resumed "
-                                        f"match (from tick {upto[rid]})")
+                check(seen > resumed_at[rid], f"{b['name']}'s newest snapshot is of tick {seen}: nothing from the "
+                                              f"resumed match (from tick {resumed_at[rid]})")
                 expected = earned.get(pid, 0) - spent.get(pid, 0)
                 check(b["coins"] == expected, f"{b['name']} (player {pid}): {b['coins']} coins, the ledger says "
                                               f"{expected} (earned {earned.get(pid, 0)}, spent {spent.get(pid, 0)})")
