@@ -20,11 +20,14 @@ GROUPS = ["ann", "bob", "cat", "dan"][:ROOMS]
 BOT_LIMIT_S = 600  # the bots' own limit, a safety net: the test stops them (SIGINT)
 
 
-def ledger(text, upto=None):
+def ledger(text, upto=None, seen=None):
     """Per player: coins earned (defeats, interest) and spent, from a server log; only
     events of ticks <= upto[room] when given (the crashed server's events past a room's
     resumed tick never happened for the resumed match), and only until the player's bot
-    said goodbye (its report is written then; its last push may still earn later)."""
+    said goodbye (its report is written then; its last push may still earn later) and,
+    with `seen`, of ticks <= seen[player]: the newest snapshot its bot had when it
+    stopped (a defeat or purchase the server made after it is not in the bot's coins; an
+    event is logged with the tick of the state it is in, the tick of that snapshot)."""
     earned, spent = {}, {}
     gone = set()
     room_tick = r" room=(?P<room>\d+) tick=(?P<tick>\d+)"
@@ -38,7 +41,8 @@ def ledger(text, upto=None):
             gone.add(bye.group(1))
         for book, pattern in patterns:
             m = pattern.search(line)
-            if m and m["p"] not in gone and (upto is None or int(m["tick"]) <= upto.get(m["room"], -1)):
+            if m and m["p"] not in gone and (upto is None or int(m["tick"]) <= upto.get(m["room"], -1)) and \
+                    (seen is None or int(m["tick"]) <= seen.get(m["p"], -1)):
                 book[m["p"]] = book.get(m["p"], 0) + int(m["c"])
     return earned, spent
 
@@ -116,7 +120,7 @@ def damage_journals(journal, code):
         f.write('{"fts_journal":1\n')
 
 
-def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=2, damage=False):
+def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=5, damage=False):
     """The bots play until told to stop (SIGINT: each says goodbye and writes its report),
     play_after_s seconds of game time after the last resume: a bot that stopped by a
     clock of its own could stop while the server was down, or before the resumed match's
@@ -204,8 +208,11 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=2, dama
         check(srv.stop() == 0, "the resumed server did not exit 0 on SIGINT")
         runs.append((srv.text(), None))
         earned, spent = {}, {}
+        # The newest tick each bot saw: what its coins say.
+        seen = {str(b["player_id"]): max((int(t) for t in b["snapshot_digests"]), default=-1)
+                for _, report, _ in reports for b in report}
         for text, upto in runs:
-            e, s = ledger(text, upto)
+            e, s = ledger(text, upto, seen if upto is None else None)
             add(earned, e)
             add(spent, s)
         for rc, report, err in reports:
@@ -218,7 +225,8 @@ def play_and_crash(kills, seed, checkpoint_s, replay_check, play_after_s=2, dama
                 rid = next(r for r, c in codes.items() if c == b["room"])
                 seen = max((int(t) for t in b["snapshot_digests"]), default=-1)
                 check(seen > resumed_at[rid], f"{b['name']}'s newest snapshot is of tick {seen}: nothing from the "
-                                              f"resumed match (from tick {resumed_at[rid]})")
+                                              f"resumed match (from tick {resumed_at[rid]}; state {b['state']}, "
+                                              f"{b['snapshots_received']} snapshots)")
                 expected = earned.get(pid, 0) - spent.get(pid, 0)
                 check(b["coins"] == expected, f"{b['name']} (player {pid}): {b['coins']} coins, the ledger says "
                                               f"{expected} (earned {earned.get(pid, 0)}, spent {spent.get(pid, 0)})")
