@@ -67,10 +67,11 @@ def predicting_hunter(seconds, *server_args):
 # A host of issue 36: friction 0.95 per frame instead of 0.991 (docker/server-config.example.json
 # invites such a change). Before the welcome carried the physics, a client predicted the
 # default friction: its free corrections were p50 0.096, p99 0.41 radii (default host:
-# 0.0027 and 0.084).
+# 0.0027 and 0.084). The median is the check: a client on the wrong physics is off in
+# every correction. The p99 also holds inputs that reached the server late on a busy
+# machine (0.27 radii with the physics right, beside a CPU hog, 2026-12-06): reported.
 TUNED = {"friction_per_frame": 0.95}
 FREE_P50_MAX_RADII = 0.03
-FREE_P99_MAX_RADII = 0.2
 
 
 def test_bot_150ms_tuned():
@@ -84,11 +85,10 @@ def test_bot_150ms_tuned():
         shutil.rmtree(work, ignore_errors=True)
     print(f"tuned host {TUNED}: prediction {pred}")
     check(pred["free_corrections"] >= 20, f"too few corrections to measure: {pred}")
-    check(pred["free_correction_p50_radii"] <= FREE_P50_MAX_RADII and
-          pred["free_correction_p99_radii"] <= FREE_P99_MAX_RADII,
-          f"a tuned host's free corrections p50 {pred['free_correction_p50_radii']}, p99 "
-          f"{pred['free_correction_p99_radii']} radii: over {FREE_P50_MAX_RADII} / {FREE_P99_MAX_RADII} "
-          "(a default host's run meets these): does the client predict with the host's physics?")
+    check(pred["free_correction_p50_radii"] <= FREE_P50_MAX_RADII,
+          f"a tuned host's free corrections p50 {pred['free_correction_p50_radii']} radii (p99 "
+          f"{pred['free_correction_p99_radii']}): over {FREE_P50_MAX_RADII} (a default host's run "
+          "meets it): does the client predict with the host's physics?")
 
 
 def measure_default():
