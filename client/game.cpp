@@ -16,6 +16,7 @@
 #include <string>
 
 #include "fts/protocol/connection.hpp"
+#include "net/board_request.hpp"
 #include "net/clock.hpp"
 #include "net/interpolate.hpp"
 #include "net/link_meters.hpp"
@@ -308,7 +309,7 @@ class Game {
              (w.spectator ? "." : ": friends join with --join " + sanitize(w.room, 8)));
         rooms_rid_ = endpoint.send_command(proto::CommandOp::rooms, 0, now);
       }
-      top_rid_ = 0;  // a new session: its rids start again
+      board_.forget();  // a new session: its rids start again
       ask_board(now);
       std::string why;
       if (!store_.save(w.token, why)) note("Cannot keep the session for a restart: " + sanitize(why, 100));
@@ -325,27 +326,18 @@ class Game {
       buffer_.push(std::move(s));
     }
     for (auto& b : endpoint.take_boards()) {
-      if (b.cmd != top_rid_ || top_rid_ == 0) continue;  // an older request's
+      if (!board_.answered_by(b)) continue;
       view_.board = std::move(b);
       view_.board_note.clear();
-      top_rid_ = 0;
     }
-    // A board answered `ok` but lost on the way (it is not resent): asked again.
-    if (top_rid_ != 0 && top_ok_ms_ != 0 && now - top_ok_ms_ > kBoardWaitMs) {
-      top_rid_ = 0;
-      if (top_tries_ < kBoardTries) ask_board(now, top_tries_ + 1);
-    }
+    board_.retry_if_lost(endpoint, now);
     for (const auto& r : endpoint.take_results()) {
-      if (r.command_rid == top_rid_ && top_rid_ != 0) {
-        if (r.ok) {
-          top_ok_ms_ = now;
-        } else {
-          top_rid_ = 0;
-          // A server without profiles has no board: the waiting screen stays as it was.
+      if (board_.take_result(r, now)) {
+        // A server without profiles has no board: the waiting screen stays as it was.
+        if (!r.ok)
           view_.board_note = r.code == proto::to_string(proto::ResultCode::no_profiles)
                                  ? std::string()
                                  : "Leaderboard: " + refusal_text(r.code, r.message, 0, nullptr) + ".";
-        }
         continue;
       }
       if (r.command_rid == rooms_rid_ && rooms_rid_ != 0) {
@@ -408,13 +400,8 @@ class Game {
     view_.loss_percent = net_.loss_percent();
   }
 
-  // Asks for the leaderboard (PROTOCOL.md 4.7c), unless a request is on its way.
-  void ask_board(std::uint64_t now, int tries = 0) {
-    if (top_rid_ != 0 || conn_.state() != proto::ClientState::connected) return;
-    top_rid_ = conn_.endpoint().send_command(proto::CommandOp::top, 0, now);
-    top_ok_ms_ = 0;
-    top_tries_ = tries;
-  }
+  // Asks for the leaderboard, unless a request is on its way (net/board_request.hpp).
+  void ask_board(std::uint64_t now) { board_.ask(conn_.endpoint(), now); }
 
   void note(std::string line) { push_log(LogLine{std::move(line), now_ms()}); }
 
@@ -469,11 +456,7 @@ class Game {
   TerminalSize last_size_{80, 24};
   static constexpr std::size_t kChatMaxChars = 120, kMaxNames = 256;
   std::uint32_t rooms_rid_ = 0;  // the room list asked for at the welcome
-  std::uint32_t top_rid_ = 0;      // the leaderboard asked for and not come yet
-  std::uint64_t top_ok_ms_ = 0;    // when its result said ok (the board follows)
-  int top_tries_ = 0;
-  static constexpr std::uint64_t kBoardWaitMs = 1500;
-  static constexpr int kBoardTries = 3;
+  BoardRequest board_;             // the leaderboard asked for and not come yet
   std::uint64_t last_rx_ms_ = 0, back_until_ms_ = 0;  // back_until_ms_: "welcome back" shown until
   std::uint64_t connect_ms_ = 0;  // when the current connection attempt began
   bool idle_ = false;             // kicked as idle: waiting for a key to come back
