@@ -16,8 +16,14 @@ using protocol::Snapshot;
 // (balls new in b stay where b has them); phase, level, players and events come from b.
 Snapshot interpolate(const Snapshot& a, const Snapshot& b, double alpha);
 
-// Estimates the server's tick at a local time from snapshot arrivals: follows the
-// earliest-arriving (least delayed) snapshots, and jumps when far off (a server restart).
+// Estimates the server's tick at a local time from snapshot arrivals. It reads the
+// least delayed arrival of the last 3 s (the one that came soonest after its tick) as
+// "on time": it moves up to a less delayed arrival at once, and down, when that one leaves
+// the window, by at most 5 % of the time passing, so that it follows a server that runs
+// slow (a loaded host skips ticks) without running backwards. It jumps when far off (a
+// server restart). The jitter buffer measures lateness against this same clock (issue 37:
+// a clock that followed a slow server at only 1 % ran ahead of the snapshots, which the
+// buffer's delay, measured against its own estimate, did not cover: stalls at 150 ms).
 class ServerClock {
  public:
   explicit ServerClock(double tick_rate_hz = 100) : tick_rate_hz_(tick_rate_hz) {}
@@ -26,13 +32,18 @@ class ServerClock {
   // Estimated server tick now (fractional); 0 before the first observation.
   double tick_at(std::uint64_t now_ms) const;
   bool valid() const { return valid_; }
-  void reset() { valid_ = false; }
+  void reset() { valid_ = false; window_.clear(); }
 
  private:
   double tick_rate_hz_;
   bool valid_ = false;
   double offset_ = 0;  // server tick - local ms * rate / 1000
   std::uint64_t last_ms_ = 0;
+  struct Sample {
+    std::uint64_t at_ms;
+    double offset;  // this arrival's: larger is less delayed
+  };
+  std::deque<Sample> window_;  // the last 3 s of arrivals
 };
 
 // The two snapshots to draw and how far between them.

@@ -18,11 +18,11 @@ constexpr int kMaxBurst = 3;       // intervals allowed for losses in a row
 void JitterBuffer::set_rates(double tick_rate_hz, double ticks_per_snapshot) {
   tick_rate_hz_ = tick_rate_hz > 0 ? tick_rate_hz : 100;
   ticks_per_snapshot_ = ticks_per_snapshot > 0 ? ticks_per_snapshot : 5;
+  clock_ = ServerClock(tick_rate_hz_);
 }
 
 void JitterBuffer::on_snapshot(std::uint32_t tick, std::uint64_t now_ms) {
-  const double tick_ms = static_cast<double>(tick) * 1000.0 / tick_rate_hz_;
-  const double offset = static_cast<double>(now_ms) - tick_ms;  // larger: later
+  clock_.observe(tick, now_ms);
   int lost = 0;
   if (!started_ || tick + 1000 < last_tick_) {  // the first, or the server started again
     started_ = true;
@@ -33,21 +33,25 @@ void JitterBuffer::on_snapshot(std::uint32_t tick, std::uint64_t now_ms) {
     return;  // old or duplicate: says nothing new about the link
   }
   last_tick_ = std::max(last_tick_, tick);
-  window_.push_back({now_ms, offset, lost});
+  window_.push_back({now_ms, tick, clock_.tick_at(now_ms), lost});
   while (!window_.empty() && window_.front().at_ms + kWindowMs < now_ms) window_.pop_front();
-  // Lateness against the least delayed arrival of the window, not of the session: a
+  // Lateness against the clock the balls are drawn behind: how far behind it each
+  // snapshot of the window came, the later of the clock as it read then and as it reads
+  // now. The clock follows the window's least delayed arrival, not the session's: a
   // server that falls behind its schedule (a loaded host skips ticks, and its tick count
-  // then runs slower than the clock) moves every later offset up for good, which against
-  // the session's best read as lateness growing without end (1.8 s after a minute through
-  // the 150 ms relay on a busy machine, 2026-12-06). Against the window's best, a
-  // schedule that slips adds at most what it slips in the window.
-  double best = window_.front().offset_ms;
-  for (const auto& a : window_) best = std::min(best, a.offset_ms);
+  // then runs slower than the clock) moves every later arrival back for good, which
+  // against the session's best read as lateness growing without end (1.8 s after a minute
+  // through the 150 ms relay on a busy machine, 2026-12-06). Against the clock as it read
+  // at each arrival, such a server's lateness is what it slips in 3 s, for every arrival
+  // alike (against the clock of now, the older ones would look on time and the 95th
+  // percentile would miss the newest: stalls); against the clock of now, a clock that
+  // moved up to a less delayed arrival counts at once for every arrival.
   std::vector<double> late;
   late.reserve(window_.size());
   burst_ = 0;
   for (const auto& a : window_) {
-    late.push_back(a.offset_ms - best);
+    const double expected = std::max(a.clock_then, clock_.tick_at(a.at_ms));
+    late.push_back(std::max(0.0, (expected - a.tick) * 1000.0 / tick_rate_hz_));
     burst_ = std::max(burst_, a.lost_before);
   }
   const auto p95 = late.begin() + static_cast<std::ptrdiff_t>((late.size() - 1) * 95 / 100);

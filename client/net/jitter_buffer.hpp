@@ -3,8 +3,10 @@
 // two snapshots around that time; if the delay is too short for the link, the newer one
 // has not arrived yet and the balls stall (or are extrapolated); too long, and they lag.
 //
-// The delay is one snapshot interval, plus the lateness of arrivals (how much later than
-// the least delayed one of the last 3 s a snapshot comes: its 95th percentile), plus one
+// The delay is one snapshot interval, plus the lateness of arrivals (how far behind the
+// server clock a snapshot of the last 3 s came: its 95th percentile; the buffer keeps that
+// clock, so what the remote balls are drawn behind is what their delay was measured
+// against), plus one
 // more interval for each snapshot lost in a row recently (a lost snapshot leaves a gap of
 // two intervals to bridge), plus a small margin. It moves toward that target gradually (up
 // by at most 25 % of the time that passes, down by at most 5 %), so the drawn clock never
@@ -15,6 +17,8 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+
+#include "net/interpolate.hpp"
 
 namespace fts::client {
 
@@ -27,8 +31,10 @@ class JitterBuffer {
   void set_fixed(double ms) { fixed_ms_ = ms; delay_ms_ = ms; }
   bool fixed() const { return fixed_ms_.has_value(); }
 
-  // A snapshot of `tick` arrived at now_ms.
+  // A snapshot of `tick` arrived at now_ms (the clock observes it too).
   void on_snapshot(std::uint32_t tick, std::uint64_t now_ms);
+  // The server clock the lateness is measured against: draw `delay_ms()` behind it.
+  const ServerClock& clock() const { return clock_; }
   // The delay to draw with at now_ms (slewed toward target()).
   double delay_ms(std::uint64_t now_ms);
   double target_ms() const;
@@ -37,13 +43,15 @@ class JitterBuffer {
 
  private:
   double tick_rate_hz_ = 100, ticks_per_snapshot_ = 5;
+  ServerClock clock_;
   std::optional<double> fixed_ms_;
   double delay_ms_ = 100;                // the current delay
   std::uint64_t last_ms_ = 0;            // when delay_ms() was last asked
   bool started_ = false;
   struct Arrival {
     std::uint64_t at_ms;
-    double offset_ms;  // local ms - the tick's time: larger is later
+    std::uint32_t tick;
+    double clock_then;  // the clock's tick at the arrival, as it read then
     int lost_before;
   };
   std::deque<Arrival> window_;           // the last 3 s of arrivals

@@ -8,7 +8,6 @@ namespace fts::client {
 void NetTiming::on_welcome(const protocol::Welcome& w) {
   tick_rate_hz_ = w.tick_rate_hz();
   ticks_per_snapshot_ = w.snapshot_rate_hz > 0 ? tick_rate_hz_ / w.snapshot_rate_hz : 5;
-  clock_ = ServerClock(tick_rate_hz_);
   jitter_ = JitterBuffer();
   jitter_.set_rates(tick_rate_hz_, ticks_per_snapshot_);
   lead_ = LeadClock();
@@ -25,14 +24,13 @@ void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::
   if (last_arrival_ms_ != 0 && now_ms > last_arrival_ms_)
     longest_gap_ms_ = std::max(longest_gap_ms_, now_ms - last_arrival_ms_);
   last_arrival_ms_ = now_ms;
-  clock_.observe(s.tick, now_ms);
   jitter_.on_snapshot(s.tick, now_ms);
   loss_.on_snapshot(s.tick, ticks_per_snapshot_);
   if (predict_) predictor_.on_snapshot(s, me, shown_tick_, now_ms);
 }
 
 double NetTiming::own_tick(std::uint64_t now_ms, double rtt_ms) {
-  shown_tick_ = lead_.predicted(clock_.tick_at(now_ms), rtt_ms, jitter_.jitter_ms(), tick_rate_hz_, now_ms);
+  shown_tick_ = lead_.predicted(jitter_.clock().tick_at(now_ms), rtt_ms, jitter_.jitter_ms(), tick_rate_hz_, now_ms);
   return shown_tick_;
 }
 
@@ -42,7 +40,7 @@ void NetTiming::sent(const protocol::InputFrame& f) {
 
 double NetTiming::remote_tick(std::uint64_t now_ms, std::optional<int> fixed_ms) {
   delay_ms_ = fixed_ms ? *fixed_ms : jitter_.delay_ms(now_ms);
-  return clock_.tick_at(now_ms) - delay_ms_ * tick_rate_hz_ / 1000.0;
+  return jitter_.clock().tick_at(now_ms) - delay_ms_ * tick_rate_hz_ / 1000.0;
 }
 
 void NetTiming::frame_drawn(bool stalled, std::uint64_t now_ms) {

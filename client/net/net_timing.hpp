@@ -35,10 +35,10 @@ class NetTiming {
   // A complete snapshot arrived; `me`: our player id.
   void on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::uint64_t now_ms);
 
-  bool predicting() const { return predict_ && clock_.valid(); }
+  bool predicting() const { return predict_ && jitter_.clock().valid(); }
   double tick_rate_hz() const { return tick_rate_hz_; }
   // The server's tick as seen now (0 before the first snapshot).
-  double server_tick(std::uint64_t now_ms) const { return clock_.tick_at(now_ms); }
+  double server_tick(std::uint64_t now_ms) const { return jitter_.clock().tick_at(now_ms); }
   // Predicting: the tick the own ball is drawn at now (remembered for the next snapshot's
   // correction), and the tick a frame sent now names.
   double own_tick(std::uint64_t now_ms, double rtt_ms);
@@ -74,8 +74,7 @@ class NetTiming {
   bool predict_;
   PredictionTuning tuning_;
   double tick_rate_hz_ = 100;
-  ServerClock clock_;
-  JitterBuffer jitter_;
+  JitterBuffer jitter_;  // and the server clock it measures lateness against
   LeadClock lead_;
   OwnBallPredictor predictor_;
   LossMeter loss_;
