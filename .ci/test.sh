@@ -24,13 +24,16 @@ stage() { echo "== $1 (at $((SECONDS - start)) s)"; }
 stage "optimized build"
 plain_tests="fts_physics_tests fts_extreme_tests fts_match_tests"
 FTS_TARGETS="$plain_tests" bash .ci/build.sh build -DFTS_WERROR=ON
-ctest --test-dir build -L "^(${plain_tests// /|})\$" -LE soak -j "$jobs" --output-on-failure --timeout 600
+# Each test area runs whole, in one process (label unit_area; every case is also a CTest
+# entry of its own, labelled by its area, for running one).
+ctest --test-dir build -L '^unit_area$' -R "^(${plain_tests// /|})\$" -j "$jobs" --output-on-failure --timeout 600
 
 # The sanitized build in two steps. The programs first (fts_programs: fts-server,
 # fts-client, fts-bot, fts-sim); then the process tests (labels integration, e2e, hosting,
 # layout, bench: real processes that mostly wait on game time and sockets, about one core
 # between them) start in the background while the test areas and the benchmarks compile,
-# and the unit areas (labels fts_<area>_tests) run once they are built.
+# and the unit areas (label unit_area: each area's cases in one process) and the fuzz
+# targets' seeds (label fts_fuzz_replay) run once they are built.
 stage "sanitized build: the programs"
 export FTS_TARGETS=fts_programs
 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
@@ -43,7 +46,7 @@ stage "process tests (in the background) and the rest of the sanitized build"
 # the build does. The few that need the machine to themselves say RUN_SERIAL
 # (tests/CMakeLists.txt). A test area not built yet shows as <area>_NOT_BUILT (Catch2's
 # placeholder): excluded here, run below.
-ctest --test-dir build-asan -LE '^(soak|container|fuzz|fts_.*)$' -E '_NOT_BUILT' -j "$jobs" \
+ctest --test-dir build-asan -LE '^(soak|container|fuzz|unit_area|fts_.*)$' -E '_NOT_BUILT' -j "$jobs" \
   --output-on-failure --timeout 900 >build-asan/process-tests.log 2>&1 &
 process_tests=$!
 trap 'kill "$process_tests" 2>/dev/null || true' EXIT
@@ -53,7 +56,7 @@ nice -n 10 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
 stage "unit tests (sanitized)"
 # At nice 19: the process tests still running (the RUN_SERIAL ones last) measure
 # what a player feels through a relay, and get their core at once.
-nice -n 19 ctest --test-dir build-asan -L '^fts_' -LE '^(soak|container|fuzz)$' -j "$((jobs * 2))" --output-on-failure --timeout 900
+nice -n 19 ctest --test-dir build-asan -L '^(unit_area|fts_fuzz_replay)$' -j "$((jobs * 2))" --output-on-failure --timeout 900
 stage "process tests (waiting for them)"
 if ! wait "$process_tests"; then
   cat build-asan/process-tests.log

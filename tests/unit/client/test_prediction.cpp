@@ -49,7 +49,7 @@ TEST_CASE("Prediction: from a snapshot and the inputs at their ticks, the own ba
   CHECK(p.stats().corrections + p.stats().snaps == 0);
 }
 
-TEST_CASE("Reconciliation: a snapshot that disagrees is a correction, blended out; a large one snaps",
+TEST_CASE("Reconciliation: a snapshot that disagrees is a correction, blended out - a large one snaps",
           "[client][predict]") {
   auto s = playing_alone();
   OwnBallPredictor p;
@@ -224,7 +224,7 @@ TEST_CASE("Link stats: the longest gap between two snapshots' arrivals", "[clien
   CHECK(gap() == 350);
 }
 
-TEST_CASE("Stall meter: frames drawn past the newest snapshot are stalls; long ones counted", "[client][jitter]") {
+TEST_CASE("Stall meter: frames drawn past the newest snapshot are stalls - long ones counted", "[client][jitter]") {
   StallMeter m;
   std::uint64_t now = 0;
   for (int i = 0; i < 10; ++i) m.frame(false, now += 16);

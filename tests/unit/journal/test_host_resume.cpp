@@ -165,7 +165,7 @@ TEST_CASE("Host resume: every room comes back under its code, each player by tok
   fs::remove_all(root);
 }
 
-TEST_CASE("Journal root: one server at a time; only room codes are rooms; finished leftovers go", "[journal][host]") {
+TEST_CASE("Journal root: one server at a time - only room codes are rooms - finished leftovers go", "[journal][host]") {
   const fs::path root = fs::temp_directory_path() / ("fts-journal-root-" + std::to_string(::getpid()));
   fs::remove_all(root);
   fs::create_directories(root / "ABCDE");

@@ -31,7 +31,7 @@ TEST_CASE("Balls: radius from mass r = 11 + floor(mass / 8)") {
   CHECK(ball_of(s, 1).mass == 40);
 }
 
-TEST_CASE("Balls: friction 0.991 per frame; a slower component stops") {
+TEST_CASE("Balls: friction 0.991 per frame - a slower component stops") {
   MatchState s = bare_one();
   const BallId e = add_enemy(s, {250, 150}, {100, 0.5});
   step(s, {});

@@ -40,7 +40,7 @@ TEST_CASE("Credit: an enemy touched by a player who left credits nobody, not a n
   CHECK(find_player(s, 1)->eco.coins == 0);
 }
 
-TEST_CASE("Credit: a player's rockets leave with it; other players' credit stays") {
+TEST_CASE("Credit: a player's rockets leave with it - other players' credit stays") {
   MatchState s = started(2);
   remove_enemies(s);
   const BallId e1 = add_enemy(s, {60, 30});

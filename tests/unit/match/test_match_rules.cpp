@@ -76,7 +76,7 @@ TEST_CASE("Coins, shop and lives: an enemy that falls untouched earns nobody any
   CHECK(find_player(s, 1)->eco.coins == 0);
 }
 
-TEST_CASE("Multiplayer: two players hit one enemy; the last toucher gets the coins") {
+TEST_CASE("Multiplayer: two players hit one enemy - the last toucher gets the coins") {
   MatchState s = bare(2);
   const BallId e = add_enemy(s, {300, 150});
   place(s, 1, {255, 150}, {100, 0});
@@ -129,7 +129,7 @@ TEST_CASE("Lives: the player and the last enemy fall in the same tick: level com
   CHECK(find_player(s, 1)->eco.coins == 36);
 }
 
-TEST_CASE("Multiplayer: a player pushed off by another player gives no coins; respawn after 2 s") {
+TEST_CASE("Multiplayer: a player pushed off by another player gives no coins - respawn after 2 s") {
   MatchState s = bare(2);
   place(s, 1, {20, 150});
   place(s, 2, {70, 150}, {-400, 0});
@@ -171,7 +171,7 @@ TEST_CASE("Lives: with no player left on the platform the level restarts with fr
   CHECK(s.bodies.size() == 2);
 }
 
-TEST_CASE("Lives: out of lives the player watches; all out is game over; play again restarts") {
+TEST_CASE("Lives: out of lives the player watches - all out is game over - play again restarts") {
   MatchState s = bare(2);
   find_player(s, 1)->eco.lives = 1;
   place(s, 1, {1, 150}, {-200, 0});

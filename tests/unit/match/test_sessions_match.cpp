@@ -31,7 +31,7 @@ TEST_CASE("Lobby: an idle player does not hold the lobby past the time-out", "[m
   CHECK(s.lobby_deadline_tick == -1);
 }
 
-TEST_CASE("Lobby: nobody ready, no countdown; everyone ready starts at once", "[match][lobby]") {
+TEST_CASE("Lobby: nobody ready, no countdown - everyone ready starts at once", "[match][lobby]") {
   MatchState s = make_match({}, 3);
   step(s, joins(2));
   run(s, 5000);

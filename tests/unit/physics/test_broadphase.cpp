@@ -93,7 +93,7 @@ TEST_CASE("DiscGrid: the same touching pairs as all pairs", "[broadphase]") {
   }
 }
 
-TEST_CASE("Grid: the same overlapping boxes as all pairs; a query offers every overlapping box", "[broadphase]") {
+TEST_CASE("Grid: the same overlapping boxes as all pairs - a query offers every overlapping box", "[broadphase]") {
   Grid grid;
   Rng rng(11);
   for (int round = 0; round < 30; ++round) {

@@ -163,7 +163,7 @@ TEST_CASE("Collisions: separation is weighted by inverse mass", "[collide]") {
   CHECK(b.pos.x == Approx(1.75));
 }
 
-TEST_CASE("Collisions: a ball of infinite mass is immovable; two of them do not act on each other", "[collide]") {
+TEST_CASE("Collisions: a ball of infinite mass is immovable - two of them do not act on each other", "[collide]") {
   const double inf = std::numeric_limits<double>::infinity();
   SECTION("vector response: the other ball reflects, the post keeps its velocity") {
     Ball post = ball(1, 0, 0, 0, 0, 1, inf), b = ball(2, 2, 0, -50, 7, 1, 40);

@@ -167,7 +167,7 @@ TEST_CASE("Deterministic math: det_pow/det_exp/det_log agree with libm", "[model
   for (double x : {-700.0, -5.0, 0.0, 1e-3, 3.0, 700.0}) CHECK(det_exp(x) == Approx(std::exp(x)).epsilon(1e-14));
 }
 
-TEST_CASE("Step buffers: the world owns them; a copy starts empty and steps the same", "[models]") {
+TEST_CASE("Step buffers: the world owns them - a copy starts empty and steps the same", "[models]") {
   for (Model m : kAllModels) {
     INFO(to_string(m));
     World a;

@@ -83,7 +83,7 @@ TEST_CASE("ClientConnection: a lost connection resumes with its token from a fre
   }
 }
 
-TEST_CASE("ClientConnection: without resuming, a lost connection stays lost; connect() resumes it",
+TEST_CASE("ClientConnection: without resuming, a lost connection stays lost - connect() resumes it",
           "[protocol][connection]") {
   Rig rig(false);
   REQUIRE(rig.run_until([&] { return rig.connected(); }, 2000));

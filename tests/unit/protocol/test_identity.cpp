@@ -74,7 +74,7 @@ TEST_CASE("Identity: the test vector (PROTOCOL.md 5.8.3)", "[protocol][identity]
   CHECK_FALSE(open_hello_identity(sk, client.public_key, server.public_key, cookie, ""));
 }
 
-TEST_CASE("Identity: the file's text reads back; anything else does not", "[protocol][identity]") {
+TEST_CASE("Identity: the file's text reads back - anything else does not", "[protocol][identity]") {
   const Identity id = identity_from_seed(seed_from(0x40));
   const std::string text = identity_file_text(id);
   CHECK(text == "fts-identity-1 404142434445464748494a4b4c4d4e4f505152535455565758595a5b5c5d5e5f\n");
@@ -86,7 +86,7 @@ TEST_CASE("Identity: the file's text reads back; anything else does not", "[prot
   CHECK(new_identity().public_key != new_identity().public_key);
 }
 
-TEST_CASE("Identity: the server knows a proven player by its fingerprint; a guest has none",
+TEST_CASE("Identity: the server knows a proven player by its fingerprint - a guest has none",
           "[protocol][identity][handshake]") {
   IdentityRig r;
   const Identity id = new_identity();

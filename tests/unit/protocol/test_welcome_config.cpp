@@ -102,7 +102,7 @@ TEST_CASE("Welcome config: a welcome without the physics keys reads them as the 
                   .ok());
 }
 
-TEST_CASE("Welcome config: a tuned host's welcome fits in the reply to a hello; one with digits everywhere does not",
+TEST_CASE("Welcome config: a tuned host's welcome fits in the reply to a hello - one with digits everywhere does not",
           "[protocol][welcome]") {
   Welcome w;
   w.timeout_ms = w.reconnect_window_ms = 3600000;

@@ -11,7 +11,8 @@ using namespace fts;
 
 namespace {
 
-// Tick i's inputs: players 1..4 join, get ready, then steer in turns so that balls fall.
+// Tick i's inputs: players 1..4 join, get ready, then each steers one way for a few
+// seconds at a time, so that balls fall (player_fell, respawned) and enemies are hit.
 sim::TickInputs inputs_at(int i) {
   if (i == 0) return test::joins(4);
   sim::TickInputs in;
@@ -19,17 +20,24 @@ sim::TickInputs inputs_at(int i) {
     sim::PlayerTick t;
     t.player = p;
     if (i == 1) t.commands.push_back({sim::CommandKind::ready, {}});
-    t.input.move_x = static_cast<std::int8_t>((i / (40 + 7 * static_cast<int>(p))) % 2 == 0 ? 1 : -1);
-    t.input.move_y = static_cast<std::int8_t>((i / (55 + 3 * static_cast<int>(p))) % 2 == 0 ? 1 : -1);
+    t.input.move_x = static_cast<std::int8_t>((i / (240 + 70 * static_cast<int>(p))) % 2 == 0 ? 1 : -1);
+    t.input.move_y = static_cast<std::int8_t>((i / (310 + 30 * static_cast<int>(p))) % 2 == 0 ? 1 : -1);
     in.players.push_back(t);
   }
   return in;
 }
 
+// Lives enough that nobody is out within the test: events keep coming.
+sim::MatchConfig many_lives() {
+  sim::MatchConfig c;
+  c.player_lives = 50;
+  return c;
+}
+
 }  // namespace
 
-TEST_CASE("Room stepper: events numbered once, in order; the window keeps the newest", "[room][stepper]") {
-  room::RoomStepper stepper(sim::MatchConfig{}, 5);
+TEST_CASE("Room stepper: events numbered once, in order - the window keeps the newest", "[room][stepper]") {
+  room::RoomStepper stepper(many_lives(), 5);
   std::vector<protocol::Event> all;
   for (int i = 0; i < 6000; ++i) {
     std::vector<protocol::Event> fresh;

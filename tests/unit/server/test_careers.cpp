@@ -68,7 +68,7 @@ TEST_CASE("Careers: counted from the match's start, one result when the lives ru
   CHECK_FALSE(c.released(1, 100, 190));
 }
 
-TEST_CASE("Careers: a quit ends with the release, a closing room closes; the journal's form resumes",
+TEST_CASE("Careers: a quit ends with the release, a closing room closes - the journal's form resumes",
           "[server][profiles]") {
   Careers c;
   int n = 0;

@@ -52,7 +52,7 @@ struct DepartedRig : test::HostRig {
 
 }  // namespace
 
-TEST_CASE("Out of lives: a watcher is never dropped for idling; an idle player still is", "[server][idle]") {
+TEST_CASE("Out of lives: a watcher is never dropped for idling - an idle player still is", "[server][idle]") {
   DepartedRig rig(/*idle_ms=*/2000, /*window_ms=*/60000);
   rig.config.player_lives = 1;
   rig.start();

@@ -175,7 +175,7 @@ protocol::Identity identity(std::uint8_t n) {
 
 }  // namespace
 
-TEST_CASE("Profile requests: top answers with the board and the rank; a guest gets no rank",
+TEST_CASE("Profile requests: top answers with the board and the rank - a guest gets no rank",
           "[server][profiles][board]") {
   ProfileRig rig;
   const auto ann = identity(1), bob = identity(2);
@@ -230,7 +230,7 @@ TEST_CASE("Profile requests: top answers with the board and the rank; a guest ge
   }
 }
 
-TEST_CASE("Profile requests: forget erases the identity's profile; a guest has none to forget",
+TEST_CASE("Profile requests: forget erases the identity's profile - a guest has none to forget",
           "[server][profiles][forget]") {
   ProfileRig rig;
   const auto ann = identity(3);

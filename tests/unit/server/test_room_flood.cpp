@@ -67,7 +67,7 @@ TEST_CASE("Room flood: one host making rooms and leaving them leaves rooms for e
   CHECK(rig.host->room_ids().size() <= rig.options.max_rooms);
 }
 
-TEST_CASE("Room flood: a room that holds nobody closes in seconds; one with a player's progress waits", "[server][rooms][flood]") {
+TEST_CASE("Room flood: a room that holds nobody closes in seconds - one with a player's progress waits", "[server][rooms][flood]") {
   FloodRig rig;  // --room-idle-ms is the default minute
   REQUIRE(rig.options.room_idle_ms == 60000);
   auto& left = rig.ask(kOther, "create");  // shook hands and left
@@ -87,7 +87,7 @@ TEST_CASE("Room flood: a room that holds nobody closes in seconds; one with a pl
   CHECK(rig.host->room_by_code(played_room) != nullptr);  // its player may come back
 }
 
-TEST_CASE("Room flood: a host with its rooms all held gets address_full; others still get rooms", "[server][rooms][flood]") {
+TEST_CASE("Room flood: a host with its rooms all held gets address_full - others still get rooms", "[server][rooms][flood]") {
   FloodRig rig;
   for (std::uint32_t i = 0; i < rig.options.max_rooms_per_host; ++i) {
     auto& a = rig.ask(kFlooder, "create");

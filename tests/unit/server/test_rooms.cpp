@@ -350,7 +350,7 @@ TEST_CASE("Rooms: a host guessing room codes is refused after 10 misses, then ge
   CHECK(rejects[protocol::Reject::code_limited] == 3);
 }
 
-TEST_CASE("Rooms: a spectator flood fills the room's spectator cap and no more; the players play on", "[server][rooms]") {
+TEST_CASE("Rooms: a spectator flood fills the room's spectator cap and no more - the players play on", "[server][rooms]") {
   test::HostRig rig;
   rig.options.seed = 5;
   rig.options.max_players = 2;
