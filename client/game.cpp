@@ -277,20 +277,29 @@ class Game {
     steer_.aim(v.x_of(col), v.y_of(row), on);
   }
 
-  // The thrust toward the aim (ui/pointer_steer.hpp) for our ball in the newest snapshot,
-  // which acts after the snapshot's age plus half a round trip.
+  // The thrust toward the aim (ui/pointer_steer.hpp) for our ball where it is when this
+  // frame acts: predicting, the own ball at the tick the frame names (the inputs in flight
+  // included); else the newest snapshot's, carried on by its velocity over the snapshot's
+  // age plus half a round trip (which misses the thrust of the frames in flight: on a
+  // loaded machine the ball braked late and coasted off the edge).
   Steer mouse_steer(std::uint64_t now) {
     const proto::Snapshot* s = buffer_.newest();
     if (s == nullptr) return {};
-    const std::optional<SteerBall> ball = steer_ball(*s, view_.my_player_id);
-    const double ticks_old = std::max(0.0, net_.server_tick(now) - static_cast<double>(s->tick));
-    const double age_s = ticks_old / tick_rate_hz(conn_.endpoint().welcome());
-    const double rtt_s = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms / 1000.0 : 0.0;
+    std::optional<SteerBall> ball = steer_ball(*s, view_.my_player_id);
     // The thrust decided now holds until the next frame: on a loaded machine frames come
     // late, so the gap since the last one (at most 0.25 s) is part of the delay too.
     const double gap_s = steered_at_ms_ != 0 ? std::min(0.25, static_cast<double>(now - steered_at_ms_) / 1000.0) : 0.0;
     steered_at_ms_ = now;
-    return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, age_s + rtt_s / 2 + gap_s);
+    double delay_s = gap_s;
+    const std::optional<proto::BallState> own = ball && net_.predicting() ? net_.own_ball(now) : std::nullopt;
+    if (own && own->id == ball->id) {
+      ball->x = own->x, ball->y = own->y, ball->vx = own->vx, ball->vy = own->vy;
+    } else {
+      const double ticks_old = std::max(0.0, net_.server_tick(now) - static_cast<double>(s->tick));
+      const double rtt_s = conn_.endpoint().stats().rtt_ms > 0 ? conn_.endpoint().stats().rtt_ms / 1000.0 : 0.0;
+      delay_s += ticks_old / tick_rate_hz(conn_.endpoint().welcome()) + rtt_s / 2;
+    }
+    return steer_.update(ball ? &*ball : nullptr, view_.arena_width_u, view_.arena_height_u, delay_s);
   }
 
   void absorb(std::uint64_t now) {
