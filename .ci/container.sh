@@ -10,7 +10,10 @@
 #  3. podman build --pull=never --network=host --format docker (OCI drops HEALTHCHECK);
 #  4. podman run with FTS_* variables; waits for the `ready` JSON record; runs the image's
 #     HEALTHCHECK; plays two bots from the host against it; checks the user is not root;
-#     stops it (exit 0, `shutdown` logged); prints the image size and the build time.
+#  5. the ssh image (--target ssh) run beside it, FTS_SSH_SERVER naming that server: a
+#     player with a fresh key runs `ssh -tt play@127.0.0.1` in tmux, is asked a name,
+#     picks quick play and reaches the HUD (issue 37, 9: the image's sshd died at start);
+#  6. stops the server (exit 0, `shutdown` logged); prints the image sizes and build time.
 # CTest label `container` (not in the default run: ≈3 min). Exits 77 (skip) when not root.
 #   bash .ci/container.sh
 set -euo pipefail
@@ -132,6 +135,48 @@ for b in bots:
 print("bots:", ", ".join(f"{b['name']} {b['snapshots_received']} snapshots" for b in bots))
 PY
 
+step "ssh image: a player through it"
+ssh_image=fear-the-sphere-ssh:latest
+podman build --pull=never --network=host --format docker -f docker/Dockerfile --target ssh -t "$ssh_image" . ||
+  fail "podman build --target ssh"
+for p in tmux openssh-client; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$p" >/dev/null
+done
+ssh_port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+podman run -d --name "$name-ssh" --network=host -e FTS_SSH_SERVER="127.0.0.1:$port" -e FTS_SSH_PORT="$ssh_port" \
+  "$ssh_image" >/dev/null
+deadline=$((SECONDS + 20))
+until podman logs "$name-ssh" 2>&1 | grep -q "Server listening on .* port $ssh_port"; do
+  [[ $(podman inspect --format '{{.State.Running}}' "$name-ssh") == true ]] ||
+    { podman logs "$name-ssh" 2>&1 | tail; fail "the ssh container ended at start"; }
+  ((SECONDS < deadline)) || { podman logs "$name-ssh" 2>&1 | tail; fail "sshd not listening within 20 s"; }
+  sleep 0.2
+done
+keydir=$(mktemp -d)
+ssh-keygen -q -t ed25519 -N '' -C '' -f "$keydir/key"
+tsock=fts-container-$$
+cleanup_ssh() { tmux -L "$tsock" kill-server 2>/dev/null || true; podman rm -f "$name-ssh" >/dev/null 2>&1 || true; rm -rf "$keydir"; }
+trap 'cleanup_ssh; cleanup' EXIT
+tmux -L "$tsock" new-session -d -s player -x 80 -y 24 \
+  "LANG=C ssh -tt -i $keydir/key -o StrictHostKeyChecking=no -o UserKnownHostsFile=/dev/null -p $ssh_port play@127.0.0.1"
+wait_pane() {  # wait_pane SECONDS REGEX
+  local deadline=$((SECONDS + $1))
+  until tmux -L "$tsock" capture-pane -p -t player | grep -qE -- "$2"; do
+    ((SECONDS < deadline)) || { tmux -L "$tsock" capture-pane -p -t player; podman logs "$name-ssh" 2>&1 | tail;
+                                fail "no '$2' on the ssh player's screen within $1 s"; }
+    sleep 0.2
+  done
+}
+wait_pane 30 'Your name'
+tmux -L "$tsock" send-keys -t player "ann" Enter
+wait_pane 15 'pick a room'
+tmux -L "$tsock" send-keys -t player 2 Enter
+wait_pane 20 '^Level:? [0-9]+ +Coins:? '
+echo "ssh: a player through the image reached the HUD"
+cleanup_ssh
+ssh_size=$(podman image inspect --format '{{.Size}}' "$ssh_image")
+
 step "stop"
 podman stop -t 10 "$name" >/dev/null
 code=$(podman inspect --format '{{.State.ExitCode}}' "$name")
@@ -141,4 +186,5 @@ echo "exit 0, shutdown logged"
 
 size=$(podman image inspect --format '{{.Size}}' "$image")
 echo "image $image: $((size / 1000000)) MB ($size bytes); build ${build_s} s"
+echo "image $ssh_image: $((ssh_size / 1000000)) MB ($ssh_size bytes)"
 echo "container: all checks passed"

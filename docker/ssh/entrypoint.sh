@@ -2,7 +2,8 @@
 # The ssh image's entry point (Dockerfile stage "ssh", compose service "ssh"): host keys
 # made once into the volume /etc/ssh/host-keys (a restarted container keeps its identity,
 # so players' known_hosts stay valid), the game account "play" set up by fts-ssh-setup
-# (open to any key), then sshd in the foreground on port 2222, logging to stderr.
+# (open to any key), then sshd in the foreground on port 2222 (FTS_SSH_PORT), logging to
+# stderr.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 keys=/etc/ssh/host-keys
@@ -17,10 +18,14 @@ done
 install -d -m 755 /etc/ssh/sshd_config.d
 printf 'HostKey %s\n' "$keys/ssh_host_ed25519_key" "$keys/ssh_host_rsa_key" \
   >/etc/ssh/sshd_config.d/00-fts-host-keys.conf
+# sshd's privilege separation directory before anything runs sshd: fts-ssh-setup's
+# `sshd -t` refuses to check the config without it ("Missing privilege separation
+# directory: /run/sshd"), which ended the container at its first start (found by
+# .ci/container.sh's ssh step, 2026-12-06).
+install -d -m 755 /run/sshd
 empty=()
 [[ -n ${FTS_SSH_EMPTY_PASSWORD:-} ]] && empty=(--empty-password)
 bash "$here/fts-ssh-setup" --connect "${FTS_SSH_SERVER:-server:7777}" --open "${empty[@]}" \
   --max-sessions "${FTS_SSH_MAX_SESSIONS:-8}" --max-per-key "${FTS_SSH_MAX_PER_KEY:-2}" \
   --idle-exit-s "${FTS_SSH_IDLE_EXIT_S:-600}" install
-install -d -m 755 /run/sshd
-exec /usr/sbin/sshd -D -e -p 2222
+exec /usr/sbin/sshd -D -e -p "${FTS_SSH_PORT:-2222}"
