@@ -310,6 +310,10 @@ deadline=$((SECONDS + 5))
 until [[ $(profiles_named alice) == 0 ]] || ((SECONDS >= deadline)); do sleep 0.1; done
 if ! [[ $(profiles_named alice) == 0 && $(profiles_named bob) == 1 ]]; then
   grep -E 'alice|profile_|match_result|identity' "$WORK/server.log" | tail -n 40 >&2 || true
+  python3 -c 'import sqlite3, sys; db = sqlite3.connect(sys.argv[1])
+for table in ("fts_profiles", "fts_results"):
+    cols = [r[1] for r in db.execute(f"PRAGMA table_info({table})")]
+    for row in db.execute(f"SELECT * FROM {table}"): print(table, dict(zip(cols, row)))' "$WORK/profiles.sqlite" >&2 || true
   fail "after forget-me: alice $(profiles_named alice), bob $(profiles_named bob)"
 fi
 [[ $(counter forgets) == 1 && $(counter refused_command) == 2 ]] || fail "counters: $(status | tr '\n' ' ')"
