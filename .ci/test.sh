@@ -28,7 +28,8 @@ FTS_TARGETS="$plain_tests" bash .ci/build.sh build -DFTS_WERROR=ON
 # entry of its own, labelled by its area, for running one).
 ctest --test-dir build -L '^unit_area$' -R "^(${plain_tests// /|})\$" -j "$jobs" --output-on-failure --timeout 600
 
-# The sanitized build in two steps. The programs first (fts_programs: fts-server,
+# The sanitized build in two steps, without the match rules' test area (run optimized
+# above; tests/CMakeLists.txt says why). The programs first (fts_programs: fts-server,
 # fts-client, fts-bot, fts-sim); then the process tests (labels integration, e2e, hosting,
 # layout, bench: real processes that mostly wait on game time and sockets, about one core
 # between them) start in the background while the test areas and the benchmarks compile,
@@ -36,7 +37,7 @@ ctest --test-dir build -L '^unit_area$' -R "^(${plain_tests// /|})\$" -j "$jobs"
 # targets' seeds (label fts_fuzz_replay) run once they are built.
 stage "sanitized build: the programs"
 export FTS_TARGETS=fts_programs
-bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
+bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON -DFTS_SANITIZED_MATCH_TESTS=OFF
 unset FTS_TARGETS
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 stage "process tests (in the background) and the rest of the sanitized build"
@@ -52,7 +53,7 @@ process_tests=$!
 trap 'kill "$process_tests" 2>/dev/null || true' EXIT
 # The compile at nice 10 (a tenth of a test's weight): a process test that wakes gets its
 # core at once, as on an idle machine, and the compile takes every cycle the tests leave.
-nice -n 10 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON
+nice -n 10 bash .ci/build.sh build-asan -DFTS_WERROR=ON -DFTS_SANITIZE=ON -DFTS_SANITIZED_MATCH_TESTS=OFF
 stage "unit tests (sanitized)"
 # At nice 19: the process tests still running (the RUN_SERIAL ones last) measure
 # what a player feels through a relay, and get their core at once.
