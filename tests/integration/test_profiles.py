@@ -103,6 +103,14 @@ def day_later():
     shutil.rmtree(work, ignore_errors=True)
 
 
+def stop_client(tmux, ident):
+    """Ends the tmux server and any fts-client of this identity still running: a client
+    whose terminal went away was once left behind, spinning on a core for the rest of the
+    test command (2026-12-06)."""
+    subprocess.run(["pkill", "-KILL", "-f", f"{CLIENT} .*--identity {ident} "], capture_output=True)
+    subprocess.run([*tmux, "kill-server"], capture_output=True)
+
+
 def client_match(srv, work, ident, name):
     """The player's real fts-client (tmux, 80x24, ASCII) joins a match, plays until level 1
     is on its screen and quits (q, then y): a match played and left. Returns the screen
@@ -129,7 +137,7 @@ def client_match(srv, work, ident, name):
         wait_for(lambda: "CLIENT_EXIT=0" in pane(), 20, f"{name}'s client to exit")
         return level
     finally:
-        subprocess.run([*tmux, "kill-server"], capture_output=True)
+        stop_client(tmux, ident)
 
 
 def day_later_client():
@@ -312,15 +320,16 @@ def client_screen(srv, work, ident, name, needle):
         env = f"env LANG=C XDG_STATE_HOME={os.path.join(work, 'client-state')} TERM=xterm"
         subprocess.run([*tmux, "new-session", "-d", "-s", "c", "-x", "80", "-y", "24",
                         f"{env} {CLIENT} --connect {srv.address} --identity {ident} --name {name} --quick "
-                        "--glyphs ascii; sleep 30"], check=True)
+                        "--glyphs ascii; echo CLIENT_EXIT=$?; sleep 30"], check=True)
         pane = lambda: subprocess.run([*tmux, "capture-pane", "-p", "-t", "c"], capture_output=True,  # noqa: E731
                                       text=True).stdout
         text = wait_for(lambda: (lambda t: t if needle in t else None)(pane()), 30, f"{needle!r} on the client's screen")
         subprocess.run([*tmux, "send-keys", "-t", "c", "q"])
         subprocess.run([*tmux, "send-keys", "-t", "c", "q"])
+        wait_for(lambda: "CLIENT_EXIT=" in pane(), 20, f"{name}'s client to exit")
         return text
     finally:
-        subprocess.run([*tmux, "kill-server"], capture_output=True)
+        stop_client(tmux, ident)
 
 
 def board_forget():
