@@ -188,8 +188,27 @@ point_far() {
   local a=${points[0]} b=${points[1]}
   if (((a > c ? a - c : c - a) >= (b > c ? b - c : c - b))); then echo "$a"; else echo "$b"; fi
 }
+# Lives on the HUD's first line ("2L" compact, "Lives: 2" wide); empty if not shown.
+lives() { pane newbie | head -n 1 | sed -nE 's/.*Lives:? ([0-9]+).*/\1/p; t; s/.* ([0-9]+)L .*/\1/p' || true; }
+# A ball knocked off by an enemy while it steers (level 6 has chasers) is a new ball, which
+# ends the steering: the step is tried once more with the respawned ball.
 step_mouse() {
-  local row col now_col target gap start_gap deadline
+  local before
+  before=$(lives)
+  mouse_tries=$((${mouse_tries:-0} + 1))
+  step_mouse_once && return 0
+  local rc=$?
+  if ((rc == 2 && mouse_tries < 2)); then
+    echo "newbie was knocked off during the mouse step (lives $before -> $(lives)): once more"
+    step_mouse
+    return $?
+  fi
+  ((rc == 1)) && return 1
+  fail "the mouse did not bring the ball from column $mouse_col to column $mouse_target, row $mid_row"
+}
+step_mouse_once() {  # 0 steered; 1 the shop opened; 2 the ball fell; 3 it did not arrive
+  local row col now_col target gap start_gap deadline before
+  before=$(lives)
   field || return 1
   target=$(point_far)
   read -r row col <<<"$(ball_at)"
@@ -208,7 +227,11 @@ step_mouse() {
     fi
     sleep 0.1
   done
-  fail "the mouse did not bring the ball from column $col to column $target, row $mid_row"
+  mouse_col=$col mouse_target=$target
+  local now
+  now=$(lives)
+  [[ -n "$before" && -n "$now" ]] && ((now < before)) && return 2
+  return 3
 }
 play_step step_mouse
 
