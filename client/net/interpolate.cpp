@@ -22,29 +22,21 @@ Snapshot interpolate(const Snapshot& a, const Snapshot& b, double alpha) {
 }
 
 namespace {
-constexpr std::uint64_t kClockWindowMs = 3000;
 constexpr double kFollowDown = 0.05;  // the clock slows to 95 % at most: unseen
 }  // namespace
 
-void ServerClock::observe(std::uint32_t tick, std::uint64_t now_ms) {
-  const double sample = static_cast<double>(tick) - static_cast<double>(now_ms) * tick_rate_hz_ / 1000.0;
-  if (!valid_ || std::abs(sample - offset_) > 2.0 * tick_rate_hz_) {
-    window_.clear();
-    window_.push_back({now_ms, sample});
-    offset_ = sample;
-    valid_ = true;
-    last_ms_ = now_ms;
-    return;
-  }
-  window_.push_back({now_ms, sample});
-  while (window_.front().at_ms + kClockWindowMs < now_ms) window_.pop_front();
-  double best = sample;
-  for (const auto& s : window_) best = std::max(best, s.offset);
-  if (best >= offset_) {
-    offset_ = best;  // a less delayed arrival: follow it at once
+void ServerClock::start(double offset, std::uint64_t now_ms) {
+  offset_ = offset;
+  valid_ = true;
+  last_ms_ = now_ms;
+}
+
+void ServerClock::follow(double best_offset, std::uint64_t now_ms) {
+  if (best_offset >= offset_) {
+    offset_ = best_offset;  // a less delayed arrival: follow it at once
   } else {
     const double elapsed = static_cast<double>(now_ms - std::min(now_ms, last_ms_));
-    offset_ = std::max(best, offset_ - elapsed * tick_rate_hz_ / 1000.0 * kFollowDown);
+    offset_ = std::max(best_offset, offset_ - elapsed * tick_rate_hz_ / 1000.0 * kFollowDown);
   }
   last_ms_ = now_ms;
 }

@@ -2,6 +2,7 @@
 // two snapshots around that moment. Pure: times and ticks are passed in.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -16,34 +17,37 @@ using protocol::Snapshot;
 // (balls new in b stay where b has them); phase, level, players and events come from b.
 Snapshot interpolate(const Snapshot& a, const Snapshot& b, double alpha);
 
-// Estimates the server's tick at a local time from snapshot arrivals. It reads the
-// least delayed arrival of the last 3 s (the one that came soonest after its tick) as
-// "on time": it moves up to a less delayed arrival at once, and down, when that one leaves
-// the window, by at most 5 % of the time passing, so that it follows a server that runs
-// slow (a loaded host skips ticks) without running backwards. It jumps when far off (a
-// server restart). The jitter buffer measures lateness against this same clock (issue 37:
-// a clock that followed a slow server at only 1 % ran ahead of the snapshots, which the
-// buffer's delay, measured against its own estimate, did not cover: stalls at 150 ms).
+// The server's tick at a local time, as an offset (server tick - local ms * rate / 1000).
+// Its owner (the jitter buffer) keeps the arrivals and hands it the offset of the least
+// delayed one of the last 3 s (the one that came soonest after its tick), read as "on
+// time": the clock moves up to it at once, and down, when that arrival has left the
+// window, by at most 5 % of the time passing, so that it follows a server that runs slow
+// (a loaded host skips ticks) without running backwards. The buffer measures lateness
+// against this same clock (issue 37: a clock that followed a slow server at only 1 % ran
+// ahead of the snapshots, which the buffer's delay, measured against its own estimate,
+// did not cover: stalls at 150 ms).
 class ServerClock {
  public:
-  explicit ServerClock(double tick_rate_hz = 100) : tick_rate_hz_(tick_rate_hz) {}
-  void set_tick_rate(double hz) { tick_rate_hz_ = hz > 0 ? hz : 100; }
-  void observe(std::uint32_t tick, std::uint64_t now_ms);
-  // Estimated server tick now (fractional); 0 before the first observation.
+  explicit ServerClock(double tick_rate_hz = 100) : tick_rate_hz_(tick_rate_hz > 0 ? tick_rate_hz : 100) {}
+  // This arrival's offset: larger is less delayed.
+  double offset_of(std::uint32_t tick, std::uint64_t at_ms) const {
+    return static_cast<double>(tick) - static_cast<double>(at_ms) * tick_rate_hz_ / 1000.0;
+  }
+  // Start at this offset (the first arrival, or the server started again).
+  void start(double offset, std::uint64_t now_ms);
+  // Follow the least delayed recent arrival's offset.
+  void follow(double best_offset, std::uint64_t now_ms);
+  // Estimated server tick now (fractional); 0 before the first arrival.
   double tick_at(std::uint64_t now_ms) const;
   bool valid() const { return valid_; }
-  void reset() { valid_ = false; window_.clear(); }
+  // How far an offset is from the clock's, in seconds.
+  double seconds_off(double offset) const { return std::abs(offset - offset_) / tick_rate_hz_; }
 
  private:
   double tick_rate_hz_;
   bool valid_ = false;
-  double offset_ = 0;  // server tick - local ms * rate / 1000
+  double offset_ = 0;
   std::uint64_t last_ms_ = 0;
-  struct Sample {
-    std::uint64_t at_ms;
-    double offset;  // this arrival's: larger is less delayed
-  };
-  std::deque<Sample> window_;  // the last 3 s of arrivals
 };
 
 // The two snapshots to draw and how far between them.

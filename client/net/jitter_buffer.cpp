@@ -13,6 +13,7 @@ constexpr double kMarginMs = 5;
 // better than a stall) and shrinks by at most 5 % (it speeds up by 5 %, unseen).
 constexpr double kSlewUp = 0.25, kSlewDown = 0.05;
 constexpr int kMaxBurst = 3;       // intervals allowed for losses in a row
+constexpr double kRestartSeconds = 2;  // an arrival this far off the clock starts afresh
 }  // namespace
 
 void JitterBuffer::set_rates(double tick_rate_hz, double ticks_per_snapshot) {
@@ -22,19 +23,29 @@ void JitterBuffer::set_rates(double tick_rate_hz, double ticks_per_snapshot) {
 }
 
 void JitterBuffer::on_snapshot(std::uint32_t tick, std::uint64_t now_ms) {
-  clock_.observe(tick, now_ms);
+  const double offset = clock_.offset_of(tick, now_ms);
   int lost = 0;
-  if (!started_ || tick + 1000 < last_tick_) {  // the first, or the server started again
+  // The one restart rule of the buffer and its clock: the first arrival; a tick far below
+  // the newest (the server started again); or a newer one more than 2 s off the clock (a
+  // server that jumped, or a clock that was wrong). An old tick says nothing new.
+  const bool restart = !started_ || tick + 1000 < last_tick_ ||
+                       (tick > last_tick_ && clock_.seconds_off(offset) > kRestartSeconds);
+  if (restart) {
     started_ = true;
     window_.clear();
+    clock_.start(offset, now_ms);
   } else if (tick > last_tick_) {
     lost = std::max(0, static_cast<int>(std::lround((tick - last_tick_) / ticks_per_snapshot_)) - 1);
   } else {
     return;  // old or duplicate: says nothing new about the link
   }
-  last_tick_ = std::max(last_tick_, tick);
-  window_.push_back({now_ms, tick, clock_.tick_at(now_ms), lost});
-  while (!window_.empty() && window_.front().at_ms + kWindowMs < now_ms) window_.pop_front();
+  last_tick_ = tick;
+  window_.push_back({now_ms, tick, offset, 0.0, lost});
+  while (window_.front().at_ms + kWindowMs < now_ms) window_.pop_front();
+  double best = offset;
+  for (const auto& a : window_) best = std::max(best, a.offset);
+  clock_.follow(best, now_ms);
+  window_.back().clock_then = clock_.tick_at(now_ms);
   // Lateness against the clock the balls are drawn behind: how far behind it each
   // snapshot of the window came, the later of the clock as it read then and as it reads
   // now. The clock follows the window's least delayed arrival, not the session's: a

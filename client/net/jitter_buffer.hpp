@@ -30,7 +30,8 @@ class JitterBuffer {
   void set_fixed(double ms) { fixed_ms_ = ms; delay_ms_ = ms; }
   bool fixed() const { return fixed_ms_.has_value(); }
 
-  // A snapshot of `tick` arrived at now_ms (the clock observes it too).
+  // A snapshot of `tick` arrived at now_ms (the clock follows the window's least
+  // delayed arrival).
   void on_snapshot(std::uint32_t tick, std::uint64_t now_ms);
   // The server clock the lateness is measured against: draw `delay_ms()` behind it.
   const ServerClock& clock() const { return clock_; }
@@ -50,10 +51,11 @@ class JitterBuffer {
   struct Arrival {
     std::uint64_t at_ms;
     std::uint32_t tick;
+    double offset;      // the clock's reading were this arrival on time (ServerClock)
     double clock_then;  // the clock's tick at the arrival, as it read then
     int lost_before;
   };
-  std::deque<Arrival> window_;           // the last 3 s of arrivals
+  std::deque<Arrival> window_;           // the last 3 s of arrivals (the clock's too)
   std::uint32_t last_tick_ = 0;
   double jitter_ms_ = 0;
   int burst_ = 0;

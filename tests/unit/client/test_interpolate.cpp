@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "net/interpolate.hpp"
+#include "net/jitter_buffer.hpp"
 
 using namespace fts::client;
 using fts::protocol::BallState;
@@ -68,18 +69,30 @@ TEST_CASE("the snapshot buffer picks the pair around the render tick", "[client]
   CHECK(buf.newest()->tick == 140);
 }
 
-TEST_CASE("the server clock follows snapshot arrivals", "[client][interp]") {
-  ServerClock clock(100);
-  CHECK_FALSE(clock.valid());
-  clock.observe(1000, 50'000);
-  CHECK(clock.tick_at(50'000) == Approx(1000));
-  CHECK(clock.tick_at(50'100) == Approx(1010));
+TEST_CASE("the server clock follows snapshot arrivals, and a restarted server", "[client][interp]") {
+  JitterBuffer j;
+  j.set_rates(100, 5);
+  CHECK_FALSE(j.clock().valid());
+  j.on_snapshot(1000, 50'000);
+  CHECK(j.clock().tick_at(50'000) == Approx(1000));
+  CHECK(j.clock().tick_at(50'100) == Approx(1010));
   // A late arrival does not pull the clock back at once; an early one moves it forward.
-  clock.observe(1005, 50'080);  // 30 ms late
-  CHECK(clock.tick_at(50'100) == Approx(1010).margin(0.1));
-  clock.observe(1020, 50'150);  // 5 ticks early
-  CHECK(clock.tick_at(50'150) == Approx(1020));
-  // A restarted server: far off, jump.
-  clock.observe(10, 51'000);
-  CHECK(clock.tick_at(51'000) == Approx(10));
+  j.on_snapshot(1005, 50'080);  // 30 ms late
+  CHECK(j.clock().tick_at(50'100) == Approx(1010).margin(0.1));
+  j.on_snapshot(1020, 50'150);  // 5 ticks early
+  CHECK(j.clock().tick_at(50'150) == Approx(1020));
+  // An old tick, however late, moves nothing.
+  j.on_snapshot(1015, 55'000);
+  CHECK(j.clock().tick_at(50'150) == Approx(1020));
+  // A restarted server: far below, jump; and the buffer goes on from its ticks (a lost
+  // snapshot after the restart counts as one).
+  j.on_snapshot(10, 56'000);
+  CHECK(j.clock().tick_at(56'000) == Approx(10));
+  j.on_snapshot(20, 56'100);
+  CHECK(j.clock().tick_at(56'100) == Approx(20));
+  CHECK(j.burst() == 1);
+  // A newer tick far ahead of the clock (a server that jumped): start afresh there.
+  j.on_snapshot(5000, 56'200);
+  CHECK(j.clock().tick_at(56'200) == Approx(5000));
+  CHECK(j.burst() == 0);
 }
