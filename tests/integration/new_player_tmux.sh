@@ -193,17 +193,15 @@ lives() { pane newbie | head -n 1 | sed -nE 's/.*Lives:? ([0-9]+).*/\1/p; t; s/.
 # A ball knocked off by an enemy while it steers (level 6 has chasers) is a new ball, which
 # ends the steering: the step is tried once more with the respawned ball.
 step_mouse() {
-  local before
-  before=$(lives)
-  mouse_tries=$((${mouse_tries:-0} + 1))
-  step_mouse_once && return 0
-  local rc=$?
-  if ((rc == 2 && mouse_tries < 2)); then
+  local try rc before
+  for try in 1 2; do
+    before=$(lives)
+    step_mouse_once && return 0
+    rc=$?
+    ((rc == 1)) && return 1
+    ((rc == 2 && try == 1)) || break
     echo "newbie was knocked off during the mouse step (lives $before -> $(lives)): once more"
-    step_mouse
-    return $?
-  fi
-  ((rc == 1)) && return 1
+  done
   fail "the mouse did not bring the ball from column $mouse_col to column $mouse_target, row $mid_row"
 }
 step_mouse_once() {  # 0 steered; 1 the shop opened; 2 the ball fell; 3 it did not arrive
