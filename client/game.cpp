@@ -15,6 +15,7 @@
 #include <set>
 #include <string>
 
+#include "fts/io/client_socket.hpp"
 #include "fts/protocol/connection.hpp"
 #include "net/board_request.hpp"
 #include "net/clock.hpp"
@@ -48,7 +49,7 @@ namespace {
 class Game {
  public:
   Game(asio::io_context& io, Options o, udp::endpoint server)
-      : io_(io), opts_(std::move(o)), socket_(io), timer_(io), server_(server),
+      : io_(io), opts_(std::move(o)), socket_(io, server), timer_(io),
         store_(state_dir(std::getenv("XDG_STATE_HOME"), std::getenv("HOME")), opts_.host + ":" + opts_.port),
         conn_(connection_config(opts_, opts_.fresh ? std::nullopt : store_.load()), /*resume_when_lost=*/true) {
     view_.color = color_wanted(std::getenv("NO_COLOR"), std::getenv("TERM"));
@@ -58,7 +59,7 @@ class Game {
     conn_.connect(now_ms());
     last_rx_ms_ = now_ms();
     connect_ms_ = now_ms();
-    open_socket();
+    follow_socket();
     flush();
     frame();
   }
@@ -79,7 +80,8 @@ class Game {
     conn_.connect(now);
     connect_ms_ = last_rx_ms_ = now;
     noted_attempt_ = 0;
-    open_socket();
+    socket_.restart();
+    follow_socket();
     note(std::move(why));
   }
 
@@ -105,17 +107,17 @@ class Game {
     connect_again(now, "Coming back...");
   }
 
-  // A fresh local port for each attempt: to the server a reconnect is a new address
-  // carrying our token, which takes the player back with a fresh session (the same
-  // address would get the old session's answer again).
-  void open_socket() {
-    socket_attempt_ = conn_.attempt();
-    if (const auto ec = socket_.connect(server_)) throw std::runtime_error("cannot open a socket: " + ec.message());
-    socket_.start_receiving([this](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
-      if (done_) return;
-      last_rx_ms_ = now_ms();
-      conn_.endpoint().receive(bytes, last_rx_ms_);
-    });
+  // Each connection attempt from a fresh socket, to where the room is (fts_io).
+  void follow_socket() {
+    const auto f = socket_.follow(conn_.attempt(), conn_.moves(), conn_.moved_to(),
+                                  [this](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
+                                    if (done_) return;
+                                    last_rx_ms_ = now_ms();
+                                    conn_.endpoint().receive(bytes, last_rx_ms_);
+                                  });
+    if (f.moved) note("Room moved to another server: playing on.");
+    if (!f.error.empty() && !f.opened) throw std::runtime_error(f.error);
+    if (!f.error.empty()) note("The " + sanitize(f.error.substr(4), 80) + ".");
   }
 
   void flush() {
@@ -142,7 +144,7 @@ class Game {
     if (idle_over(opts_, now - std::max(keys_.last_key_ms(), started_ms_))) return finish(kIdleExitCode, idle_text(opts_));
     if (done_) return;
     conn_.update(now);
-    if (conn_.attempt() != socket_attempt_) open_socket();
+    follow_socket();
     absorb(now);
     if (done_) return;
     // Predicting: the tick the own ball is drawn at this frame, and its frames name.
@@ -440,13 +442,11 @@ class Game {
 
   asio::io_context& io_;
   Options opts_;
-  fts::io::UdpSocket socket_;
+  fts::io::ClientSocket socket_;
   asio::steady_timer timer_;
-  udp::endpoint server_;
   SessionStore store_;
   proto::ClientConnection conn_;
   bool quit_asked_ = false;
-  std::uint64_t socket_attempt_ = 0;  // the connection attempt the socket was opened for
   std::uint64_t noted_attempt_ = 0;   // the attempt whose welcome was shown
   term::KeyReader keys_;
   term::Painter painter_;

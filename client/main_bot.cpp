@@ -11,6 +11,7 @@
 #include "net/identity_store.hpp"
 #include "option_checks.hpp"
 #include "fts/io/address.hpp"
+#include "fts/io/client_socket.hpp"
 #include "fts/io/udp.hpp"
 
 namespace {
@@ -197,10 +198,9 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
 
 // One bot and its socket; each connection attempt of the bot gets a fresh socket.
 struct Slot {
-  Slot(asio::io_context& io, fts::bot::BotOptions o) : socket(io), bot(std::move(o)) {}
-  fts::io::UdpSocket socket;
+  Slot(asio::io_context& io, fts::bot::BotOptions o, udp::endpoint to) : socket(io, to), bot(std::move(o)) {}
+  fts::io::ClientSocket socket;  // a fresh one per attempt, to where the room is
   fts::bot::Bot bot;
-  std::uint64_t socket_attempt = 0;
 };
 
 }  // namespace
@@ -280,25 +280,23 @@ int main(int argc, char** argv) {
     o.join = join;
     o.room = room;
     o.identity = identities.at(static_cast<std::size_t>(i));
-    slots.push_back(std::make_unique<Slot>(io, std::move(o)));
+    slots.push_back(std::make_unique<Slot>(io, std::move(o), server));
     slots.back()->bot.start(now_ms());
   };
   for (int i = 0; i < first_wave; ++i) make_slot(i, a.join, a.room);
 
-  // A new connection attempt (the bot's reconnect) sends from a fresh local port.
+  // A new connection attempt (the bot's reconnect, or its room's move) sends from a fresh
+  // local port, to where the room is.
   auto open_socket = [&](Slot& s) -> bool {
-    s.socket_attempt = s.bot.attempt();
-    if (const auto ec = s.socket.connect(server)) {
-      std::cerr << "fts-bot: cannot open a socket: " << ec.message() << "\n";
-      return false;
-    }
-    s.socket.start_receiving([&, sp = &s](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
-      sp->bot.receive(bytes, now_ms());
-    });
-    return true;
+    const auto f = s.socket.follow(s.bot.attempt(), s.bot.moves(), s.bot.moved_to(),
+                                   [&, sp = &s](const udp::endpoint&, std::span<const std::uint8_t> bytes) {
+                                     sp->bot.receive(bytes, now_ms());
+                                   });
+    if (!f.error.empty()) std::cerr << "fts-bot: " << f.error << "\n";
+    return f.error.empty() || f.opened;
   };
   auto flush = [&](Slot& s) {
-    if (s.bot.attempt() != s.socket_attempt && !open_socket(s)) return;
+    if (!open_socket(s)) return;
     for (auto& d : s.bot.take_datagrams()) s.socket.send(d);
   };
   for (auto& s : slots) {

@@ -358,6 +358,8 @@ nlohmann::ordered_json Bot::report() const {
   r["commands_answered"] = commands_answered_;
   r["command_pending"] = pending_rid_ != 0;
   r["room"] = room();
+  r["moves"] = conn_.moves();
+  if (conn_.moves() != 0) r["moved_to"] = conn_.moved_to();
   if (const auto& w = conn_.endpoint().welcome()) r["spectator"] = w->spectator;
   if (!refused_as_expected_.empty()) r["refused"] = refused_as_expected_;
   r["snapshot_digests"] = nlohmann::ordered_json::object();

@@ -84,6 +84,10 @@ class Bot {
   const std::string& token() const { return conn_.token(); }
   // One more for each connection attempt: the caller sends each from a fresh socket.
   std::uint64_t attempt() const { return conn_.attempt(); }
+  // Where the room moved (PROTOCOL.md 4.9b; "" if it did not) and how often: the caller
+  // sends the next attempt there.
+  const std::string& moved_to() const { return conn_.moved_to(); }
+  std::uint64_t moves() const { return conn_.moves(); }
   nlohmann::ordered_json report() const;
   // The code of the room the server put us in ("" before the welcome).
   std::string room() const;

@@ -251,6 +251,9 @@ void ClientEndpoint::handle_connected(const Datagram& d, std::uint64_t now_ms) {
     } else if (const auto* bye = std::get_if<Bye>(&m)) {
       error_ = make_error(ErrorCode::bye, bye->reason);
       state_ = ClientState::disconnected;
+    } else if (const auto* moved = std::get_if<Moved>(&m)) {
+      moved_ = *moved;  // the connection follows it (ClientConnection)
+      state_ = ClientState::disconnected;
     } else if (const auto* e = std::get_if<Error>(&m)) {
       error_ = *e;
       state_ = ClientState::refused;

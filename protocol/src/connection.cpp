@@ -29,6 +29,15 @@ void ClientConnection::update(std::uint64_t now_ms) {
     lost_since_ms_ = 0;
     return;
   }
+  if (const auto& moved = endpoint_.moved(); moved && !left_ && welcomed_) {
+    moved_to_ = moved->address;
+    ++moves_;
+    config_.join = "join";
+    config_.room = moved->room;
+    lost_since_ms_ = 0;
+    connect(now_ms);
+    return;
+  }
   if (!resume_when_lost_ || !welcomed_ || gone_ || left_) return;
   if (st != ClientState::timed_out && st != ClientState::disconnected) return;
   if (lost_since_ms_ == 0) lost_since_ms_ = now_ms;

@@ -152,4 +152,11 @@ inline constexpr std::tuple<> kPingFields{};
 inline constexpr auto kByeFields =
     std::make_tuple(F<Bye, std::string, Text>{"reason", &Bye::reason, {0, kMaxTextBytes}});
 
+// ---- moved (4.9b): an address is a host name or address and a port ("[::1]:7777" for
+// IPv6); 2..255 bytes, printable.
+inline constexpr std::size_t kAddressBytes = 255;
+inline constexpr auto kMovedFields =
+    std::make_tuple(F<Moved, std::string, Text>{"addr", &Moved::address, {2, kAddressBytes}},
+                    F<Moved, std::string, Text>{"room", &Moved::room, {0, kRoomBytes}});
+
 }  // namespace fts::protocol::wire

@@ -78,6 +78,24 @@ std::string ServerEndpoint::session_verifier(std::uint32_t player_id) const {
   return it == sessions_.end() ? std::string() : it->second.verifier;
 }
 
+std::size_t ServerEndpoint::move_room(std::uint32_t room, const std::string& address, const std::string& room_code,
+                                      std::uint64_t now_ms) {
+  serial_only("move_room");
+  std::vector<std::uint32_t> ids;
+  for (const auto& [id, s] : sessions_)
+    if (s.room == room) ids.push_back(id);
+  std::size_t told = 0;
+  for (auto id : ids) {
+    Session& s = sessions_.at(id);
+    if (s.connected) {
+      for (int i = 0; i < 3; ++i) send_packet(s, {Moved{address, room_code}}, false, now_ms);
+      ++told;
+    }
+    release(id, "moved");
+  }
+  return told;
+}
+
 void ServerEndpoint::shutdown(std::uint64_t now_ms) {
   serial_only("shutdown");
   std::vector<std::uint32_t> ids;

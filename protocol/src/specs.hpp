@@ -34,6 +34,7 @@ FTS_WIRE_SPEC(Bye, "bye", kByeFields);
 FTS_WIRE_SPEC(SnapshotMsg, "snap", kSnapFields);
 FTS_WIRE_SPEC(Chat, "chat", kChatFields);
 FTS_WIRE_SPEC(Leaderboard, "board", kLeaderboardFields);
+FTS_WIRE_SPEC(Moved, "moved", kMovedFields);
 
 #undef FTS_WIRE_SPEC
 

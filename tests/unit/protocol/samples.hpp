@@ -143,6 +143,7 @@ inline std::vector<Message> all_messages() {
       Chat{2, 0, "host", "bye"},
       Leaderboard{5, {{1, "ann", 12, 4500}, {2, "bob", 12, 900}, {3, "?x?", 3, 0}}, 3, 2, 12, 900},
       Leaderboard{6, {}, 0, 0, 0, 0},
+      Moved{"10.0.0.7:7778", "KWZWC"},
       full,
       delta,
   };

@@ -100,6 +100,8 @@ class ClientEndpoint {
   ClientState state() const { return state_; }
   const std::optional<Welcome>& welcome() const { return welcome_; }
   const std::optional<Error>& error() const { return error_; }
+  // The server said the room moved (PROTOCOL.md 4.9b): where to; the state is disconnected.
+  const std::optional<Moved>& moved() const { return moved_; }
   const Snapshot* latest_snapshot() const { return snapshots_.latest(); }
   const RejectCounters& rejects() const { return rejects_; }
   // The server's datagrams dropped because they did not open (forged or replayed).
@@ -134,6 +136,7 @@ class ClientEndpoint {
   std::uint32_t session_ = 0;
   std::optional<Welcome> welcome_;
   std::optional<Error> error_;
+  std::optional<Moved> moved_;
   AckWindow acks_;
   ReliableSender<Command> commands_;
   ReliableReceiver<Result> results_;

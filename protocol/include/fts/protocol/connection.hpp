@@ -38,6 +38,11 @@ class ClientConnection {
   bool resuming() const { return lost_since_ms_ != 0; }
   // True once resuming has failed for longer than the reconnect window.
   bool gone() const { return gone_; }
+  // Where the room went (PROTOCOL.md 4.9b): "" until a `moved` came. A move starts a new
+  // attempt at once, there, with the token (and the room's code, should the token not
+  // be known there); the caller sends it to moved_to() (moves() counts the moves).
+  const std::string& moved_to() const { return moved_to_; }
+  std::uint64_t moves() const { return moves_; }
 
  private:
   ClientConfig config_;
@@ -50,6 +55,8 @@ class ClientConnection {
   bool welcomed_ = false;  // some attempt was welcomed: there is a player to resume
   bool gone_ = false;
   bool left_ = false;  // we said bye: not a lost connection
+  std::string moved_to_;
+  std::uint64_t moves_ = 0;
 };
 
 }  // namespace fts::protocol

@@ -175,6 +175,14 @@ struct Bye {
   bool operator==(const Bye&) const = default;
 };
 
+// server -> client: the player's room now runs on another server (PROTOCOL.md 4.9b, issue
+// 42). The client connects there with the token it holds; this session is over.
+struct Moved {
+  std::string address;  // "host:port" of the room's new server
+  std::string room;     // the room's code (the same there)
+  bool operator==(const Moved&) const = default;
+};
+
 // A ball in a snapshot message, in quantized units (1/16 u, 1/16 u/s). A full entry has
 // every field; a motion entry (full == false) holds only the differences of vx, vy from
 // the same ball in the base snapshot, and of x, y from where the base's velocity takes
@@ -225,7 +233,7 @@ struct SnapshotMsg {
 };
 
 using Message = std::variant<Hello, Challenge, Welcome, Error, Input, Command, Result, Ping,
-                             Bye, SnapshotMsg, Chat, Leaderboard>;
+                             Bye, SnapshotMsg, Chat, Leaderboard, Moved>;
 
 // Why a player name is refused ("" if it is fine): 1..16 printable ASCII characters.
 std::string name_problem(const std::string& name);

@@ -267,6 +267,11 @@ class ServerEndpoint {
   std::string session_identity(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
   void shutdown(std::uint64_t now_ms);
+  // The room went to another server (PROTOCOL.md 4.9b): each of its connected sessions is
+  // told where (`moved`, sent three times: it is not acknowledged); every session of the
+  // room is released (reason "moved"). Returns how many were told.
+  std::size_t move_room(std::uint32_t room, const std::string& address, const std::string& room_code,
+                        std::uint64_t now_ms);
   // While a room is paused (the host's lobby, shop and game-over phases) none of its
   // sessions idles: their idle clocks restart when the pause ends.
   void set_idle_paused(std::uint32_t room, bool paused) {
