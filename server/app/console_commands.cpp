@@ -162,6 +162,8 @@ Reply stats(GameHost& host, const nlohmann::json&, std::uint64_t) {
   for (const auto& s : host.endpoint().sessions()) (s.spectator ? spectators : players) += s.connected ? 1 : 0;
   Reply out = ok_reply();
   out["rooms"] = host.room_ids().size();
+  out["handovers"] = {{"moved", host.rooms_moved()}, {"adopted", host.rooms_adopted()},
+                      {"refused", host.handovers_refused()}};
   out["max_rooms"] = host.options().max_rooms;
   out["rooms_made"] = host.rooms_made();
   out["players"] = players;
@@ -266,6 +268,19 @@ std::string announce_words(Words w, nlohmann::json& req) {
   return "";
 }
 
+// `handover` is answered by the loop once the peer has (net/handover.hpp); here only
+// when the server has no fleet secret.
+Reply handover_off(GameHost&, const nlohmann::json&, std::uint64_t) {
+  return error_reply("this server hands no rooms over: it needs --fleet-secret FILE and --journal-dir DIR");
+}
+
+std::string handover_words(Words w, nlohmann::json& req) {
+  if (w.size() != 2) return "handover ROOM|all PEER";
+  req["room"] = w[0];
+  req["peer"] = w[1];
+  return "";
+}
+
 constexpr ConsoleCommand kCommands[] = {
     {"rooms", "rooms", "every room: id, code, privacy, players, spectators, level, phase, tick, seed, state hash",
      rooms, no_words},
@@ -277,6 +292,9 @@ constexpr ConsoleCommand kCommands[] = {
     {"announce", "announce TEXT", "a chat line from the host to every connected client", announce, announce_words},
     {"close", "close ROOM", "closes the room (its clients are told room_closed)", close, room_required},
     {"drain", "drain", "no new rooms; the server exits 0 when the last room has closed", drain, no_words},
+    {"handover", "handover ROOM|all PEER",
+     "hands the room (all: drains, and every room) to the server at PEER (its --handover-listen); its clients follow",
+     handover_off, handover_words},
     {"stats", "stats", "rooms, players, spectators, sessions, bans, dropped datagrams, skipped ticks, the journal (failing rooms)", stats, no_words},
     {"top", "top [level|knocks] [N]",
      "the leaderboard (profiles): best level (ties by coins) or most knocks, the first N (10)", profiles_off,

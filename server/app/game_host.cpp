@@ -309,7 +309,8 @@ void GameHost::tick(std::uint64_t now_ms) {
   dispatch(now_ms);
   // The rooms on the pool (the phases: game_host.hpp).
   order_.clear();
-  for (auto& [id, r] : rooms_) order_.push_back(r.get());
+  for (auto& [id, r] : rooms_)
+    if (!r->frozen) order_.push_back(r.get());
   {
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
     pool_.run(order_.size(), [&](std::size_t i, std::size_t) { order_[i]->step(now_ms); });
@@ -335,6 +336,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   std::vector<std::uint32_t> idle;
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
+    if (r->frozen) continue;  // being handed over: the peer's answer decides
     const bool connected = !members(id).empty();
     if (!draining_ && (r->last_occupied_ms == 0 || connected)) {
       r->last_occupied_ms = now_ms;

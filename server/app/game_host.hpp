@@ -29,6 +29,8 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -104,6 +106,23 @@ class GameHost {
   bool resume_room(const store::ResumedRoom& room, std::uint64_t now_ms);
   const store::JournalWriter* journal(std::uint32_t room_id) const;
   store::JournalWriter* journal(std::uint32_t room_id);
+  // ---- rooms that move (issue 42; app/game_host_handover.cpp, PROTOCOL.md 4.9b). A room
+  // handed over is frozen (it steps no more) while its journal, flushed to its tick, goes
+  // to the peer; then either the peer took it (room_moved: its clients are told where, and
+  // it closes here without a result: the match goes on there) or not (room_kept: it plays
+  // on here). The peer's side is adopt_room.
+  struct RoomExport {
+    std::string code;
+    std::int64_t tick = 0;
+    std::vector<std::pair<std::string, std::string>> files;  // the journal's segments: name, text
+  };
+  std::variant<RoomExport, std::string> export_room(const std::string& code);
+  std::size_t room_moved(const std::string& code, const std::string& address, std::uint64_t now_ms);
+  void room_kept(const std::string& code, const std::string& why);
+  // A room from a peer: its journal's segments. "" when it plays here now (at the tick it
+  // left), else why not (nothing changed).
+  std::string adopt_room(const std::string& code, const std::vector<std::pair<std::string, std::string>>& files,
+                         std::uint64_t now_ms);
   // Writers of closed rooms still finishing (removed each tick once stopped).
   std::size_t closing_journals() const { return closing_journals_.size(); }
   // The wire events of one step, as the room stepper numbers them (benchmarks that write
@@ -118,6 +137,11 @@ class GameHost {
   const Room* room_by_code(const std::string& code) const;
   std::vector<std::uint32_t> room_ids() const;
   std::uint64_t rooms_made() const { return rooms_made_; }
+  // Hand-overs (issue 42): rooms this server gave to a peer, took from one, and kept
+  // because the peer refused or could not be reached.
+  std::uint64_t rooms_moved() const { return rooms_moved_; }
+  std::uint64_t rooms_adopted() const { return rooms_adopted_; }
+  std::uint64_t handovers_refused() const { return handovers_refused_; }
   // The rooms' journals as last seen (each room looks once a second).
   struct JournalHealth {
     std::size_t rooms = 0;       // journaled rooms
@@ -172,6 +196,7 @@ class GameHost {
   RoomCodes codes_;
   std::uint32_t next_room_id_ = 1;
   std::uint64_t rooms_made_ = 0;
+  std::uint64_t rooms_moved_ = 0, rooms_adopted_ = 0, handovers_refused_ = 0;
   std::uint64_t now_ms_ = 0;  // the time last passed in (admit() is called without it)
   bool draining_ = false;
   bool refuse_players_ = false;

@@ -119,6 +119,13 @@ inline constexpr auto kOptionTable = std::tuple{
                "record each room into DIR/room-<id>/, a journal keeping every segment (with --record: the rooms but 1)", "DIR"),
     cli::value("--console-socket", "FTS_CONSOLE_SOCKET", &O::console_path, Text{}, "must be a path",
                "serve the host's console on this UNIX socket (mode 0600)", "PATH"),
+    cli::value("--handover-listen", "FTS_HANDOVER_LISTEN", &O::handover_listen, kMetrics,
+               "must be ADDR:PORT with an IP address and a port 1..65535 (\"\": off)",
+               "take rooms handed over by peer servers on this TCP ADDR:PORT (needs --fleet-secret, --journal-dir)",
+               "ADDR:PORT"),
+    cli::value("--fleet-secret", "FTS_FLEET_SECRET", &O::fleet_secret_path, Text{}, "must be a file",
+               "the fleet's shared secret, a file of at least 32 bytes: authenticates room hand-overs both ways",
+               "FILE"),
     cli::on("--version", "", &O::version, "print the version"),
     // The fleet's Counters and Lists for the given limits, for the test that holds
     // docker/agones/ to them (server/fleet/fleet_names.hpp).

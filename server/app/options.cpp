@@ -124,6 +124,8 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   // where two rooms would write one directory (PATH is DIR/room-<n> for another room) or
   // PATH would sit among DIR's rooms; checked before any directory is made.
   if (auto clash = record_paths_clash(o.record_path, o.record_dir)) return OptionError{*clash};
+  if (!o.handover_listen.empty() && (o.fleet_secret_path.empty() || o.journal_dir.empty()))
+    return OptionError{"--handover-listen: needs --fleet-secret FILE and --journal-dir DIR (a room arrives as a journal)"};
   if (!o.metrics_address.empty() &&
       o.metrics_address.substr(o.metrics_address.rfind(':') + 1) == std::to_string(o.port))
     return OptionError{"--metrics: must not be the game port " + std::to_string(o.port) + ", got \"" +

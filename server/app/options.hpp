@@ -62,6 +62,11 @@ struct Options {
   std::uint32_t max_spectators = 8;     // spectators per room (0: none)
   std::string record_dir;   // "" : no per-room records; else DIR/room-<id>/ per room (room 1: record_path if set)
   std::string console_path;  // "" : no console; else the host's UNIX socket (mode 0600)
+  // Rooms that move (issue 42, server/net/handover.hpp): take rooms handed over by peers
+  // on this TCP ADDR:PORT ("": off); the fleet's shared secret (a file) authenticates
+  // both ends, and is needed to hand a room over too.
+  std::string handover_listen;
+  std::string fleet_secret_path;
   bool help = false;      // --help (the table's library adds it)
   bool markdown = false;  // --help-markdown: the flag reference (docs/flags/fts-server.md)
   bool version = false;

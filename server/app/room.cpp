@@ -289,6 +289,14 @@ void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<
   for (auto id : members) endpoint.send_snapshot(id, snap, now_ms, lane);
 }
 
+bool Room::sync_journal() {
+  if (!journal_) return false;
+  journal_->hash_now(stepper_.match(), stepper_.event_seq());
+  journal_->flush();
+  const auto st = journal_->stats();
+  return !st.failing && st.dropped == 0 && st.error.empty();
+}
+
 void Room::seal() {
   if (recorder_) recorder_->hash_now(stepper_.match(), stepper_.event_seq());
   flush();

@@ -122,6 +122,12 @@ class Room {
   const InputTiming& input_timing() const { return timing_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
+  // Being handed over to a peer (GameHost::export_room): it steps, publishes and closes
+  // for idling no more until the peer answers.
+  bool frozen = false;
+  // Its journal written and synced to the state now, with a hash line of it (a hand-over
+  // ships it). False without a journal or while the journal fails.
+  bool sync_journal();
   // The host (address without port) whose hello made the room; "" for a resumed one.
   // Its open rooms count against it (Options::max_rooms_per_host).
   std::string maker_host;

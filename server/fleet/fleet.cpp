@@ -55,6 +55,9 @@ void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std
     const auto journal = host.journal_health();
     s.journal_failing = journal.failing;
     s.journal_failures = journal.failures;
+    s.rooms_moved = host.rooms_moved();
+    s.rooms_adopted = host.rooms_adopted();
+    s.handovers_refused = host.handovers_refused();
     if (const auto* w = host.profiles()) {
       const auto ps = w->stats();
       s.profiles = true;

@@ -21,9 +21,9 @@ using local = asio::local::stream_protocol;
 struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::Connection> {
   using Deferred = ConsoleServer::Deferred;
   Connection(local::socket s, std::function<std::string(const std::string&)>& h, Deferred& d,
-             std::shared_ptr<std::size_t> open, std::shared_ptr<Counters> c)
+             std::shared_ptr<std::size_t> open, std::shared_ptr<std::size_t> unanswered, std::shared_ptr<Counters> c)
       : socket(std::move(s)), timer(socket.get_executor()), buffer(kMaxLineBytes), handle(h), deferred(d),
-        open_count(std::move(open)), counters(std::move(c)) {
+        open_count(std::move(open)), unanswered_count(std::move(unanswered)), counters(std::move(c)) {
     ++*open_count;
   }
   ~Connection() { --*open_count; }
@@ -54,6 +54,7 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
       while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
       if (line.empty()) return self->read();
       self->arm();
+      ++*self->unanswered_count;  // until its reply is written (or the connection fails)
       if (self->deferred &&
           self->deferred(line, [self](std::string r) {
             asio::post(self->socket.get_executor(), [self, r = std::move(r)]() mutable { self->write(std::move(r)); });
@@ -68,6 +69,7 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
     arm();
     auto self = shared_from_this();
     asio::async_write(socket, asio::buffer(reply), [self](const boost::system::error_code& e, std::size_t) {
+      --*self->unanswered_count;
       if (!e) return self->read();
       self->timer.cancel();
     });
@@ -80,6 +82,7 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
   std::function<std::string(const std::string&)>& handle;
   Deferred& deferred;
   std::shared_ptr<std::size_t> open_count;
+  std::shared_ptr<std::size_t> unanswered_count;
   std::shared_ptr<Counters> counters;
 };
 
@@ -122,7 +125,7 @@ void ConsoleServer::accept() {
     if (!ec && *open_ < kMaxConnections) {
       ++counters_->accepted;
       busy_logged_ = false;
-      std::make_shared<Connection>(std::move(s), handle_, deferred_, open_, counters_)->read();
+      std::make_shared<Connection>(std::move(s), handle_, deferred_, open_, unanswered_, counters_)->read();
     } else if (!ec) {
       ++counters_->refused_busy;
       if (!busy_logged_)

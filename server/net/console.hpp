@@ -23,6 +23,9 @@ class ConsoleServer {
   // false: `handle` answers it.
   using Deferred = std::function<bool(const std::string& line, std::function<void(std::string)> reply)>;
   void set_deferred(Deferred deferred) { deferred_ = std::move(deferred); }
+  // Requests read whose replies are not written yet (a drained server waits for them:
+  // the reply to `handover all` comes as its last room leaves).
+  std::size_t unanswered() const { return *unanswered_; }
   // Binds and listens ("" on success, else why not). A stale socket file is replaced;
   // any other file at the path is left alone and is an error.
   std::string start();
@@ -50,6 +53,7 @@ class ConsoleServer {
   Deferred deferred_;
   boost::asio::local::stream_protocol::acceptor acceptor_;
   std::shared_ptr<std::size_t> open_ = std::make_shared<std::size_t>(0);
+  std::shared_ptr<std::size_t> unanswered_ = std::make_shared<std::size_t>(0);
   std::shared_ptr<Counters> counters_ = std::make_shared<Counters>();
   bool busy_logged_ = false;  // "console_busy" is logged once per busy spell
   bool bound_ = false;

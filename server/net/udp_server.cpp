@@ -13,6 +13,7 @@
 #include "fleet/fleet.hpp"
 #include "fts/io/udp.hpp"
 #include "net/console.hpp"
+#include "net/handover.hpp"
 
 namespace fts::server {
 namespace {
@@ -57,24 +58,19 @@ class Loop {
       return 1;
     }
     const auto bound = socket_.local_endpoint();
+    if (const std::string why = start_handover(bound.port()); !why.empty()) {
+      log_record(spdlog::level::err, "handover_failed", {{"error", why}});
+      return 1;
+    }
     if (!options_.console_path.empty()) {
       console_ = std::make_unique<ConsoleServer>(io_, options_.console_path,
                                                  [this](const std::string& line) { return console_line(line); });
-      // The profile commands run on the profile writer's thread: the tick never waits
-      // for the database (issue 41).
-      if (auto* writer = host_.profiles()) {
-        console_->set_deferred([writer](const std::string& line, std::function<void(std::string)> reply) {
-          const auto req = nlohmann::json::parse(line, nullptr, false);
-          if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string()) return false;
-          const std::string cmd = req["cmd"].get<std::string>();
-          if (cmd != "top" && cmd != "profile") return false;
-          log_record(spdlog::level::info, "console", {{"request", req.dump()}, {"deferred", true}});
-          writer->query([req, reply](profiles::Store* store) {
-            reply(server::profiles_reply(store, req).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-          });
-          return true;
-        });
-      }
+      // Deferred: a hand-over answers when the peer has (handover.hpp), the profile
+      // commands on the profile writer's thread (the tick never waits for the database,
+      // issue 41).
+      console_->set_deferred([this](const std::string& line, std::function<void(std::string)> reply) {
+        return deferred_console(line, std::move(reply));
+      });
       if (const std::string why = console_->start(); !why.empty()) {
         log_record(spdlog::level::err, "console_failed", {{"error", why}});
         return 1;
@@ -111,10 +107,75 @@ class Loop {
     return reply.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   }
 
+  // Rooms that move (issue 42): the channel exists with --fleet-secret, and takes rooms
+  // with --handover-listen.
+  std::string start_handover(std::uint16_t game_port) {
+    if (options_.fleet_secret_path.empty()) return "";
+    std::string why;
+    std::string key = handover::read_secret_file(options_.fleet_secret_path, why);
+    if (key.empty()) return why;
+    handover_ = std::make_unique<HandoverChannel>(io_, host_, std::move(key), game_port, [this] { return now_ms(); },
+                                                  [this] { flush(); });
+    if (options_.handover_listen.empty()) return "";
+    if (why = handover_->listen(options_.handover_listen); !why.empty()) return why;
+    log_record(spdlog::level::info, "handover_listening", {{"address", options_.handover_listen}, {"port", handover_->port()}});
+    return "";
+  }
+
+  // A console request answered later, or false (console_line answers it now).
+  bool deferred_console(const std::string& line, std::function<void(std::string)> reply) {
+    const auto req = nlohmann::json::parse(line, nullptr, false);
+    if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string()) return false;
+    const std::string cmd = req["cmd"].get<std::string>();
+    const auto text = [](const nlohmann::ordered_json& j) {
+      return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    };
+    if (cmd == "handover" && handover_) {
+      const auto word = [&](const char* k) { return req.contains(k) && req[k].is_string() ? req[k].get<std::string>() : ""; };
+      log_record(spdlog::level::info, "console", {{"request", req.dump()}, {"deferred", true}});
+      hand_over(word("room"), word("peer"), [reply, text](nlohmann::ordered_json j) { reply(text(j)); });
+      return true;
+    }
+    auto* writer = host_.profiles();
+    if (!writer || (cmd != "top" && cmd != "profile")) return false;
+    log_record(spdlog::level::info, "console", {{"request", req.dump()}, {"deferred", true}});
+    writer->query([req, reply](profiles::Store* store) {
+      reply(server::profiles_reply(store, req).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    });
+    return true;
+  }
+
+  // `handover ROOM PEER`, or `handover all PEER`: the server drains (no new rooms) and
+  // hands every room over; the reply lists each room's outcome.
+  void hand_over(const std::string& room, const std::string& peer, HandoverChannel::Done done) {
+    if (room != "all") return handover_->hand_over(room, peer, std::move(done));
+    host_.stop_new_rooms();
+    std::vector<std::string> codes;
+    for (auto id : host_.room_ids())
+      if (const Room* r = host_.room(id)) codes.push_back(r->code());
+    if (codes.empty()) return done({{"ok", true}, {"rooms", nlohmann::ordered_json::array()}, {"draining", true}});
+    struct All {
+      std::size_t left;
+      nlohmann::ordered_json rooms = nlohmann::ordered_json::array();
+      bool ok = true;
+      HandoverChannel::Done done;
+    };
+    auto all = std::make_shared<All>(All{codes.size(), {}, true, std::move(done)});
+    for (const auto& code : codes) {
+      handover_->hand_over(code, peer, [all, code](nlohmann::ordered_json j) {
+        all->ok = all->ok && j.value("ok", false);
+        j["room"] = code;
+        all->rooms.push_back(std::move(j));
+        if (--all->left == 0) all->done({{"ok", all->ok}, {"rooms", all->rooms}, {"draining", true}});
+      });
+    }
+  }
+
   // The console's drain: the last room has ended, the process exits 0. Under Agones the
   // fleet's drain takes over instead (it tells Agones first; see schedule_tick).
   void stop_if_drained() {
     if (!host_.drained() || stopping_) return;
+    if (console_ && console_->unanswered() != 0) return;  // a reply still to write (the next tick looks again)
     stopping_ = true;
     log_record(spdlog::level::info, "shutdown", {{"reason", "drained"}});
     host_.shutdown(now_ms());
@@ -258,6 +319,7 @@ class Loop {
   std::int64_t last_skip_log_ns_ = 0;
   protocol::RejectCounters last_rejects_;
   std::unique_ptr<Fleet> fleet_;
+  std::unique_ptr<HandoverChannel> handover_;  // --fleet-secret (issue 42); before io_ goes
   std::unique_ptr<ConsoleServer> console_;
   bool stopping_ = false;
 };

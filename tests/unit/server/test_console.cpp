@@ -24,7 +24,7 @@ TEST_CASE("Console: help is the table, and every row answers", "[server][console
   }
   const auto unknown = rig.console(R"({"cmd":"fly"})");
   CHECK(unknown["error"] ==
-        "unknown command \"fly\"; commands: rooms, players, kick, ban, announce, close, drain, stats, top, profile, help");
+        "unknown command \"fly\"; commands: rooms, players, kick, ban, announce, close, drain, handover, stats, top, profile, help");
 }
 
 TEST_CASE("Console: the front end's words make the request", "[server][console]") {

@@ -1,0 +1,278 @@
+// The hand-over channel (handover.hpp): Asio TCP, libsodium's HMAC-SHA-256 and BLAKE2b.
+#include "net/handover.hpp"
+
+#include <sodium.h>
+
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "app/log.hpp"
+#include "fts/io/address.hpp"
+
+namespace fts::server {
+
+namespace asio = boost::asio;
+using tcp = asio::ip::tcp;
+
+namespace {
+
+using namespace handover;
+// A whole exchange, either side: under the console's 5 s for a reply (net/console.hpp).
+constexpr auto kDeadline = std::chrono::seconds(4);
+
+nlohmann::ordered_json refusal(const std::string& why) { return {{"ok", false}, {"error", why}}; }
+
+// A key of a JSON object read without throwing: "" or 0 when absent or of another type.
+std::string text_of(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
+}
+std::int64_t int_of(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number_integer() ? j[key].get<std::int64_t>() : 0;
+}
+bool true_at(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_boolean() && j[key].get<bool>();
+}
+
+}  // namespace
+
+struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Impl> {
+  asio::io_context& io;
+  GameHost& host;
+  std::string key;
+  std::uint16_t game_port;
+  std::function<std::uint64_t()> now_ms;
+  std::function<void()> flush;
+  tcp::acceptor acceptor;
+  bool closed = false;
+
+  Impl(asio::io_context& i, GameHost& h, std::string k, std::uint16_t p, std::function<std::uint64_t()> n,
+       std::function<void()> f)
+      : io(i), host(h), key(std::move(k)), game_port(p), now_ms(std::move(n)), flush(std::move(f)), acceptor(i) {}
+
+  // ---- the peer's side: one connection, one room.
+  struct Inbound : std::enable_shared_from_this<Inbound> {
+    std::shared_ptr<Impl> owner;
+    tcp::socket socket;
+    asio::steady_timer deadline;
+    Bytes challenge = Bytes(kChallengeBytes);
+    Bytes hello, body, reply;
+    std::array<std::uint8_t, 4> length{};
+    std::string from;
+
+    Inbound(std::shared_ptr<Impl> o, tcp::socket s)
+        : owner(std::move(o)), socket(std::move(s)), deadline(owner->io) {}
+
+    void start() {
+      boost::system::error_code ec;
+      const auto ep = socket.remote_endpoint(ec);
+      from = ec ? "?" : ep.address().to_string() + ":" + std::to_string(ep.port());
+      randombytes_buf(challenge.data(), challenge.size());
+      hello.assign(kMagic.begin(), kMagic.end());
+      hello.insert(hello.end(), challenge.begin(), challenge.end());
+      deadline.expires_after(kDeadline);
+      deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+        if (!e) self->socket.close();
+      });
+      asio::async_write(socket, asio::buffer(hello), [self = shared_from_this()](auto e, std::size_t) {
+        if (!e) self->read_length();
+      });
+    }
+    void read_length() {
+      asio::async_read(socket, asio::buffer(length), [self = shared_from_this()](auto e, std::size_t) {
+        if (e) return;
+        const std::uint32_t n = frame_length(self->length);
+        if (n > kMaxFrameBytes) return self->answer(refusal("a request of " + std::to_string(n) + " bytes"), true);
+        self->body.resize(n + kMacBytes);
+        asio::async_read(self->socket, asio::buffer(self->body), [self](auto e2, std::size_t) {
+          if (!e2) self->on_request();
+        });
+      });
+    }
+    void on_request() {
+      const auto opened = open_body(owner->key, kRequestLabel, challenge, body);
+      if (!opened) return answer(refusal("not authenticated: another fleet secret?"), true);
+      const std::string& json = *opened;
+      const auto req = nlohmann::json::parse(json, nullptr, false);
+      if (int_of(req, "fts_handover") != kFormat || text_of(req, "room").empty() || !req.contains("files") ||
+          !req["files"].is_array())
+        return answer(refusal("not a hand-over request of format " + std::to_string(kFormat)), true);
+      if (text_of(req, "version") != FTS_VERSION)
+        return answer(refusal("another version: this server runs " + std::string(FTS_VERSION) +
+                              ", the room comes from " + text_of(req, "version")),
+                      true);
+      std::vector<std::pair<std::string, std::string>> files;
+      for (const auto& f : req["files"]) {
+        if (!f.is_object() || !f.contains("name") || !f["name"].is_string() || !f.contains("text") ||
+            !f["text"].is_string())
+          return answer(refusal("a file of the request is not {name, text}"), true);
+        files.emplace_back(f["name"].get<std::string>(), f["text"].get<std::string>());
+      }
+      const std::string room = req["room"].get<std::string>();
+      const std::string why = owner->host.adopt_room(room, files, owner->now_ms());
+      owner->flush();
+      if (!why.empty()) return answer(refusal(why), false);
+      const Room* r = owner->host.room_by_code(room);
+      answer({{"ok", true}, {"room", room}, {"tick", r ? r->match().tick : 0}, {"port", owner->game_port}}, false);
+    }
+    void answer(const nlohmann::ordered_json& j, bool unauthenticated) {
+      if (unauthenticated)
+        log_record(spdlog::level::warn, "handover_denied", {{"from", from}, {"reason", j.value("error", std::string())}});
+      reply = frame(owner->key, kReplyLabel, challenge, j.dump());
+      asio::async_write(socket, asio::buffer(reply), [self = shared_from_this()](auto, std::size_t) {
+        boost::system::error_code ignored;
+        self->socket.shutdown(tcp::socket::shutdown_both, ignored);
+        self->deadline.cancel();
+      });
+    }
+  };
+
+  void accept() {
+    acceptor.async_accept([self = shared_from_this()](const boost::system::error_code& e, tcp::socket s) {
+      if (e || self->closed) return;
+      std::make_shared<Inbound>(self, std::move(s))->start();
+      self->accept();
+    });
+  }
+
+  // ---- the sender's side.
+  struct Outbound : std::enable_shared_from_this<Outbound> {
+    std::shared_ptr<Impl> owner;
+    std::string code, peer_host, peer;
+    Done done;
+    tcp::resolver resolver;
+    tcp::socket socket;
+    asio::steady_timer deadline;
+    std::array<std::uint8_t, kMagic.size() + kChallengeBytes> hello{};
+    Bytes challenge, request, body;
+    std::array<std::uint8_t, 4> length{};
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+    std::int64_t tick = 0;
+    bool finished = false;
+
+    Outbound(std::shared_ptr<Impl> o, std::string c, std::string p, Done d)
+        : owner(std::move(o)), code(std::move(c)), peer(std::move(p)), done(std::move(d)), resolver(owner->io),
+          socket(owner->io), deadline(owner->io) {}
+
+    void start(GameHost::RoomExport ex, const fts::io::HostPort& hp) {
+      peer_host = hp.host;
+      tick = ex.tick;
+      nlohmann::json req = {{"fts_handover", kFormat}, {"version", FTS_VERSION}, {"room", ex.code}, {"tick", ex.tick}};
+      req["files"] = nlohmann::json::array();
+      for (auto& [name, text] : ex.files) req["files"].push_back({{"name", name}, {"text", std::move(text)}});
+      request.clear();
+      const std::string json = req.dump();
+      request.assign(json.begin(), json.end());  // framed once the challenge is known
+      deadline.expires_after(kDeadline);
+      deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+        if (!e) self->fail("no answer from the peer " + self->peer + " in 4 s");
+      });
+      resolver.async_resolve(hp.host, hp.port, [self = shared_from_this()](auto e, tcp::resolver::results_type r) {
+        if (e) return self->fail("cannot resolve the peer " + self->peer + ": " + e.message());
+        asio::async_connect(self->socket, r, [self](auto e2, const tcp::endpoint&) {
+          if (e2) return self->fail("cannot reach the peer " + self->peer + ": " + e2.message());
+          asio::async_read(self->socket, asio::buffer(self->hello), [self](auto e3, std::size_t) {
+            if (e3) return self->fail("the peer " + self->peer + " closed the connection: " + e3.message());
+            if (std::memcmp(self->hello.data(), kMagic.data(), kMagic.size()) != 0)
+              return self->fail("the peer " + self->peer + " does not take rooms (not an fts-server's --handover-listen)");
+            self->challenge.assign(self->hello.begin() + kMagic.size(), self->hello.end());
+            const std::string json(self->request.begin(), self->request.end());
+            self->request = frame(self->owner->key, kRequestLabel, self->challenge, json);
+            asio::async_write(self->socket, asio::buffer(self->request), [self](auto e4, std::size_t) {
+              if (e4) return self->fail("the peer " + self->peer + " closed the connection: " + e4.message());
+              self->read_reply();
+            });
+          });
+        });
+      });
+    }
+    void read_reply() {
+      asio::async_read(socket, asio::buffer(length), [self = shared_from_this()](auto e, std::size_t) {
+        if (e) return self->fail("the peer " + self->peer + " closed the connection before answering");
+        const std::uint32_t n = frame_length(self->length);
+        if (n > kMaxFrameBytes) return self->fail("the peer's answer is too long");
+        self->body.resize(n + kMacBytes);
+        asio::async_read(self->socket, asio::buffer(self->body), [self](auto e2, std::size_t) {
+          if (e2) return self->fail("the peer " + self->peer + " closed the connection before answering");
+          self->on_reply();
+        });
+      });
+    }
+    void on_reply() {
+      const auto opened = open_body(owner->key, kReplyLabel, challenge, body);
+      if (!opened) return fail("the peer " + peer + "'s answer is not authentic: it holds another fleet secret");
+      const std::string& json = *opened;
+      const auto reply = nlohmann::json::parse(json, nullptr, false);
+      if (!reply.is_object()) return fail("the peer's answer is not JSON");
+      if (!true_at(reply, "ok")) return fail("the peer " + peer + " refused: " + text_of(reply, "error"));
+      const auto port = int_of(reply, "port");
+      if (port <= 0 || port > 65535) return fail("the peer's answer names no game port");
+      const bool v6 = peer_host.find(':') != std::string::npos;
+      const std::string address = (v6 ? "[" + peer_host + "]" : peer_host) + ":" + std::to_string(port);
+      const std::size_t told = owner->host.room_moved(code, address, owner->now_ms());
+      owner->flush();
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+      finish({{"ok", true}, {"room", code}, {"to", address}, {"tick", tick}, {"clients_told", told}, {"ms", ms}});
+    }
+    void fail(const std::string& why) {
+      if (finished) return;
+      owner->host.room_kept(code, why);
+      finish(refusal(why + "; room " + code + " plays on here"));
+    }
+    void finish(nlohmann::ordered_json reply) {
+      if (finished) return;
+      finished = true;
+      deadline.cancel();
+      boost::system::error_code ignored;
+      socket.close(ignored);
+      done(std::move(reply));
+    }
+  };
+};
+
+HandoverChannel::HandoverChannel(asio::io_context& io, GameHost& host, std::string key, std::uint16_t game_port,
+                                 std::function<std::uint64_t()> now_ms, std::function<void()> flush)
+    : impl_(std::make_shared<Impl>(io, host, std::move(key), game_port, std::move(now_ms), std::move(flush))) {}
+
+HandoverChannel::~HandoverChannel() {
+  impl_->closed = true;
+  boost::system::error_code ignored;
+  impl_->acceptor.close(ignored);
+}
+
+std::string HandoverChannel::listen(const std::string& address) {
+  const auto hp = fts::io::parse_host_port(address);
+  if (!hp) return "--handover-listen: not ADDR:PORT: " + address;
+  boost::system::error_code ec;
+  const auto ip = asio::ip::make_address(hp->host, ec);
+  if (ec) return "--handover-listen: not an IP address: " + hp->host;
+  const tcp::endpoint ep(ip, static_cast<std::uint16_t>(std::stoi(hp->port)));
+  auto& a = impl_->acceptor;
+  if (a.open(ep.protocol(), ec); ec) return "--handover-listen: " + ec.message();
+  a.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (a.bind(ep, ec); ec) return "--handover-listen: cannot bind " + address + ": " + ec.message();
+  if (a.listen(16, ec); ec) return "--handover-listen: " + ec.message();
+  impl_->accept();
+  return "";
+}
+
+std::uint16_t HandoverChannel::port() const {
+  boost::system::error_code ec;
+  const auto ep = impl_->acceptor.local_endpoint(ec);
+  return ec ? 0 : ep.port();
+}
+
+void HandoverChannel::hand_over(const std::string& code, const std::string& peer, Done done) {
+  const auto hp = fts::io::parse_host_port(peer);
+  if (!hp) return done(refusal("the peer must be HOST:PORT (its --handover-listen), got \"" + peer + "\""));
+  auto exported = impl_->host.export_room(code);
+  if (auto* why = std::get_if<std::string>(&exported)) return done(refusal(*why));
+  auto& ex = std::get<GameHost::RoomExport>(exported);
+  auto out = std::make_shared<Impl::Outbound>(impl_, ex.code, peer, std::move(done));
+  out->start(std::move(ex), *hp);
+}
+
+}  // namespace fts::server

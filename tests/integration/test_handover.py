@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Rooms that move (issue 42), with real processes: two fts-servers of one fleet (journals,
+one fleet secret; the second takes rooms on --handover-listen) and real bots.
+
+moves: 2 rooms x 3 bots play on the first server; mid-level its console says
+`handover all PEER`: it drains, each room goes to the second at the tick it stood at, the
+bots are told (`moved`) and follow with their tokens as the same players; the first exits
+0 once its rooms are gone. Every bot plays on at the second (its snapshots pass the tick
+of the move), none came back as a new player, and each bot's coins balance against the
+ledgers of both servers' logs (the first's events up to the tick its room moved at).
+
+faults: a peer that is not there, a peer with another secret, a room handed to the
+server that runs it (the room twice at one server) and a full peer: each is refused, the
+room stays and plays on where it was (its tick goes on), and says why (console, log,
+the peer's log for the secret)."""
+import json, os, re, signal, socket, sys, tempfile, time
+
+from harness import HERE, Failure, Server, check, finish_bots, free_port, main, start_bots, wait_for
+from test_journal import ledger, add
+
+MANY_LIVES = os.path.join(HERE, "many-lives.json")
+TICK_HZ = 100
+BOTS = 3
+
+
+def console(sock, request, timeout_s=10):
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as c:
+        c.settimeout(timeout_s)
+        c.connect(sock)
+        c.sendall((json.dumps(request) + "\n").encode())
+        data = b""
+        while not data.endswith(b"\n"):
+            chunk = c.recv(65536)
+            check(chunk, f"the console closed without an answer to {request}")
+            data += chunk
+    return json.loads(data)
+
+
+def secret_file(work, name, byte):
+    path = os.path.join(work, name)
+    with open(path, "wb") as f:
+        f.write(bytes([byte]) * 32 + os.urandom(0 if byte else 32))
+    os.chmod(path, 0o600)
+    return path
+
+
+def fleet_server(work, name, secret, listen=True, extra=()):
+    """A server of the fleet: its journal, console and (listen) its --handover-listen."""
+    d = os.path.join(work, name)
+    os.makedirs(d)
+    sock = os.path.join(d, "console.sock")
+    args = ["--config", MANY_LIVES, "--log-level", "debug", "--timeout-ms", "3000", "--journal-dir",
+            os.path.join(d, "journal"), "--console-socket", sock, "--fleet-secret", secret, *extra]
+    hand = None
+    if listen:
+        hand = f"127.0.0.1:{free_port()}"
+        args += ["--handover-listen", hand]
+    srv = Server(*args)
+    srv.sock, srv.handover = sock, hand
+    return srv
+
+
+def rooms_of(srv):
+    reply = console(srv.sock, {"cmd": "rooms"})
+    check(reply.get("ok"), f"console rooms: {reply}")
+    return {r["code"]: r for r in reply["rooms"]}
+
+
+def test_moves():
+    work = tempfile.mkdtemp(prefix="fts-handover-")
+    secret = secret_file(work, "fleet.secret", 7)
+    groups = []
+    with fleet_server(work, "a", secret, listen=False) as a, fleet_server(work, "b", secret) as b:
+        groups = [start_bots("--connect", a.address, "--name", g, "--count", str(BOTS), "--behavior", "shopper",
+                             "--room", "create", "--duration", "600", "--seed", str(i + 1))
+                  for i, g in enumerate(["ann", "bob"])]
+        wait_for(lambda: len(re.findall(r"\bconnect player=\d+ name=[a-z]+\d", a.text())) >= 2 * BOTS, 20, "the bots")
+        wait_for(lambda: len(re.findall(r"level_start level=1 room=", a.text())) >= 2, 30, "level 1 in both rooms")
+        wait_for(lambda: re.search(r"enemy_defeated enemy=\d+ player=[1-9]", a.text()), 60, "a bot to earn coins")
+        first_ids = dict(re.findall(r"\bconnect player=(\d+) name=([a-z]+\d)", a.text()))
+        codes = dict(re.findall(r"room_open room=(\d+) code=([A-Z]{5})", a.text()))
+        check(len(codes) == 2, f"rooms opened: {codes}")
+
+        started = time.monotonic()
+        reply = console(a.sock, {"cmd": "handover", "room": "all", "peer": b.handover})
+        check(reply.get("ok") and reply.get("draining"), f"handover all: {reply}")
+        check(sorted(r["room"] for r in reply["rooms"]) == sorted(codes.values()), f"rooms handed over: {reply}")
+        check(all(r["ok"] and r["to"] == b.address and r["clients_told"] == BOTS for r in reply["rooms"]),
+              f"a room did not go to {b.address} with its {BOTS} clients told: {reply}")
+        moved = {m["code"]: int(m["tick"]) for m in re.finditer(r"room_moved room=\d+ code=(?P<code>[A-Z]{5}) "
+                                                               r"to=\S+ tick=(?P<tick>\d+)", a.text())}
+        adopted = {m["code"]: int(m["tick"]) for m in re.finditer(r"room_adopted code=(?P<code>[A-Z]{5}) "
+                                                                 r"tick=(?P<tick>\d+)", b.text())}
+        check(moved == adopted and len(moved) == 2, f"moved at {moved}, resumed at {adopted}: not the same ticks")
+        check(a.proc.wait(timeout=10) == 0, "the first server did not exit 0 once its rooms had gone")
+        wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=[a-z]+\d", b.text())) >= 2 * BOTS, 20,
+                 "every bot on the second server")
+        followed_s = time.monotonic() - started
+        check(not re.search(r"\bconnect player=\d+ name=", b.text().replace("reconnect", "")),
+              "a bot came to the second server as a new player")
+        # Play on there, then each bot says goodbye.
+        wait_for(lambda: all(r["tick"] >= moved[c] + 3 * TICK_HZ for c, r in rooms_of(b).items()), 30,
+                 "3 s of play on the second server")
+        for proc, _ in groups:
+            proc.send_signal(signal.SIGINT)
+        reports = [finish_bots(g, 60) for g in groups]
+        groups = []
+        check(b.stop() == 0, "the second server did not exit 0 on SIGINT")
+        upto = {rid: moved[code] for rid, code in codes.items()}
+        seen = {str(x["player_id"]): max((int(t) for t in x["snapshot_digests"]), default=-1)
+                for _, report, _ in reports for x in report}
+        earned, spent = {}, {}
+        for text, limit, sight in [(a.text(), upto, None), (b.text(), None, seen)]:
+            e, s = ledger(text, limit, sight)
+            add(earned, e)
+            add(spent, s)
+        for rc, report, err in reports:
+            check(rc == 0, f"bots failed (exit {rc}): {err.strip()}")
+            check(len(report) == BOTS, f"{len(report)} bot reports")
+            for x in report:
+                pid = str(x["player_id"])
+                check(first_ids.get(pid) == x["name"], f"{x['name']} ended as player {pid}, started as another")
+                check(x["moves"] == 1 and x["moved_to"] == b.address, f"{x['name']}: moves {x['moves']}")
+                check(x["room"] in moved, f"{x['name']} ended in room {x['room']}")
+                newest = max((int(t) for t in x["snapshot_digests"]), default=-1)
+                check(newest > moved[x["room"]], f"{x['name']}'s newest snapshot is of tick {newest}, before the move")
+                expected = earned.get(pid, 0) - spent.get(pid, 0)
+                check(x["coins"] == expected, f"{x['name']} (player {pid}): {x['coins']} coins, the ledgers say "
+                                              f"{expected} (earned {earned.get(pid, 0)}, spent {spent.get(pid, 0)})")
+        check(sum(earned.values()) > 0, "nobody earned anything: the test proved nothing")
+        ms = [r["ms"] for r in reply["rooms"]]
+        print(f"handover: 2 rooms x {BOTS} bots, hand-over {max(ms):.1f} ms (console), every bot on the new server "
+              f"{followed_s * 1000:.0f} ms after the command; earned {sum(earned.values())}")
+    for proc, _ in groups:
+        proc.kill()
+
+
+def test_faults():
+    work = tempfile.mkdtemp(prefix="fts-handover-")
+    secret = secret_file(work, "fleet.secret", 7)
+    other = secret_file(work, "other.secret", 9)
+    bots = None
+    with fleet_server(work, "a", secret) as a, fleet_server(work, "stranger", other) as stranger, \
+            fleet_server(work, "full", secret, extra=("--max-rooms", "1")) as full:
+        bots = start_bots("--connect", a.address, "--name", "ann", "--count", "2", "--behavior", "shopper",
+                          "--room", "create", "--duration", "600")
+        wait_for(lambda: re.search(r"level_start level=1 room=", a.text()), 30, "level 1")
+        code = re.search(r"room_open room=\d+ code=([A-Z]{5})", a.text()).group(1)
+        # The full peer holds a room of its own.
+        filler = start_bots("--connect", full.address, "--name", "cat", "--room", "create", "--duration", "600")
+        wait_for(lambda: re.search(r"room_open room=\d+ code=", full.text()), 20, "the full peer's room")
+        cases = [
+            ("an absent peer", f"127.0.0.1:{free_port()}", "cannot reach the peer"),
+            ("another secret", stranger.handover, "another fleet secret"),
+            ("the room's own server", a.handover, f"room {code} is open here already"),
+            ("a full peer", full.handover, "full: this server has --max-rooms rooms"),
+        ]
+        for what, peer, says in cases:
+            before = rooms_of(a)[code]["tick"]
+            reply = console(a.sock, {"cmd": "handover", "room": code, "peer": peer})
+            check(not reply.get("ok") and says in reply.get("error", "") and "plays on here" in reply["error"],
+                  f"{what}: {reply}")
+            wait_for(lambda: rooms_of(a)[code]["tick"] >= before + TICK_HZ, 10, f"room {code} to play on ({what})")
+            check(re.search(rf"handover_refused room=\d+ code={code} reason=.*{re.escape(says)}", a.text()),
+                  f"{what}: no handover_refused line")
+        check(re.search(r"handover_denied from=127\.0\.0\.1:\d+ reason=not authenticated", stranger.text()),
+              "the stranger did not log the unauthenticated request")
+        check(rooms_of(stranger) == {} and list(rooms_of(full)) != [code], "a refusing peer took the room")
+        check(not re.search(r"room_moved|disconnect player=\d+ reason=moved", a.text()), "a refused room moved")
+        check(not re.search(r"\breconnect player=", a.text()), "a bot had to reconnect")
+        bad = console(a.sock, {"cmd": "handover", "room": "NOPE1", "peer": full.handover})
+        check(not bad.get("ok") and "no room NOPE1" in bad.get("error", ""), f"an unknown room: {bad}")
+        bad = console(a.sock, {"cmd": "handover", "room": code, "peer": "nowhere"})
+        check(not bad.get("ok") and "HOST:PORT" in bad.get("error", ""), f"a peer that is no address: {bad}")
+        for p in (bots, filler):
+            p[0].send_signal(signal.SIGINT)
+            finish_bots(p, 30)
+        bots = None
+        print(f"handover faults: {len(cases)} refusals, room {code} played on at its server after each")
+    if bots:
+        bots[0].kill()
+
+
+if __name__ == "__main__":
+    sys.exit(main({"moves": test_moves, "faults": test_faults}))
