@@ -32,7 +32,10 @@ void ClientConnection::update(std::uint64_t now_ms) {
   if (const auto& moved = endpoint_.moved(); moved && !left_ && welcomed_) {
     moved_to_ = moved->address;
     ++moves_;
-    config_.join = "join";
+    // A spectator watches on there (its session is not in the room's journal, so it comes
+    // as a new spectator); a player's token takes it back, else it joins by the code.
+    if (config_.join != "spectate") config_.join = "join";
+    else token_.clear();
     config_.room = moved->room;
     lost_since_ms_ = 0;
     connect(now_ms);

@@ -80,13 +80,18 @@ def test_moves():
         first_ids = dict(re.findall(r"\bconnect player=(\d+) name=([a-z]+\d)", a.text()))
         codes = dict(re.findall(r"room_open room=(\d+) code=([A-Z]{5})", a.text()))
         check(len(codes) == 2, f"rooms opened: {codes}")
+        watched = codes[min(codes, key=int)]
+        watcher = start_bots("--connect", a.address, "--name", "eve", "--spectate", watched, "--duration", "600")
+        groups.append(watcher)
+        wait_for(lambda: re.search(r"\bconnect spectator=\d+ name=eve ", a.text()), 20, "the spectator")
 
         started = time.monotonic()
         reply = console(a.sock, {"cmd": "handover", "room": "all", "peer": b.handover})
         check(reply.get("ok") and reply.get("draining"), f"handover all: {reply}")
         check(sorted(r["room"] for r in reply["rooms"]) == sorted(codes.values()), f"rooms handed over: {reply}")
-        check(all(r["ok"] and r["to"] == b.address and r["clients_told"] == BOTS for r in reply["rooms"]),
-              f"a room did not go to {b.address} with its {BOTS} clients told: {reply}")
+        told = {c: BOTS + (c == watched) for c in codes.values()}  # the spectator is told too
+        check(all(r["ok"] and r["to"] == b.address and r["clients_told"] == told[r["room"]] for r in reply["rooms"]),
+              f"a room did not go to {b.address} with its clients told ({told}): {reply}")
         moved = {m["code"]: int(m["tick"]) for m in re.finditer(r"room_moved room=\d+ code=(?P<code>[A-Z]{5}) "
                                                                r"to=\S+ tick=(?P<tick>\d+)", a.text())}
         adopted = {m["code"]: int(m["tick"]) for m in re.finditer(r"room_adopted code=(?P<code>[A-Z]{5}) "
@@ -106,6 +111,13 @@ def test_moves():
         reports = [finish_bots(g, 60) for g in groups]
         groups = []
         check(b.stop() == 0, "the second server did not exit 0 on SIGINT")
+        rc, spectated, err = reports.pop()  # the spectator's
+        check(rc == 0 and len(spectated) == 1, f"the spectator failed (exit {rc}): {err.strip()}")
+        eve = spectated[0]
+        check(eve.get("spectator") and eve["moves"] == 1 and eve["room"] == watched,
+              f"the spectator did not follow room {watched} as a spectator: {eve}")
+        check(max((int(t) for t in eve["snapshot_digests"]), default=-1) > moved[watched],
+              "the spectator saw nothing of the room on the second server")
         upto = {rid: moved[code] for rid, code in codes.items()}
         seen = {str(x["player_id"]): max((int(t) for t in x["snapshot_digests"]), default=-1)
                 for _, report, _ in reports for x in report}
