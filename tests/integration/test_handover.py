@@ -9,16 +9,20 @@ bots are told (`moved`) and follow with their tokens as the same players; the fi
 of the move), none came back as a new player, and each bot's coins balance against the
 ledgers of both servers' logs (the first's events up to the tick its room moved at).
 
+client: the terminal client in tmux (80x24) through a move: told, the same room, coins
+and lives on its HUD from the new server, its ball answering the keys there, a clean quit.
+
 faults: a peer that is not there, a peer with another secret, a room handed to the
 server that runs it (the room twice at one server) and a full peer: each is refused, the
 room stays and plays on where it was (its tick goes on), and says why (console, log,
 the peer's log for the secret)."""
-import json, os, re, signal, socket, sys, tempfile, time
+import json, os, re, shutil, signal, socket, subprocess, sys, tempfile, time
 
-from harness import HERE, Failure, Server, check, finish_bots, free_port, main, start_bots, wait_for
+from harness import BIN, HERE, Failure, Server, check, finish_bots, free_port, main, start_bots, wait_for
 from test_journal import ledger, add
 
 MANY_LIVES = os.path.join(HERE, "many-lives.json")
+CLIENT = os.path.join(BIN, "client", "fts-client")
 TICK_HZ = 100
 BOTS = 3
 
@@ -193,5 +197,80 @@ def test_faults():
         bots[0].kill()
 
 
+def hud(text):
+    """The HUD's first line, wide ("Level: 1   Coins: 0   Lives: 50 ... Room ABCDE") or
+    compact ("L1 0c 50L ... Room ABCDE"): (level, coins, lives, room), or None."""
+    first = text.splitlines()[0] if text else ""
+    level = re.search(r"^(?:Level:? |L)(\d+)\b", first)
+    coins = re.search(r"Coins:? ([0-9,]+)|\b([0-9,]+)c\b", first)
+    lives = re.search(r"Lives:? (\d+)|\b(\d+)L\b", first)
+    room = re.search(r"Room ([A-Z]{5})", first)
+    if not (level and coins and lives and room):
+        return None
+    return (int(level[1]), int((coins[1] or coins[2]).replace(",", "")), int(lives[1] or lives[2]), room[1])
+
+
+def ball_col(text):
+    """The column of the player's own ball ("@1@" in ASCII) on the screen, or None."""
+    for line in text.splitlines()[2:]:
+        m = re.search(r"@+[0-9]+@*", line)
+        if m:
+            return (m.start() + m.end()) // 2
+    return None
+
+
+def test_client():
+    """The real terminal client in tmux (80x24) plays through a hand-over: its log says the
+    room moved, its HUD shows the same room, coins and lives from the new server, the
+    player's ball still answers the arrow keys there, and q, y quits cleanly."""
+    if shutil.which("tmux") is None:
+        print("tmux is not installed here: skipped")
+        sys.exit(77)
+    work = tempfile.mkdtemp(prefix="fts-handover-")
+    secret = secret_file(work, "fleet.secret", 7)
+    tmux = ["tmux", "-L", f"fts-handover-{os.getpid()}"]
+    pane = lambda: subprocess.run([*tmux, "capture-pane", "-p", "-t", "c"], capture_output=True,  # noqa: E731
+                                  text=True).stdout
+    keys = lambda *k: subprocess.run([*tmux, "send-keys", "-t", "c", *k])  # noqa: E731
+    try:
+        with fleet_server(work, "a", secret, listen=False) as a, fleet_server(work, "b", secret) as b:
+            env = f"env LANG=C XDG_STATE_HOME={os.path.join(work, 'client-state')} TERM=xterm"
+            subprocess.run([*tmux, "new-session", "-d", "-s", "c", "-x", "80", "-y", "24",
+                            f"{env} {CLIENT} --connect {a.address} --guest --name zoe --quick --glyphs ascii; "
+                            "echo CLIENT_EXIT=$?; sleep 30"], check=True)
+            wait_for(lambda: "Room " in pane(), 30, "the client's welcome")
+            keys("Enter")
+            before = wait_for(lambda: (lambda h: h if h and h[0] >= 1 else None)(hud(pane())), 30, "level 1 on the HUD")
+            player = re.search(r"\bconnect player=(\d+) name=zoe ", a.text())[1]
+            reply = console(a.sock, {"cmd": "handover", "room": "all", "peer": b.handover})
+            check(reply.get("ok") and reply["rooms"][0]["clients_told"] == 1, f"handover all: {reply}")
+            wait_for(lambda: "Room moved to another server" in pane(), 10, "the client to say the room moved")
+            wait_for(lambda: re.search(rf"\breconnect player={player} name=zoe ", b.text()), 10,
+                     "the client on the second server as the same player")
+            after = wait_for(lambda: (lambda h: h if h and h[3] == before[3] and h[0] >= before[0] else None)(
+                hud(pane())), 10, f"the HUD of room {before[3]} at level {before[0]} or later")
+            check(after[2] == before[2] and after[1] >= before[1],
+                  f"lives or coins changed with the move: before {before}, after {after}")
+            # The ball answers the keys on the new server: its inputs arrive there.
+            start = wait_for(lambda: ball_col(pane()), 10, "zoe's ball on the screen")
+
+            def moved_right():
+                keys("Right")
+                col = ball_col(pane())
+                return col if col and col >= start + 3 else None
+            wait_for(moved_right, 10, f"zoe's ball to go right of column {start} on the new server")
+            check(a.proc.wait(timeout=10) == 0, "the first server did not exit 0 once its room had gone")
+            keys("q")
+            wait_for(lambda: "Quit?" in pane(), 10, "the quit question")
+            keys("y")
+            wait_for(lambda: "CLIENT_EXIT=0" in pane(), 20, "the client to exit")
+            wait_for(lambda: re.search(rf"disconnect player={player} reason=quit", b.text()), 10,
+                     "the quit at the second server")
+            print(f"handover client: room {before[3]} moved with zoe (level {before[0]}, {before[1]} coins, "
+                  f"{before[2]} lives); on the new server {after}")
+    finally:
+        subprocess.run([*tmux, "kill-server"], capture_output=True)
+
+
 if __name__ == "__main__":
-    sys.exit(main({"moves": test_moves, "faults": test_faults}))
+    sys.exit(main({"moves": test_moves, "faults": test_faults, "client": test_client}))
