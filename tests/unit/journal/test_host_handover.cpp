@@ -1,0 +1,131 @@
+// Rooms that move (issue 42), the hosts' side without sockets: a room exported from one
+// GameHost (frozen, its journal synced) is adopted by another at the same tick and hash;
+// the first tells the room's clients (moved) and closes it; each refusal of adopt_room
+// changes nothing, and a room kept plays on.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "../../support/host_rig.hpp"
+#include "app/game_host.hpp"
+
+using namespace fts;
+namespace fs = std::filesystem;
+using protocol::ClientState;
+
+namespace {
+
+struct HandoverRig : test::HostRig {
+  HandoverRig(const fs::path& root, std::uint8_t key_byte, std::uint32_t max_players = 2) {
+    options.seed = 11;
+    options.max_players = max_players;
+    options.max_per_address = 64;
+    store::JournalConfig jc;
+    jc.dir = root;
+    jc.sync_ms = 5;
+    protocol::ServerKey k{};
+    k.fill(key_byte);
+    host = std::make_unique<server::GameHost>(options, config, k);
+    host->journal_rooms(jc);
+  }
+  protocol::ClientEndpoint& join(const std::string& name, const std::string& how, const std::string& room = "") {
+    protocol::ClientConfig c;
+    c.name = name;
+    c.join = how;
+    c.room = room;
+    auto& client = connect(c);
+    for (int i = 0; i < 50 && client.state() == ClientState::connecting; ++i) tick();
+    return client;
+  }
+};
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("fts-handover-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Host hand-over: the peer runs the room at its tick and hash, and its clients are told", "[journal][handover]") {
+  const fs::path ra = fresh_dir("a"), rb = fresh_dir("b"), rc = fresh_dir("c");
+  HandoverRig a(ra, 1), b(rb, 2), c(rc, 3);
+  auto& ann = a.join("ann", "create");
+  REQUIRE(ann.state() == ClientState::connected);
+  const std::string code = ann.welcome()->room;
+  ann.send_command(protocol::CommandOp::ready, 0, a.now);
+  for (int i = 0; i < 200; ++i) {
+    ann.send_input({0, 1, 0, i % 20 == 0}, a.now);
+    a.tick();
+  }
+  REQUIRE(a.host->room_by_code(code)->match().phase == sim::Phase::playing);
+
+  // Refusals before anything moves: no such room; a peer of another match configuration.
+  CHECK(std::get<std::string>(a.host->export_room("QQQQQ")) == "no room QQQQQ on this server");
+  auto exported = a.host->export_room(code);
+  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(exported));
+  const auto ex = std::get<server::GameHost::RoomExport>(exported);
+  CHECK(std::get<std::string>(a.host->export_room(code)).find("being handed over already") != std::string::npos);
+  // Frozen: the room does not step while the peer decides.
+  for (int i = 0; i < 10; ++i) a.tick();
+  CHECK(a.host->room_by_code(code)->match().tick == ex.tick);
+
+  // The peer refuses what it cannot take, and nothing changes there.
+  auto renamed = ex.files;
+  renamed[0].first = "../../etc/passwd";
+  CHECK(b.host->adopt_room(code, renamed, b.now) == "a file that is not a journal segment came");
+  auto torn = ex.files;
+  torn[0].second = "{\"fts_journal\":1\n";
+  CHECK(b.host->adopt_room(code, torn, b.now).find("its journal does not read") == 0);
+  CHECK(b.host->adopt_room("nope", ex.files, b.now) == "not a room code");
+  auto& cat = c.join("cat", "create");  // c's own player 1: the room's ann is player 1 too
+  REQUIRE(cat.state() == ClientState::connected);
+  CHECK(c.host->adopt_room(code, ex.files, c.now) == "player id 1 is in use here");
+  CHECK(c.host->room_by_code(code) == nullptr);
+  CHECK_FALSE(fs::exists(rc / code));
+  CHECK(b.host->room_ids().empty());
+
+  // The peer takes it: the same tick, the same state.
+  REQUIRE(b.host->adopt_room(code, ex.files, b.now) == "");
+  const server::Room* there = b.host->room_by_code(code);
+  REQUIRE(there);
+  CHECK(there->match().tick == ex.tick);
+  CHECK(sim::match_hash(there->match()) == sim::match_hash(a.host->room_by_code(code)->match()));
+  CHECK(b.host->rooms_adopted() == 1);
+  // A second copy is refused there: the room is open (handed over twice).
+  CHECK(b.host->adopt_room(code, ex.files, b.now).find("is open here already") != std::string::npos);
+
+  // Then the first server tells the room's clients and closes it without a result.
+  CHECK(a.host->room_moved(code, "10.0.0.9:7778", a.now) == 1);
+  CHECK(a.host->room_by_code(code) == nullptr);
+  CHECK(a.host->rooms_moved() == 1);
+  for (int i = 0; i < 5 && !ann.moved(); ++i) a.tick();
+  REQUIRE(ann.moved());
+  CHECK(ann.moved()->address == "10.0.0.9:7778");
+  CHECK(ann.moved()->room == code);
+  for (auto* r : {&ra, &rb, &rc}) fs::remove_all(*r);
+}
+
+TEST_CASE("Host hand-over: a room the peer refused plays on where it was", "[journal][handover]") {
+  const fs::path ra = fresh_dir("kept");
+  HandoverRig a(ra, 1);
+  auto& ann = a.join("ann", "create");
+  REQUIRE(ann.state() == ClientState::connected);
+  const std::string code = ann.welcome()->room;
+  ann.send_command(protocol::CommandOp::ready, 0, a.now);
+  for (int i = 0; i < 50; ++i) a.tick();
+  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(a.host->export_room(code)));
+  const auto frozen_at = a.host->room_by_code(code)->match().tick;
+  a.host->room_kept(code, "the peer is full");
+  CHECK(a.host->handovers_refused() == 1);
+  for (int i = 0; i < 20; ++i) a.tick();
+  CHECK(a.host->room_by_code(code)->match().tick > frozen_at);
+  CHECK_FALSE(ann.moved());
+  CHECK(ann.state() == ClientState::connected);
+  // A draining server takes no room.
+  a.host->stop_new_rooms();
+  CHECK(a.host->adopt_room("BBBBB", {{"journal-000001.jsonl", "{}\n"}}, a.now) == "this server is draining");
+  fs::remove_all(ra);
+}
