@@ -45,6 +45,11 @@ void ServerEndpoint::kick(std::uint32_t player_id, ErrorCode code, const std::st
 bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now_ms, std::uint32_t room,
                                      const std::string& room_code) {
   serial_only("restore_session");
+  // A gap since the last call is a stall of the sessions there were (observe_time moves
+  // their clocks on by it): it must not move this one's, which begins now. Without this,
+  // a room adopted after a long tick (64 rooms handed over at once) had its sessions'
+  // disconnection in the future: kept at once, released "match over" at once.
+  observe_time(now_ms);
   const bool hex32 = r.token_verifier.size() == 32 &&
                      std::all_of(r.token_verifier.begin(), r.token_verifier.end(),
                                  [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fts/protocol/client.hpp"
+#include "fts/protocol/connection.hpp"
 #include "fts/protocol/server.hpp"
 #include "lossy_link.hpp"
 
@@ -91,6 +92,18 @@ struct Peer {
   LossyLink up;    // client -> server
   LossyLink down;  // server -> client
 };
+
+// A rig of one ClientConnection (its `conn`, its clock `now`, its step()): steps it until
+// pred holds or for_ms of its time has passed; and whether the connection is welcomed.
+template <class Rig, class Pred>
+bool step_until(Rig& rig, Pred pred, std::uint64_t for_ms) {
+  const std::uint64_t deadline = rig.now + for_ms;
+  while (!pred() && rig.now < deadline) rig.step();
+  return pred();
+}
+inline bool welcomed(const ClientConnection& conn) {
+  return conn.state() == ClientState::connected && conn.endpoint().welcome();
+}
 
 class Harness {
  public:

@@ -43,12 +43,8 @@ struct Rig {
     server.update(now);
   }
   template <class Pred>
-  bool run_until(Pred pred, std::uint64_t for_ms) {
-    const std::uint64_t deadline = now + for_ms;
-    while (!pred() && now < deadline) step();
-    return pred();
-  }
-  bool connected() const { return conn.state() == ClientState::connected && conn.endpoint().welcome(); }
+  bool run_until(Pred pred, std::uint64_t for_ms) { return test::step_until(*this, pred, for_ms); }
+  bool connected() const { return test::welcomed(conn); }
 };
 
 }  // namespace

@@ -89,3 +89,20 @@ TEST_CASE("Restore: a restored player nobody comes back for is released after th
   CHECK(events[0].kind == ServerEvent::Kind::released);
   CHECK(h.server.sessions().empty());
 }
+
+TEST_CASE("Restore: a session restored after a long pause of the endpoint is held for the window",
+          "[protocol][sessions][restore]") {
+  Harness h;
+  h.server.update(100);
+  (void)h.server.take_events();
+  // The loop was busy for 5 s (a stall), then restores a room's session (a hand-over).
+  const std::string v = token_verifier(std::string(32, 'a'));
+  REQUIRE(h.server.restore_session({7, "ann", v, false}, 5100, 1, "ROOMA"));
+  h.server.set_keeps_departed(1, true);
+  for (std::uint64_t t = 5105; t < 5200; t += 5) h.server.update(t);
+  const auto events = h.server.take_events();
+  REQUIRE(events.size() == 1);  // the restore's own "restart", nothing after it
+  CHECK(events[0].reason == "restart");
+  REQUIRE(h.server.sessions().size() == 1);
+  CHECK(h.server.sessions()[0].player_id == 7);
+}
