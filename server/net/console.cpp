@@ -30,8 +30,8 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
 
   // The next step (a line to come, or the reply to be taken) has kIdleMs; then the
   // connection is closed, which ends the pending read or write with an error.
-  void arm() {
-    timer.expires_after(std::chrono::milliseconds(kIdleMs));
+  void arm(int ms = kIdleMs) {
+    timer.expires_after(std::chrono::milliseconds(ms));
     timer.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
       if (ec) return;  // re-armed or cancelled
       ++self->counters->timed_out;
@@ -58,8 +58,10 @@ struct ConsoleServer::Connection : std::enable_shared_from_this<ConsoleServer::C
       if (self->deferred &&
           self->deferred(line, [self](std::string r) {
             asio::post(self->socket.get_executor(), [self, r = std::move(r)]() mutable { self->write(std::move(r)); });
-          }))
+          })) {
+        self->arm(kDeferredMs);  // the answer comes from elsewhere (a database, a peer)
         return;
+      }
       self->write(self->handle(line));
     });
   }

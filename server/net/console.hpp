@@ -38,6 +38,9 @@ class ConsoleServer {
   static constexpr std::size_t kMaxConnections = 8;
   static constexpr std::size_t kMaxLineBytes = 65536;
   static constexpr int kIdleMs = 5000;
+  // A deferred request's reply (a profile query, a hand-over of every room) may take this
+  // long; the client still has kIdleMs to read it.
+  static constexpr int kDeferredMs = 60000;
   struct Counters {
     std::uint64_t accepted = 0, refused_busy = 0, timed_out = 0, too_long = 0;
   };

@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <deque>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -21,7 +22,8 @@ using tcp = asio::ip::tcp;
 namespace {
 
 using namespace handover;
-// A whole exchange, either side: under the console's 5 s for a reply (net/console.hpp).
+// A whole exchange, either side (one room; the console waits for a deferred reply up to
+// net/console.hpp's kDeferredMs).
 constexpr auto kDeadline = std::chrono::seconds(4);
 
 nlohmann::ordered_json refusal(const std::string& why) { return {{"ok", false}, {"error", why}}; }
@@ -48,6 +50,25 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
   std::function<void()> flush;
   tcp::acceptor acceptor;
   bool closed = false;
+  // Hand-overs in flight, and those waiting their turn (their rooms play on meanwhile):
+  // the peer takes one room at a time on its loop, so a room that waited behind 63 others
+  // there had used up its 4 s before its turn (64 rooms at once, 2026-12-06).
+  struct Waiting {
+    std::string code, peer;
+    HandoverChannel::Done done;
+  };
+  std::deque<Waiting> waiting;
+  std::size_t in_flight = 0;
+  static constexpr std::size_t kMaxInFlight = 2;
+
+  void start(std::string code, std::string peer, HandoverChannel::Done done);
+  void next() {
+    while (in_flight < kMaxInFlight && !waiting.empty()) {
+      Waiting w = std::move(waiting.front());
+      waiting.pop_front();
+      start(std::move(w.code), std::move(w.peer), std::move(w.done));
+    }
+  }
 
   Impl(asio::io_context& i, GameHost& h, std::string k, std::uint16_t p, std::function<std::uint64_t()> n,
        std::function<void()> f)
@@ -229,9 +250,22 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       boost::system::error_code ignored;
       socket.close(ignored);
       done(std::move(reply));
+      --owner->in_flight;
+      owner->next();
     }
   };
 };
+
+void HandoverChannel::Impl::start(std::string code, std::string peer, HandoverChannel::Done done) {
+  const auto hp = fts::io::parse_host_port(peer);
+  if (!hp) return done(refusal("the peer must be HOST:PORT (its --handover-listen), got \"" + peer + "\""));
+  auto exported = host.export_room(code);
+  if (auto* why = std::get_if<std::string>(&exported)) return done(refusal(*why));
+  auto& ex = std::get<GameHost::RoomExport>(exported);
+  ++in_flight;
+  auto out = std::make_shared<Outbound>(shared_from_this(), ex.code, peer, std::move(done));
+  out->start(std::move(ex), *hp);
+}
 
 HandoverChannel::HandoverChannel(asio::io_context& io, GameHost& host, std::string key, std::uint16_t game_port,
                                  std::function<std::uint64_t()> now_ms, std::function<void()> flush)
@@ -266,13 +300,8 @@ std::uint16_t HandoverChannel::port() const {
 }
 
 void HandoverChannel::hand_over(const std::string& code, const std::string& peer, Done done) {
-  const auto hp = fts::io::parse_host_port(peer);
-  if (!hp) return done(refusal("the peer must be HOST:PORT (its --handover-listen), got \"" + peer + "\""));
-  auto exported = impl_->host.export_room(code);
-  if (auto* why = std::get_if<std::string>(&exported)) return done(refusal(*why));
-  auto& ex = std::get<GameHost::RoomExport>(exported);
-  auto out = std::make_shared<Impl::Outbound>(impl_, ex.code, peer, std::move(done));
-  out->start(std::move(ex), *hp);
+  impl_->waiting.push_back({code, peer, std::move(done)});
+  impl_->next();
 }
 
 }  // namespace fts::server
