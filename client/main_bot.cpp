@@ -32,6 +32,7 @@ struct Args {
   bool predict_own_only = false;
   fts::client::RemotePlayers predict_remote = fts::client::kDefaultRemotePlayers;
   std::string room_arg, spectate;  // --room, --spectate
+  std::string source;              // --source: the local address to send from
   // Made from the above: the server, whether this is a probe, Hello::join and Hello::room.
   std::string host, port;
   bool probe = false;
@@ -87,6 +88,12 @@ constexpr Custom<fts::bot::Behavior> kBehavior{parse_behavior, show_behavior, "i
 constexpr Custom<double> kDuration{parse_duration, show_duration, "seconds > 0"};
 constexpr Custom<std::string> kRoom{parse_room, show_text, "quick, create, a 5-letter code"};
 constexpr Custom<std::string> kCode{parse_code, show_text, "a 5-letter code"};
+bool parse_ip(const std::string& text, std::string& out) {
+  if (!fts::io::is_ip_address(text)) return false;
+  out = text;
+  return true;
+}
+constexpr Custom<std::string> kIp{parse_ip, show_text, "an IP address"};
 constexpr Custom<fts::client::RemotePlayers> kRemote{parse_remote, show_remote, "held, coast, off"};
 
 inline constexpr auto kOptionTable = std::tuple{
@@ -127,6 +134,9 @@ inline constexpr auto kOptionTable = std::tuple{
                     "CODE|quick|create"),
     fts::cli::value("--spectate", "", &Args::spectate, kCode, "needs a 5-letter room code",
                     "watch that room (no ball, no seat)", "CODE"),
+    fts::cli::value("--source", "", &Args::source, kIp, "must be an IP address",
+                    "send from this local address (load tests: each bot process a host of its own, 127.0.0.N)",
+                    "ADDR"),
     fts::cli::on("--predict", "", &Args::predict,
                  "predict the own ball as fts-client does and stamp frames with their tick (PROTOCOL.md 4.5.1); the "
                  "report then has the corrections (load tests cover the client's CPU)"),
@@ -198,7 +208,8 @@ std::optional<std::string> parse_args(int argc, char** argv, Args& a) {
 
 // One bot and its socket; each connection attempt of the bot gets a fresh socket.
 struct Slot {
-  Slot(asio::io_context& io, fts::bot::BotOptions o, udp::endpoint to) : socket(io, to), bot(std::move(o)) {}
+  Slot(asio::io_context& io, fts::bot::BotOptions o, udp::endpoint to, std::optional<asio::ip::address> from)
+      : socket(io, to, from), bot(std::move(o)) {}
   fts::io::ClientSocket socket;  // a fresh one per attempt, to where the room is
   fts::bot::Bot bot;
 };
@@ -243,7 +254,8 @@ int main(int argc, char** argv) {
     return a.probe ? 1 : 2;
   }
   const udp::endpoint server = *resolved;
-
+  std::optional<asio::ip::address> source;
+  if (!a.source.empty()) source = asio::ip::make_address(a.source);
   const auto t0 = std::chrono::steady_clock::now();
   auto now_ms = [&] {
     return static_cast<std::uint64_t>(
@@ -280,7 +292,7 @@ int main(int argc, char** argv) {
     o.join = join;
     o.room = room;
     o.identity = identities.at(static_cast<std::size_t>(i));
-    slots.push_back(std::make_unique<Slot>(io, std::move(o), server));
+    slots.push_back(std::make_unique<Slot>(io, std::move(o), server, source));
     slots.back()->bot.start(now_ms());
   };
   for (int i = 0; i < first_wave; ++i) make_slot(i, a.join, a.room);

@@ -40,9 +40,13 @@ def run(rooms, bots, play_s):
     groups = []
     with fleet_server(work, "a", secret, listen=False, extra=limits) as a, \
             fleet_server(work, "b", secret, extra=limits) as b:
+        # Each room's bots from a host of their own (127.0.0.N), as players are: from one
+        # address, 512 reconnects at once met the server's per-host takeover rate (1 a
+        # second after a burst) and took 5-10 s.
         for i in range(rooms):
             groups.append(start_bots("--connect", a.address, "--name", f"r{i}x", "--count", str(bots), "--behavior",
-                                     "shopper", "--room", "create", "--duration", "900", "--seed", str(i + 1)))
+                                     "shopper", "--room", "create", "--duration", "900", "--seed", str(i + 1),
+                                     "--source", f"127.0.{1 + (i + 2) // 256}.{(i + 2) % 256}"))
         wait_for(lambda: len(re.findall(r"level_start level=1 room=", a.text())) >= rooms, 120,
                  f"level 1 in {rooms} rooms")
         time.sleep(play_s)  # some play (coins earned) before the move: the workload, not a wait for an event

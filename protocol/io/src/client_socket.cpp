@@ -21,7 +21,7 @@ ClientSocket::Followed ClientSocket::follow(std::uint64_t attempt, std::uint64_t
       f.error = "the room moved to " + moved_to + ", which does not resolve" + (why.empty() ? "" : ": " + why);
     }
   }
-  if (const auto ec = socket_.connect(server_)) {
+  if (const auto ec = socket_.connect(server_, from_)) {
     f.error = "cannot open a socket: " + ec.message();
     return f;
   }

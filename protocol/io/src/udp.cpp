@@ -59,10 +59,11 @@ boost::system::error_code UdpSocket::bind(const udp::endpoint& local) {
   return ec;
 }
 
-boost::system::error_code UdpSocket::connect(const udp::endpoint& server) {
+boost::system::error_code UdpSocket::connect(const udp::endpoint& server, const std::optional<asio::ip::address>& from) {
   close();
   boost::system::error_code ec;
   socket_.open(server.protocol(), ec);
+  if (!ec && from) socket_.bind(udp::endpoint(*from, 0), ec);
   if (!ec) socket_.connect(server, ec);
   return ec;
 }

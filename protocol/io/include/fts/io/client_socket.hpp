@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -14,7 +15,9 @@ namespace fts::io {
 
 class ClientSocket {
  public:
-  ClientSocket(asio::io_context& io, udp::endpoint server) : io_(io), socket_(io), server_(server) {}
+  // from: the local address to send from (fts-bot --source); none: the route's own.
+  ClientSocket(asio::io_context& io, udp::endpoint server, std::optional<asio::ip::address> from = std::nullopt)
+      : io_(io), socket_(io), server_(server), from_(from) {}
 
   struct Followed {
     bool opened = false;  // a fresh socket for a new attempt
@@ -36,6 +39,7 @@ class ClientSocket {
   asio::io_context& io_;
   UdpSocket socket_;
   udp::endpoint server_;
+  std::optional<asio::ip::address> from_;
   std::uint64_t attempt_ = 0, moves_ = 0;
   bool open_ = false;
 };

@@ -47,7 +47,9 @@ class UdpSocket {
   boost::system::error_code bind(const udp::endpoint& local);
   // A client's socket: a fresh local port that hears only `server`. Calling it again
   // closes the old socket first (a reconnect from a new address).
-  boost::system::error_code connect(const udp::endpoint& server);
+  // `from`: send from this local address (any port) instead of the route's own.
+  boost::system::error_code connect(const udp::endpoint& server,
+                                    const std::optional<asio::ip::address>& from = std::nullopt);
   // Hands every datagram received from now on to `on_datagram`, until close() or the
   // next bind/connect; receive errors (an ICMP "port unreachable") are skipped.
   // `on_burst_end` runs once after every wake-up's datagrams (where a server sends its
