@@ -246,7 +246,15 @@ void GameHost::dispatch(std::uint64_t now_ms) {
                             "a spectator cannot play; join the room to play", now_ms);
       continue;
     }
-    if (auto it = rooms_.find(pc.room); it != rooms_.end()) it->second->on_command(pc, endpoint_, now_ms);
+    auto it = rooms_.find(pc.room);
+    if (it == rooms_.end()) continue;
+    // A room being handed over steps no more here: a command to it would be lost with it.
+    if (it->second->frozen) {
+      endpoint_.send_result(pc.player_id, pc.command.rid, protocol::ResultCode::busy,
+                            "the room is moving to another server: ask again in a moment", now_ms);
+      continue;
+    }
+    it->second->on_command(pc, endpoint_, now_ms);
   }
 }
 

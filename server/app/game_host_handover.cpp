@@ -26,7 +26,11 @@ std::variant<GameHost::RoomExport, std::string> GameHost::export_room(const std:
   RoomExport out;
   out.code = r->code();
   out.tick = r->match().tick;
-  for (const auto& [n, path] : store::list_segments(journal_base_->dir / r->code())) {
+  // The newest segment alone: it begins with the checkpoint sync_journal wrote (older
+  // ones are not needed, and the writer may be removing them now).
+  const auto segments = store::list_segments(journal_base_->dir / r->code());
+  if (!segments.empty()) {
+    const auto& path = segments.back().second;
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in.good() && !in.eof()) return "cannot read " + path.string();

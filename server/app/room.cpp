@@ -291,7 +291,7 @@ void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<
 
 bool Room::sync_journal() {
   if (!journal_) return false;
-  journal_->hash_now(stepper_.match(), stepper_.event_seq());
+  journal_->checkpoint_now(stepper_.match(), stepper_.event_seq());
   journal_->flush();
   const auto st = journal_->stats();
   return !st.failing && st.dropped == 0 && st.error.empty();

@@ -125,8 +125,9 @@ class Room {
   // Being handed over to a peer (GameHost::export_room): it steps, publishes and closes
   // for idling no more until the peer answers.
   bool frozen = false;
-  // Its journal written and synced to the state now, with a hash line of it (a hand-over
-  // ships it). False without a journal or while the journal fails.
+  // Its journal written and synced to the state now, a new segment beginning with a
+  // checkpoint of it (a hand-over ships that segment). False without a journal or while
+  // the journal fails or drops records.
   bool sync_journal();
   // The host (address without port) whose hello made the room; "" for a resumed one.
   // Its open rooms count against it (Options::max_rooms_per_host).

@@ -118,6 +118,10 @@ class JournalWriter {
   // A hash line of the state now, whatever its tick, unless one was written for it (a room
   // that closes ends its record with it, so a replay ends on the hash the room ended on).
   void hash_now(const sim::MatchState& state, std::uint32_t event_seq);
+  // A checkpoint of the state now, which starts a new segment (a room handed to a peer
+  // ships that segment alone: the peer replays nothing). Skipped while the journal drops
+  // records or fails (stats() says so).
+  void checkpoint_now(const sim::MatchState& state, std::uint32_t event_seq) { checkpoint(state, event_seq); }
   // Blocks until everything queued so far is written and synced (tests, shutdown).
   void flush();
   // The room closed: nothing more is journaled; the writer thread writes what is queued,
