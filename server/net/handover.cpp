@@ -57,6 +57,8 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     std::string code, peer;
     HandoverChannel::Done done;
   };
+  // Two: with 8 the 64-room move ended 5 % sooner but each room stood frozen 3x longer
+  // (p50 231 against 79 ms) while the peer worked through the others.
   std::deque<Waiting> waiting;
   std::size_t in_flight = 0;
   static constexpr std::size_t kMaxInFlight = 2;

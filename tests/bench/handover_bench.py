@@ -4,7 +4,10 @@ says `handover all PEER` and every room goes to a second server. For each R, the
 the hand-over as the console saw it, each room's freeze (its last step on the first
 server to its resume on the second: the ticks nobody plays), each client's move (from the
 command to its reconnect at the second server, from the two servers' log timestamps),
-commands lost (sent but neither answered nor pending at the end), and coins lost (each
+commands unanswered (sent, neither answered nor pending at the end: a command whose
+result was still in flight when its session moved; the bot then stops waiting for it, and
+its snapshots tell whether it was applied; a command to a frozen room is answered busy and
+never applied), and coins lost (each
 bot's coins against the two servers' ledgers, the first's up to the tick its room moved
 at). Never passes or fails on time; prints a Markdown table and CSV rows.
 
@@ -94,7 +97,7 @@ def run(rooms, bots, play_s):
             "ticks_missed_max": max(freeze_ms, default=0) / 10,
             "client_p50_ms": pct(back, 50) * 1000, "client_p99_ms": pct(back, 99) * 1000,
             "client_max_ms": max(back, default=float("nan")) * 1000,
-            "commands_lost": commands_lost, "coins_lost": coins_off, "new_players": new_players,
+            "commands_unanswered": commands_lost, "coins_lost": coins_off, "new_players": new_players,
             "not_moved": not_moved, "earned": sum(earned.values()),
         }
 
