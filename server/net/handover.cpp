@@ -7,12 +7,11 @@
 #include <chrono>
 #include <cstring>
 #include <deque>
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "app/log.hpp"
 #include "fts/io/address.hpp"
+#include "fts/room/json_fields.hpp"
 
 namespace fts::server {
 
@@ -25,6 +24,7 @@ using namespace handover;
 // A whole exchange, either side (one room; the console waits for a deferred reply up to
 // net/console.hpp's kDeferredMs).
 constexpr auto kDeadline = std::chrono::seconds(4);
+constexpr int kMaxDepth = 4;  // a request nests 3 deep (files, a file, its fields)
 
 nlohmann::ordered_json refusal(const std::string& why) { return {{"ok", false}, {"error", why}}; }
 
@@ -119,7 +119,10 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       const auto opened = open_body(owner->key, kRequestLabel, challenge, body);
       if (!opened) return answer(refusal("not authenticated: another fleet secret?"), true);
       const std::string& json = *opened;
-      const auto req = nlohmann::json::parse(json, nullptr, false);
+      std::string unread;
+      const auto parsed = room::parse_json(json, unread, kMaxDepth);
+      if (!parsed) return answer(refusal("not a hand-over request: " + unread), true);
+      const nlohmann::json& req = *parsed;
       if (int_of(req, "fts_handover") != kFormat || text_of(req, "room").empty() || !req.contains("files") ||
           !req["files"].is_array())
         return answer(refusal("not a hand-over request of format " + std::to_string(kFormat)), true);
@@ -228,8 +231,10 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       const auto opened = open_body(owner->key, kReplyLabel, challenge, body);
       if (!opened) return fail("the peer " + peer + "'s answer is not authentic: it holds another fleet secret");
       const std::string& json = *opened;
-      const auto reply = nlohmann::json::parse(json, nullptr, false);
-      if (!reply.is_object()) return fail("the peer's answer is not JSON");
+      std::string why;
+      const auto parsed = room::parse_json(json, why, kMaxDepth);
+      if (!parsed || !parsed->is_object()) return fail("the peer's answer is not a JSON object: " + why);
+      const nlohmann::json& reply = *parsed;
       if (!true_at(reply, "ok")) return fail("the peer " + peer + " refused: " + text_of(reply, "error"));
       const auto port = int_of(reply, "port");
       if (port <= 0 || port > 65535) return fail("the peer's answer names no game port");

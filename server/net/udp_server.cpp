@@ -11,6 +11,7 @@
 #include "app/profile_setup.hpp"
 #include "app/tick_clock.hpp"
 #include "fleet/fleet.hpp"
+#include "fts/room/json_fields.hpp"
 #include "fts/io/udp.hpp"
 #include "net/console.hpp"
 #include "net/handover.hpp"
@@ -124,7 +125,13 @@ class Loop {
 
   // A console request answered later, or false (console_line answers it now).
   bool deferred_console(const std::string& line, std::function<void(std::string)> reply) {
-    const auto req = nlohmann::json::parse(line, nullptr, false);
+    // Read as console_line reads it (the strict parser: a key given twice is refused, so
+    // {"cmd":"top","cmd":"handover",...} cannot slip past); what does not read is
+    // console_line's to refuse, naming why.
+    std::string why;
+    const auto parsed = room::parse_json(line, why, kConsoleMaxDepth);
+    if (!parsed) return false;
+    const nlohmann::json& req = *parsed;
     if (!req.is_object() || !req.contains("cmd") || !req["cmd"].is_string()) return false;
     const std::string cmd = req["cmd"].get<std::string>();
     const auto text = [](const nlohmann::ordered_json& j) {

@@ -31,7 +31,8 @@ def console(sock, request, timeout_s=10):
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as c:
         c.settimeout(timeout_s)
         c.connect(sock)
-        c.sendall((json.dumps(request) + "\n").encode())
+        line = request if isinstance(request, str) else json.dumps(request)  # a str: sent as it is
+        c.sendall((line + "\n").encode())
         data = b""
         while not data.endswith(b"\n"):
             chunk = c.recv(65536)
@@ -188,6 +189,9 @@ def test_faults():
         check(not bad.get("ok") and "no room NOPE1" in bad.get("error", ""), f"an unknown room: {bad}")
         bad = console(a.sock, {"cmd": "handover", "room": code, "peer": "nowhere"})
         check(not bad.get("ok") and "HOST:PORT" in bad.get("error", ""), f"a peer that is no address: {bad}")
+        # A key given twice is refused by the console's strict reading, deferred or not.
+        bad = console(a.sock, f'{{"cmd":"handover","room":"{code}","peer":"{full.handover}","room":"{code}"}}')
+        check(not bad.get("ok") and "appears twice" in bad.get("error", ""), f"a key given twice: {bad}")
         for p in (bots, filler):
             p[0].send_signal(signal.SIGINT)
             finish_bots(p, 30)
