@@ -366,15 +366,24 @@ void GameHost::close_room(std::uint32_t id, protocol::ErrorCode code, const std:
     if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
   Room& r = *it->second;
   r.close_careers();  // the players' matches end with the room (before the kicks' releases count as quits)
-  closed_journal_failures_ += r.journal_failures();
-  finish_journal(r);  // first: the seal must not wait for the journal's disk
-  r.seal();
   log_record(spdlog::level::info, "room_closed",
              {{"room", id}, {"code", r.code()}, {"reason", protocol::to_string(code)}, {"tick", r.match().tick},
               {"state_hash", room::hex16(sim::match_hash(r.match()))}, {"record", r.record_path()}});
-  endpoint_.forget_room(id);
+  retire_room(it);
+}
+
+void GameHost::retire_room(std::map<std::uint32_t, std::unique_ptr<Room>>::iterator it) {
+  Room& r = *it->second;
+  closed_journal_failures_ += r.journal_failures();
+  finish_journal(r);  // first: the seal must not wait for the journal's disk
+  r.seal();
+  endpoint_.forget_room(r.id());
   rooms_.erase(it);
   if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
+}
+
+std::map<std::uint32_t, std::unique_ptr<Room>>::iterator GameHost::room_at(const std::string& code) {
+  return std::find_if(rooms_.begin(), rooms_.end(), [&](const auto& kv) { return kv.second->code() == code; });
 }
 
 void GameHost::use_profiles(profiles::Writer* writer, std::function<std::int64_t()> unix_s) {

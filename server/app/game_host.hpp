@@ -174,6 +174,10 @@ class GameHost {
   std::size_t rooms_made_by(const std::string& host) const;
   Room* open_room(std::uint32_t id, const std::string& code, bool is_private, std::uint64_t seed,
                   const sim::MatchConfig& config);
+  // A room leaves the host (closed, or moved to a peer): its journal finishes, its record
+  // is sealed, its entries go.
+  void retire_room(std::map<std::uint32_t, std::unique_ptr<Room>>::iterator it);
+  std::map<std::uint32_t, std::unique_ptr<Room>>::iterator room_at(const std::string& code);  // or end()
   void start_journal(Room& r);
   void finish_journal(Room& r);
   bool journal_exists(const std::string& code) const;  // a directory of that code under the root

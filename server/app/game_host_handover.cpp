@@ -16,10 +16,9 @@ namespace fs = std::filesystem;
 
 std::variant<GameHost::RoomExport, std::string> GameHost::export_room(const std::string& code) {
   const auto norm = normalize_room_code(code);
-  Room* r = nullptr;
-  for (auto& [id, room] : rooms_)
-    if (norm && room->code() == *norm) r = room.get();
-  if (!r) return "no room " + code + " on this server";
+  const auto it = norm ? room_at(*norm) : rooms_.end();
+  if (it == rooms_.end()) return "no room " + code + " on this server";
+  Room* r = it->second.get();
   if (r->frozen) return "room " + r->code() + " is being handed over already";
   if (!journal_base_ || !r->journal()) return "room " + r->code() + " keeps no journal (--journal-dir)";
   if (!r->sync_journal()) return "room " + r->code() + "'s journal is failing or dropped records: it stays here";
@@ -44,34 +43,27 @@ std::variant<GameHost::RoomExport, std::string> GameHost::export_room(const std:
 }
 
 std::size_t GameHost::room_moved(const std::string& code, const std::string& address, std::uint64_t now_ms) {
-  auto it = rooms_.begin();
-  while (it != rooms_.end() && it->second->code() != code) ++it;
+  const auto it = room_at(code);
   if (it == rooms_.end()) return 0;
   Room& r = *it->second;
   const std::uint32_t id = r.id();
   // The match goes on at the peer, and its results are made there: none here (no
   // close_careers), and the journal's directory goes (the peer keeps its own).
   const std::size_t told = endpoint_.move_room(id, address, code, now_ms);
-  closed_journal_failures_ += r.journal_failures();
-  finish_journal(r);
-  r.seal();
   log_record(spdlog::level::info, "room_moved",
              {{"room", id}, {"code", code}, {"to", address}, {"tick", r.match().tick}, {"clients_told", told},
               {"state_hash", room::hex16(sim::match_hash(r.match()))}});
-  endpoint_.forget_room(id);
-  rooms_.erase(it);
   ++rooms_moved_;
-  if (draining_ && rooms_.empty()) log_record(spdlog::level::info, "drained", {});
+  retire_room(it);
   return told;
 }
 
 void GameHost::room_kept(const std::string& code, const std::string& why) {
-  for (auto& [id, r] : rooms_) {
-    if (r->code() != code) continue;
-    r->frozen = false;
-    ++handovers_refused_;
-    log_record(spdlog::level::warn, "handover_refused", {{"room", id}, {"code", code}, {"reason", why}});
-  }
+  const auto it = room_at(code);
+  if (it == rooms_.end()) return;
+  it->second->frozen = false;
+  ++handovers_refused_;
+  log_record(spdlog::level::warn, "handover_refused", {{"room", it->first}, {"code", code}, {"reason", why}});
 }
 
 std::string GameHost::adopt_room(const std::string& code, const std::vector<std::pair<std::string, std::string>>& files,
@@ -118,9 +110,7 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
   if (why.empty()) {
     // Its players keep their ids (their clients' tokens name them): none may be in use here.
     for (const auto& s : room->sessions)
-      if (members_.count(s.player) || !endpoint_.session_identity(s.player).empty() ||
-          !endpoint_.session_verifier(s.player).empty())
-        why = "player id " + std::to_string(s.player) + " is in use here";
+      if (endpoint_.has_session(s.player)) why = "player id " + std::to_string(s.player) + " is in use here";
   }
   if (why.empty()) {
     fs::rename(incoming, dir, ec);

@@ -263,6 +263,8 @@ class ServerEndpoint {
   }
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
+  // Whether a session (connected or held) has this player id.
+  bool has_session(std::uint32_t player_id) const { return sessions_.count(player_id) != 0; }
   // The fingerprint of a session's proven identity ("" for a guest or no such player).
   std::string session_identity(std::uint32_t player_id) const;
   // Tells every connected client that the server stops; releases every slot.
