@@ -117,7 +117,7 @@ class Game {
                                   });
     if (f.moved) note("Room moved to another server: playing on.");
     if (!f.error.empty() && !f.opened) throw std::runtime_error(f.error);
-    if (!f.error.empty()) note("The " + sanitize(f.error.substr(4), 80) + ".");
+    if (!f.error.empty()) note("Not followed: " + sanitize(f.error, 80) + ".");
   }
 
   void flush() {

@@ -9,6 +9,7 @@
 #include <deque>
 #include <vector>
 
+#include "app/handover_frame.hpp"
 #include "app/log.hpp"
 #include "fts/io/address.hpp"
 #include "fts/room/json_fields.hpp"

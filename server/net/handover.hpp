@@ -21,7 +21,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/game_host.hpp"
-#include "app/handover_frame.hpp"
 #include "fts/io/asio.hpp"
 
 namespace fts::server {

@@ -14,6 +14,7 @@
 #include "fts/room/json_fields.hpp"
 #include "fts/io/udp.hpp"
 #include "net/console.hpp"
+#include "app/handover_frame.hpp"
 #include "net/handover.hpp"
 
 namespace fts::server {
