@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
   const auto place = server::profile_place(options.profiles, std::getenv("XDG_STATE_HOME"), std::getenv("HOME"));
   if (!place.error.empty()) return fail(place.error);
   if (!place.off) {
-    auto first = profiles::Store::open(place.url);
-    if (auto* why = std::get_if<std::string>(&first)) {
+    // This first connection is closed before the writer opens its own: one at a time.
+    if (auto first = profiles::Store::open(place.url); auto* why = std::get_if<std::string>(&first)) {
       if (!profiles::is_postgresql_url(place.url)) return fail("--profiles: " + *why);
       server::log_record(spdlog::level::warn, "profiles_unreachable", {{"error", *why}});
     }

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <string_view>
 #include <unordered_map>
@@ -251,24 +249,23 @@ std::variant<std::unique_ptr<Store>, std::string> Store::open(const std::string&
       store->where_ = "sqlite " + path;
       if (path.empty()) return std::string("--profiles: an empty SQLite path");
       if (path.find('"') != std::string::npos) return "--profiles: a SQLite path with a '\"' in it: " + path;
-      std::error_code ec;
-      if (std::filesystem::exists(path, ec)) {
-        // SQLite opens anything and fails at the first query; say plainly what it is.
-        std::ifstream in(path, std::ios::binary);
-        std::array<char, 16> magic{};
-        in.read(magic.data(), magic.size());
-        const auto got = in.gcount();
-        if (!in && got == 0 && std::filesystem::file_size(path, ec) != 0)
-          return store->where_ + ": cannot read it";
-        if (got > 0 && std::string(magic.data(), static_cast<std::size_t>(got)) != std::string("SQLite format 3\0", 16))
-          return store->where_ + ": not a SQLite database (a corrupt or foreign file); move it away or give "
-                                 "--profiles another file";
-      }
+      // The file is read by SQLite alone, never through a descriptor of ours: closing any
+      // descriptor of a file drops every POSIX lock this process holds on it, a connection
+      // already open here then held none, and the next reader elsewhere to close thought
+      // itself the last, checkpointed and deleted the WAL this connection went on writing
+      // to (forget-me said "erased" and nobody else saw it: 2026-12-06). A file that is not
+      // a database is SQLite's SQLITE_NOTADB at the first statement (below).
       store->sql_ = std::make_unique<soci::session>(*soci::factory_sqlite3(), "db=\"" + path + "\" timeout=10");
       auto& sql = *store->sql_;
       sql << "PRAGMA busy_timeout = 10000";
       std::string mode;
-      sql << "PRAGMA journal_mode = WAL", soci::into(mode);
+      try {
+        sql << "PRAGMA journal_mode = WAL", soci::into(mode);  // the first statement to read the file
+      } catch (const soci::sqlite3_soci_error& e) {
+        if (e.result() != SQLITE_NOTADB) throw;
+        return store->where_ + ": not a SQLite database (a corrupt or foreign file); move it away or give "
+                               "--profiles another file";
+      }
       sql << "PRAGMA synchronous = FULL";
       // A batch touches pages all over the two tables and their indexes. A 64 MiB page
       // cache (the default is 2 MB) keeps them from being read back and spilled to the WAL

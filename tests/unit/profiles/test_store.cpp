@@ -4,6 +4,8 @@
 #include <sqlite3.h>
 
 #include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -204,6 +206,43 @@ void check_batched_as_one_at_a_time(Store& batched, const std::vector<Write>& wr
 }
 
 }  // namespace
+
+namespace {
+
+// What another process sees: a python3 that opens the file, counts, and closes (closing,
+// it checkpoints and deletes the WAL if it finds itself the file's last connection).
+long long count_elsewhere(const fs::path& file, const std::string& fingerprint) {
+  const std::string cmd = "python3 -c 'import sqlite3, sys; print(sqlite3.connect(sys.argv[1]).execute("
+                          "\"SELECT COUNT(*) FROM fts_profiles WHERE fingerprint = ?\", (sys.argv[2],)).fetchone()[0])' " +
+                          file.string() + " " + fingerprint;
+  FILE* out = ::popen(cmd.c_str(), "r");
+  REQUIRE(out != nullptr);
+  char line[64] = {};
+  const bool got = std::fgets(line, sizeof line, out) != nullptr;
+  REQUIRE(::pclose(out) == 0);
+  REQUIRE(got);
+  return std::atoll(line);
+}
+
+}  // namespace
+
+// The server opened the file twice at its start (a check, then the writer's connection). The
+// second open read the file's first bytes through a descriptor of its own and closed it,
+// which dropped the process's locks: the next outside reader to close deleted the WAL, and
+// every later write was seen by the writer alone (forget-me "erased", nothing erased).
+TEST_CASE("Profile store: a second open keeps the first connection's writes visible", "[profiles][store]") {
+  TempDir d;
+  const auto file = d.path / "shared.sqlite";
+  auto first = open_ok(file.string());
+  auto writer = open_ok(file.string());  // while the first is open
+  first.reset();
+  const std::string ann = "aaaa0000000000000000000000000011", bob = "bbbb0000000000000000000000000012";
+  writer->write({Seen{ann, "ann", 100}});
+  CHECK(count_elsewhere(file, ann) == 1);
+  writer->write({Seen{bob, "bob", 200}, Forget{ann}});
+  CHECK(count_elsewhere(file, bob) == 1);
+  CHECK(count_elsewhere(file, ann) == 0);
+}
 
 TEST_CASE("Profile store: a batch writes what one write at a time writes", "[profiles][store]") {
   TempDir d;
