@@ -207,8 +207,11 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, make_error(ErrorCode::address_full, text), request_bytes);
     return;
   }
-  // Ids are never reused (server.hpp reserve_player_ids); when they run out (2^32 - 2
-  // sessions in one process life) the server takes nobody new.
+  // Ids are never reused (server.hpp reserve_player_ids) nor given where a room from
+  // another server took them (take_player_id); when they run out (2^32 - 2 sessions in
+  // one process life) the server takes nobody new.
+  while (next_player_id_ != kNoPlayerIdLeft && taken_player_ids_.erase(next_player_id_) != 0)
+    reserve_player_ids(next_player_id_);
   if (next_player_id_ == kNoPlayerIdLeft) return refuse_full(from, enc, request_bytes);
   // The host picks the room last: a refused hello above creates no room.
   // A host that named too many rooms that do not exist is guessing codes (10.1).

@@ -56,7 +56,8 @@ bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now
   if (r.player_id == 0 || sessions_.count(r.player_id) || !hex32 || !name_problem(r.name).empty() ||
       sessions_.size() >= config_.max_sessions())
     return false;
-  reserve_player_ids(r.player_id);
+  if (r.foreign) take_player_id(r.player_id);
+  else reserve_player_ids(r.player_id);
   Session& s = sessions_[r.player_id];
   s.player_id = r.player_id;
   s.name = r.name;

@@ -1,6 +1,9 @@
 #include "app/game_host.hpp"
 
+#include <sodium.h>
+
 #include <algorithm>
+#include <array>
 #include <filesystem>
 
 #include "app/admission.hpp"
@@ -40,6 +43,18 @@ protocol::ServerConfig make_endpoint_config(const Options& o, const sim::MatchCo
   c.idle_timeout_ms = o.idle_timeout_ms;
   apply_address_limits(c, o.max_per_address);
   c.snapshot_max_base_age_ticks = o.tick_rate_hz;  // one second
+  if (!o.fleet_secret_path.empty()) {
+    // A server of a fleet gives ids from a point in [2^20, 2^31), a one-way hash of its
+    // random key (the ids are public, the key is not): two servers' ranges meet with a
+    // chance of about (players either served) / 2^31, and a room handed between them keeps
+    // its ids (issue 42). Alone, a server's ids start at 1.
+    static constexpr char kLabel[] = "fts first player id";
+    std::array<std::uint8_t, crypto_generichash_BYTES_MIN> h{};
+    crypto_generichash(h.data(), h.size(), reinterpret_cast<const unsigned char*>(kLabel), sizeof kLabel - 1,
+                       key.data(), key.size());
+    const std::uint32_t r = (std::uint32_t{h[0]} << 24) | (std::uint32_t{h[1]} << 16) | (std::uint32_t{h[2]} << 8) | h[3];
+    c.first_player_id = (1u << 20) + r % ((1u << 31) - (1u << 20));
+  }
   c.settings.snapshot_rate_hz = o.snapshot_rate_hz;
   c.settings.max_players = o.max_players;
   c.settings.timeout_ms = o.timeout_ms;

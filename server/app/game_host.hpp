@@ -103,7 +103,9 @@ class GameHost {
   // if that id is taken), privacy, seed, match and event numbering; its sessions come back
   // away until their clients return with their tokens. False (logged): the code is not a
   // room code or is taken, or the server has max_rooms rooms.
-  bool resume_room(const store::ResumedRoom& room, std::uint64_t now_ms);
+  // `foreign`: a room handed over by another server (adopt_room): its player ids are that
+  // server's, each taken here without moving this server's own ids on (take_player_id).
+  bool resume_room(const store::ResumedRoom& room, std::uint64_t now_ms, bool foreign = false);
   const store::JournalWriter* journal(std::uint32_t room_id) const;
   store::JournalWriter* journal(std::uint32_t room_id);
   // ---- rooms that move (issue 42; app/game_host_handover.cpp, PROTOCOL.md 4.9b). A room

@@ -120,7 +120,7 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
     fs::remove_all(incoming, ec);
     return refuse(why);
   }
-  if (!resume_room(*room, now_ms)) {
+  if (!resume_room(*room, now_ms, true)) {
     fs::remove_all(dir, ec);
     return refuse("the server did not take it (see resume_refused)");
   }

@@ -55,7 +55,7 @@ void GameHost::finish_journal(Room& r) {
   if (auto j = r.finish_record()) closing_journals_.push_back(std::move(j));
 }
 
-bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_ms) {
+bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_ms, bool foreign) {
   auto refused = [&](const std::string& why) {
     log_record(spdlog::level::err, "resume_refused", {{"code", resumed.room}, {"reason", why}});
     return false;
@@ -70,15 +70,19 @@ bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_
   r->resume_from(resumed);
   endpoint_.set_server_tick(id, static_cast<std::uint32_t>(resumed.state.tick));
   // No newcomer gets an id the resumed match names (a player, a ball's owner or credit):
-  // ids are never reused (ServerEndpoint::reserve_player_ids).
-  for (const auto& p : resumed.state.players) endpoint_.reserve_player_ids(p.id.value);
+  // ids are never reused (ServerEndpoint::reserve_player_ids, take_player_id).
+  const auto keep_out = [&](std::uint32_t player) {
+    if (foreign) endpoint_.take_player_id(player);
+    else endpoint_.reserve_player_ids(player);
+  };
+  for (const auto& p : resumed.state.players) keep_out(p.id.value);
   for (const auto& [ball, b] : resumed.state.bodies) {
-    endpoint_.reserve_player_ids(b.owner.value);
-    endpoint_.reserve_player_ids(b.credit.value);
+    keep_out(b.owner.value);
+    keep_out(b.credit.value);
   }
   for (const auto& s : resumed.sessions) {
     // Each comes back as "disconnected" in the next tick's events: the match marks it away.
-    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit, s.identity}, now_ms, id, *code)) {
+    if (endpoint_.restore_session({s.player, s.name, s.verifier, s.quit, s.identity, foreign}, now_ms, id, *code)) {
       members_[s.player] = {id, false};
       r->restore_career(s);  // the player's match so far: its result key and counts
     }

@@ -37,8 +37,9 @@ struct HostRig {
   std::unique_ptr<server::GameHost> host;
   std::vector<std::unique_ptr<protocol::ClientEndpoint>> clients;
   std::uint64_t now = 1000;
+  protocol::ServerKey key{};
 
-  void start() { host = std::make_unique<server::GameHost>(options, config, protocol::ServerKey{}); }
+  void start() { host = std::make_unique<server::GameHost>(options, config, key); }
   static std::string address(std::size_t i) { return "10.0.0." + std::to_string(i + 1) + ":5000"; }
   // When set, the next clients connect from this host (a household, an attacker), each
   // from its own port (5000 + its index); else client i is alone on host 10.0.0.(i+1).

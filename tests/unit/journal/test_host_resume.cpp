@@ -22,7 +22,7 @@ using protocol::ClientState;
 
 namespace {
 
-protocol::ServerKey key(std::uint8_t b) {
+protocol::ServerKey key_of(std::uint8_t b) {
   protocol::ServerKey k{};
   k.fill(b);
   return k;
@@ -38,7 +38,7 @@ struct Rig : test::HostRig {
     jc.dir = root;
     jc.sync_ms = 5;
     jc.checkpoint_every_ticks = 150;
-    host = std::make_unique<server::GameHost>(options, config, key(key_byte));
+    host = std::make_unique<server::GameHost>(options, config, key_of(key_byte));
     host->journal_rooms(jc);
   }
   protocol::ClientEndpoint& join(const std::string& name, const std::string& how, const std::string& room = "",

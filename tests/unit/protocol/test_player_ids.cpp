@@ -40,3 +40,25 @@ TEST_CASE("Player ids: never reused, above every restored id, none past the last
   CHECK(eve.client.error()->code == "server_full");
   CHECK(h.server.sessions().size() == 3);
 }
+
+// A room handed over by another server (issue 42) names that server's ids: taken here, one
+// by one, without moving this endpoint's own ids into that server's range (where its next
+// room would find them in use).
+TEST_CASE("Player ids: a fleet server's own range, and a room's ids from elsewhere taken one by one",
+          "[protocol][sessions][ids]") {
+  ServerConfig config = test_server_config();
+  config.first_player_id = 5000;
+  Harness h(config);
+  CHECK(join(h, "ann") == 5000);
+  // A foreign room's session (another server's 9000) and one of its departed players
+  // (5002) are taken: the newcomers go on at 5001, skip 5002, and never reach 9001.
+  REQUIRE(h.server.restore_session({9000, "bob", std::string(32, 'b'), false, "", true}, h.now));
+  h.server.take_player_id(5002);
+  CHECK(join(h, "cy") == 5001);
+  CHECK(join(h, "dan") == 5003);
+  CHECK(join(h, "eve") == 5004);
+  // The same ids restored as this server's own (a --resume) do move its ids on.
+  Harness own;
+  REQUIRE(own.server.restore_session({9000, "bob", std::string(32, 'b'), false}, own.now));
+  CHECK(join(own, "fay") == 9001);
+}

@@ -64,3 +64,20 @@ TEST_CASE("Player ids: a match never names a player who left", "[server][ids]") 
     CHECK(b.credit != sim::PlayerId{ann_id});
   }
 }
+
+// A server of a fleet (a fleet secret) starts its ids at a point of [2^20, 2^31) drawn from
+// its key; alone, at 1 (issue 42: a room handed to a peer keeps its ids).
+TEST_CASE("Player ids: a fleet server's first id comes from its key", "[server][ids]") {
+  test::HostRig rig;
+  rig.options.fleet_secret_path = "fleet.secret";  // only its presence counts here
+  rig.start();
+  const std::uint32_t ann = join(rig, "ann");
+  CHECK(ann >= (1u << 20));
+  CHECK(ann < (1u << 31));
+  CHECK(join(rig, "bob") == ann + 1);
+  test::HostRig other;  // another key
+  other.key[0] ^= 0x5a;
+  other.options.fleet_secret_path = "fleet.secret";
+  other.start();
+  CHECK(join(other, "cy") != ann);
+}

@@ -68,6 +68,10 @@ struct ServerConfig {
   // A client whose newest acknowledged snapshot is older than this gets a full snapshot
   // instead of a delta (the host sets one second of ticks).
   std::uint32_t snapshot_max_base_age_ticks = 100;
+  // The first player id this endpoint gives. A server of a fleet starts somewhere in a
+  // large space (fts-server: from its random key) so that a room handed to a peer keeps
+  // ids the peer's own players do not have (issue 42); alone, a server starts at 1.
+  std::uint32_t first_player_id = 1;
   // Sessions kept at most (seated players plus players who quit and keep their progress
   // for the reconnect window).
   std::size_t max_sessions() const {
@@ -158,6 +162,9 @@ struct RestoredSession {
   std::string token_verifier;
   bool quit = false;  // had given its seat up (bye or idle) before the restart
   std::string identity = "";  // its identity's fingerprint ("" a guest): a hello proving it takes it back too
+  // A session of a room handed over by another server (issue 42): its id is that server's,
+  // taken here (take_player_id) without moving this endpoint's own ids on to it.
+  bool foreign = false;
 };
 
 struct Outgoing {
@@ -260,6 +267,13 @@ class ServerEndpoint {
   static constexpr std::uint32_t kNoPlayerIdLeft = 0xFFFFFFFFu;
   void reserve_player_ids(std::uint32_t id) {
     if (id >= next_player_id_) next_player_id_ = id >= kNoPlayerIdLeft - 1 ? kNoPlayerIdLeft : id + 1;
+  }
+  // One id no newcomer gets, leaving the ids below and above it to this endpoint: a room
+  // from another server names ids of that server's range (reserving them would move this
+  // server's newcomers into that range, where the other server's next room would find
+  // them in use). The set is emptied as the endpoint's own ids pass them.
+  void take_player_id(std::uint32_t id) {
+    if (id != 0 && id >= next_player_id_ && id != kNoPlayerIdLeft) taken_player_ids_.insert(id);
   }
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
@@ -451,6 +465,7 @@ class ServerEndpoint {
   std::set<std::uint32_t> keeping_rooms_;  // set_keeps_departed
   std::uint64_t sessions_made_ = 0;
   std::uint32_t next_player_id_ = 1;  // the next new session's (reserve_player_ids)
+  std::set<std::uint32_t> taken_player_ids_;  // ids above it taken by rooms from elsewhere (take_player_id)
   std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;
