@@ -17,6 +17,7 @@ namespace fts::server {
 // The checks that are more than a range or a list of names (app/options.cpp).
 bool parse_ip(const std::string& text, std::string& out);
 bool parse_metrics(const std::string& text, std::string& out);
+bool parse_peer(const std::string& text, std::string& out);
 bool parse_agones(const std::string& text, std::uint16_t& out);
 std::string show_text(const std::string& v);
 std::string show_agones(const std::uint16_t& v);
@@ -29,6 +30,7 @@ using O = Options;
 using u32 = std::uint32_t;
 constexpr Custom<std::string> kIp{parse_ip, show_text, "an IPv4 or IPv6 address"};
 constexpr Custom<std::string> kMetrics{parse_metrics, show_text, "ADDR:PORT (an IP address, a port 1..65535), \"\": off"};
+constexpr Custom<std::string> kPeer{parse_peer, show_text, "HOST:PORT (a name or an IP address, a port 1..65535), \"\": off"};
 constexpr Custom<std::uint16_t> kAgones{parse_agones, show_agones, "on, off, 1..65535"};
 
 inline constexpr auto kOptionTable = std::tuple{
@@ -126,6 +128,11 @@ inline constexpr auto kOptionTable = std::tuple{
     cli::value("--fleet-secret", "FTS_FLEET_SECRET", &O::fleet_secret_path, Text{}, "must be a file",
                "the fleet's shared secret, a file of at least 32 bytes: authenticates room hand-overs both ways",
                "FILE"),
+    cli::value("--handover-to", "FTS_HANDOVER_TO", &O::handover_to, kPeer,
+               "must be HOST:PORT with a port 1..65535 (\"\": off)",
+               "a drain (the console's, or SIGTERM under Agones) first hands every room to this peer's "
+               "--handover-listen (a name may be a Service of the fleet's peers; needs --fleet-secret)",
+               "HOST:PORT"),
     cli::on("--version", "", &O::version, "print the version"),
     // The fleet's Counters and Lists for the given limits, for the test that holds
     // docker/agones/ to them (server/fleet/fleet_names.hpp).

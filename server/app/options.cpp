@@ -58,6 +58,12 @@ bool parse_ip(const std::string& text, std::string& out) {
   return true;
 }
 
+bool parse_peer(const std::string& text, std::string& out) {
+  if (!text.empty() && !io::parse_host_port(text)) return false;
+  out = text;
+  return true;
+}
+
 bool parse_metrics(const std::string& text, std::string& out) {
   // Checked here so a typo is a usage error; never the game port (checked after parsing).
   if (text.empty()) {
@@ -126,6 +132,8 @@ std::variant<Options, OptionError> parse_options(const std::vector<std::string>&
   if (auto clash = record_paths_clash(o.record_path, o.record_dir)) return OptionError{*clash};
   if (!o.handover_listen.empty() && (o.fleet_secret_path.empty() || o.journal_dir.empty()))
     return OptionError{"--handover-listen: needs --fleet-secret FILE and --journal-dir DIR (a room arrives as a journal)"};
+  if (!o.handover_to.empty() && (o.fleet_secret_path.empty() || o.journal_dir.empty()))
+    return OptionError{"--handover-to: needs --fleet-secret FILE and --journal-dir DIR (a room leaves as its journal)"};
   if (!o.metrics_address.empty() &&
       o.metrics_address.substr(o.metrics_address.rfind(':') + 1) == std::to_string(o.port))
     return OptionError{"--metrics: must not be the game port " + std::to_string(o.port) + ", got \"" +

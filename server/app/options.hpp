@@ -67,6 +67,7 @@ struct Options {
   // both ends, and is needed to hand a room over too.
   std::string handover_listen;
   std::string fleet_secret_path;
+  std::string handover_to;  // HOST:PORT: a drain hands every room to this peer first
   bool help = false;      // --help (the table's library adds it)
   bool markdown = false;  // --help-markdown: the flag reference (docs/flags/fts-server.md)
   bool version = false;

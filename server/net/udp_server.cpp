@@ -157,6 +157,7 @@ class Loop {
   // hands every room over; the reply lists each room's outcome.
   void hand_over(const std::string& room, const std::string& peer, HandoverChannel::Done done) {
     if (room != "all") return handover_->hand_over(room, peer, std::move(done));
+    handed_over_all_ = true;
     host_.stop_new_rooms();
     std::vector<std::string> codes;
     for (auto id : host_.room_ids())
@@ -177,6 +178,19 @@ class Loop {
         if (--all->left == 0) all->done({{"ok", all->ok}, {"rooms", all->rooms}, {"draining", true}});
       });
     }
+  }
+
+  // --handover-to: a drain (the console's, or SIGTERM under Agones) first hands every room
+  // to that peer; a room it refuses stays and plays on, as a drain's rooms do, and the
+  // drain goes on as before (the process ends with its last room, or its grace).
+  void hand_over_on_drain() {
+    if (handed_over_all_ || !handover_ || options_.handover_to.empty() || !host_.draining()) return;
+    hand_over("all", options_.handover_to, [](nlohmann::ordered_json j) {
+      std::size_t moved = 0;
+      for (const auto& r : j["rooms"]) moved += r.value("ok", false);
+      log_record(spdlog::level::info, "drain_handover",
+                 {{"rooms", j["rooms"].size()}, {"moved", moved}, {"ok", j.value("ok", false)}});
+    });
   }
 
   // The console's drain: the last room has ended, the process exits 0. Under Agones the
@@ -250,6 +264,7 @@ class Loop {
         host_.stats().tick_us.push_back(took.count() * 1e6);
         fleet_->observe_tick(took.count());
       }
+      hand_over_on_drain();
       if (fleet_->agones()) {
         if (host_.draining() && !fleet_->draining()) drain();  // the console's drain, told to Agones
       } else {
@@ -330,6 +345,7 @@ class Loop {
   std::unique_ptr<HandoverChannel> handover_;  // --fleet-secret (issue 42); before io_ goes
   std::unique_ptr<ConsoleServer> console_;
   bool stopping_ = false;
+  bool handed_over_all_ = false;  // every room offered to a peer once (hand_over "all")
 };
 
 }  // namespace

@@ -5,7 +5,8 @@ uses and the capacities it sets (seats = FTS_MAX_ROOMS x FTS_MAX_PLAYERS, rooms 
 min(FTS_MAX_ROOMS, 1000), players = min(seats, 1000)), the autoscaler's Counter policy on a declared
 counter of the right Fleet, the two allocations (quick play and create: Allocated with a free
 seat and a free room slot first, the fullest first, then Ready; join code X: a rooms
-containsValue selector whose placeholder is no room code), a drain grace shorter than Kubernetes' termination grace.
+containsValue selector whose placeholder is no room code), a drain grace shorter than Kubernetes' termination grace,
+the hand-over to peers (issue 42: its port, secret, journal and the Service of its peers).
 The GameServerAllocations are checked field by field against the keys Agones' reference
 (examples/gameserverallocation.yaml, GameServerSelector) allows, so a misspelt selector
 (which Agones would ignore or refuse) fails here. This is a hand-written check of the
@@ -134,6 +135,47 @@ for p in fspec.get("priorities") or []:
     need(p.get("type") in ("Counter", "List") and p.get("order") in ("Ascending", "Descending"),
          f"fleet.yaml: priority {p}")
     need(p.get("key") in DECLARED.get(p.get("type"), ()), f"fleet.yaml: priority on an undeclared {p.get('type')}")
+
+# Rooms that move (issue 42): every FTS_* variable is one of fts-server's (its flag
+# reference, generated from the option table); the hand-over listens on a named TCP
+# containerPort with the secret and the journal where the container mounts volumes; the
+# Service that FTS_HANDOVER_TO names selects the fleet's pods on that port; the secret is
+# copied to the server's own mode-0600 file by an init container (Secret files are root's).
+with open(os.path.join(root, "docs", "flags", "fts-server.md")) as f:
+    KNOWN_ENV = set(re.findall(r"\bFTS_[A-Z0-9_]+", f.read()))
+tspec = ((fspec.get("template") or {}).get("spec") or {}).get("template", {}).get("spec", {})
+for ct in tspec.get("containers") or []:
+    env = {e["name"]: str(e.get("value", "")) for e in ct.get("env") or []}
+    for name in env:
+        need(not name.startswith("FTS_") or name in KNOWN_ENV, f"fleet.yaml: {name} is no fts-server setting")
+    listen = env.get("FTS_HANDOVER_LISTEN", "")
+    if not need(listen and env.get("FTS_HANDOVER_TO"), "fleet.yaml: FTS_HANDOVER_LISTEN and FTS_HANDOVER_TO"):
+        continue
+    need(env.get("FTS_FLEET_SECRET") and env.get("FTS_JOURNAL_DIR"),
+         "fleet.yaml: the hand-over needs FTS_FLEET_SECRET and FTS_JOURNAL_DIR")
+    mounts = {m["mountPath"]: m["name"] for m in ct.get("volumeMounts") or []}
+    for var in ("FTS_FLEET_SECRET", "FTS_JOURNAL_DIR"):
+        need(any(env.get(var, "").startswith(path.rstrip("/") + "/") or env.get(var) == path for path in mounts),
+             f"fleet.yaml: {var} {env.get(var)} is on no mounted volume")
+    port = int(listen.rsplit(":", 1)[1])
+    named = {p.get("name"): p for p in ct.get("ports") or []}
+    need(any(p.get("containerPort") == port and p.get("protocol") == "TCP" for p in named.values()),
+         f"fleet.yaml: no TCP containerPort {port} for FTS_HANDOVER_LISTEN")
+    svc = load("handover-service.yaml")
+    need(svc.get("apiVersion") == "v1" and svc.get("kind") == "Service", "handover-service.yaml: kind Service")
+    host, to_port = env["FTS_HANDOVER_TO"].rsplit(":", 1)
+    need((svc.get("metadata") or {}).get("name") == host, f"handover-service.yaml: its name must be {host!r}")
+    labels = ((fspec.get("template") or {}).get("metadata") or {}).get("labels") or {}
+    selector = (svc.get("spec") or {}).get("selector") or {}
+    need(selector and all(labels.get(k) == v for k, v in selector.items()),
+         f"handover-service.yaml: selector {selector} must select the fleet's pods {labels}")
+    sports = (svc.get("spec") or {}).get("ports") or []
+    need(any(str(p.get("port")) == to_port and (named.get(p.get("targetPort")) or {}).get("containerPort") == port
+             for p in sports), f"handover-service.yaml: port {to_port} must target the hand-over port {port}")
+    secret_dir = os.path.dirname(env["FTS_FLEET_SECRET"])
+    copies = [c for c in tspec.get("initContainers") or []
+              if env["FTS_FLEET_SECRET"] in (c.get("command") or []) and "0600" in (c.get("command") or [])]
+    need(copies and mounts.get(secret_dir), "fleet.yaml: an init container copies the secret to a mode-0600 file")
 
 fas = load("fleetautoscaler.yaml")
 need(fas.get("apiVersion") == "autoscaling.agones.dev/v1" and fas.get("kind") == "FleetAutoscaler",

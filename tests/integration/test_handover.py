@@ -2,7 +2,8 @@
 """Rooms that move (issue 42), with real processes: two fts-servers of one fleet (journals,
 one fleet secret; the second takes rooms on --handover-listen) and real bots.
 
-moves: 2 rooms x 3 bots play on the first server; mid-level its console says
+moves: 2 rooms x 3 bots play on the first server, a room of 2 on the second (each server
+of a fleet gives ids from its own range: no id meets); mid-level the first's console says
 `handover all PEER`: it drains, each room goes to the second at the tick it stood at, the
 bots are told (`moved`) and follow with their tokens as the same players; the first exits
 0 once its rooms are gone. Every bot plays on at the second (its snapshots pass the tick
@@ -13,10 +14,13 @@ client: the terminal client in tmux (80x24) through a move: told, the same room,
 and lives on its HUD from the new server, its ball answering the keys there, a clean quit.
 
 faults: a peer that is not there, a peer with another secret, a room handed to the
-server that runs it (the room twice at one server) and a full peer: each is refused, the
-room stays and plays on where it was (its tick goes on), and says why (console, log,
-the peer's log for the secret)."""
-import json, os, re, shutil, signal, socket, subprocess, sys, tempfile, time
+server that runs it (the room twice at one server), a full peer and a peer that dies
+mid-hand-over (it takes the room's files and is gone before it answers): each is refused,
+the room stays and plays on where it was (its tick goes on), and says why (console, log,
+the peer's log for the secret). A request from a server of another version is refused by
+the peer, in an answer the sender can authenticate (PROTOCOL.md 14, spoken here by Python's
+hashlib and hmac)."""
+import hashlib, hmac, json, os, re, shutil, signal, socket, subprocess, sys, tempfile, threading, time
 
 from harness import BIN, HERE, Failure, Server, check, finish_bots, free_port, main, start_bots, wait_for
 from test_journal import ledger, add
@@ -65,6 +69,66 @@ def fleet_server(work, name, secret, listen=True, extra=()):
     return srv
 
 
+# The channel (PROTOCOL.md 14): the peer's magic and challenge, then frames of a 4-byte
+# big-endian length, the JSON, and HMAC-SHA-256(BLAKE2b-256(secret), label | challenge | JSON).
+MAGIC, CHALLENGE = b"FTSHOV01", 32
+REQUEST, REPLY = b"fts-handover-1 request", b"fts-handover-1 reply"
+
+
+def channel_key(secret_path):
+    with open(secret_path, "rb") as f:
+        return hashlib.blake2b(f.read(), digest_size=32).digest()
+
+
+def channel_mac(key, label, challenge, body):
+    return hmac.new(key, label + challenge + body, hashlib.sha256).digest()
+
+
+def read_exactly(conn, n):
+    data = b""
+    while len(data) < n:
+        chunk = conn.recv(n - len(data))
+        check(chunk, f"the channel closed after {len(data)} of {n} bytes")
+        data += chunk
+    return data
+
+
+def dying_peer():
+    """A peer that sends its challenge, takes the first bytes of the room's request and is gone
+    (the process died mid-hand-over): its address, and an event set once it has died."""
+    listener = socket.create_server(("127.0.0.1", 0))
+    died = threading.Event()
+
+    def serve():
+        conn, _ = listener.accept()
+        with conn:
+            conn.sendall(MAGIC + os.urandom(CHALLENGE))
+            length = int.from_bytes(read_exactly(conn, 4), "big")
+            read_exactly(conn, min(length, 1024))
+        listener.close()
+        died.set()
+
+    threading.Thread(target=serve, daemon=True).start()
+    return f"127.0.0.1:{listener.getsockname()[1]}", died
+
+
+def request_of_another_version(peer, key):
+    """Asks `peer` to take a room as a server of another version would: its answer, checked
+    authentic."""
+    host, port = peer.rsplit(":", 1)
+    with socket.create_connection((host, int(port)), timeout=10) as conn:
+        hello = read_exactly(conn, len(MAGIC) + CHALLENGE)
+        check(hello.startswith(MAGIC), f"the peer's hello: {hello[:8]!r}")
+        challenge = hello[len(MAGIC):]
+        body = json.dumps({"fts_handover": 1, "version": "0.0.1-older", "room": "OLDER", "tick": 10,
+                           "files": []}).encode()
+        conn.sendall(len(body).to_bytes(4, "big") + body + channel_mac(key, REQUEST, challenge, body))
+        length = int.from_bytes(read_exactly(conn, 4), "big")
+        answer, mac = read_exactly(conn, length), read_exactly(conn, 32)
+        check(hmac.compare_digest(mac, channel_mac(key, REPLY, challenge, answer)), "the peer's answer is not authentic")
+        return json.loads(answer)
+
+
 def rooms_of(srv):
     reply = console(srv.sock, {"cmd": "rooms"})
     check(reply.get("ok"), f"console rooms: {reply}")
@@ -74,8 +138,12 @@ def rooms_of(srv):
 def test_moves():
     work = tempfile.mkdtemp(prefix="fts-handover-")
     secret = secret_file(work, "fleet.secret", 7)
-    groups = []
+    groups, home = [], None
     with fleet_server(work, "a", secret, listen=False) as a, fleet_server(work, "b", secret) as b:
+        # The peer plays a room of its own: the rooms that come keep their players' ids, which
+        # its own players do not have (each server of a fleet gives ids from its own range).
+        home = start_bots("--connect", b.address, "--name", "cat", "--count", "2", "--room", "create",
+                          "--duration", "600")
         groups = [start_bots("--connect", a.address, "--name", g, "--count", str(BOTS), "--behavior", "shopper",
                              "--room", "create", "--duration", "600", "--seed", str(i + 1))
                   for i, g in enumerate(["ann", "bob"])]
@@ -89,6 +157,9 @@ def test_moves():
         watcher = start_bots("--connect", a.address, "--name", "eve", "--spectate", watched, "--duration", "600")
         groups.append(watcher)
         wait_for(lambda: re.search(r"\bconnect spectator=\d+ name=eve ", a.text()), 20, "the spectator")
+        wait_for(lambda: len(re.findall(r"\bconnect player=\d+ name=cat\d", b.text())) >= 2, 20, "the peer's own bots")
+        home_ids = set(re.findall(r"\bconnect player=(\d+) name=cat\d", b.text()))
+        check(not home_ids & set(first_ids), f"the two servers gave the same ids: {home_ids & set(first_ids)}")
 
         started = time.monotonic()
         reply = console(a.sock, {"cmd": "handover", "room": "all", "peer": b.handover})
@@ -106,15 +177,17 @@ def test_moves():
         wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=[a-z]+\d", b.text())) >= 2 * BOTS, 20,
                  "every bot on the second server")
         followed_s = time.monotonic() - started
-        check(not re.search(r"\bconnect player=\d+ name=", b.text().replace("reconnect", "")),
+        check(not re.search(r"\bconnect player=\d+ name=(ann|bob)", b.text().replace("reconnect", "")),
               "a bot came to the second server as a new player")
         # Play on there, then each bot says goodbye.
-        wait_for(lambda: all(r["tick"] >= moved[c] + 3 * TICK_HZ for c, r in rooms_of(b).items()), 30,
-                 "3 s of play on the second server")
-        for proc, _ in groups:
+        wait_for(lambda: all(r["tick"] >= moved[c] + 3 * TICK_HZ for c, r in rooms_of(b).items() if c in moved),
+                 30, "3 s of play on the second server")
+        for proc, _ in groups + [home]:
             proc.send_signal(signal.SIGINT)
         reports = [finish_bots(g, 60) for g in groups]
-        groups = []
+        home_rc, home_report, home_err = finish_bots(home, 60)
+        groups, home = [], None
+        check(home_rc == 0 and len(home_report) == 2, f"the peer's own bots failed (exit {home_rc}): {home_err.strip()}")
         check(b.stop() == 0, "the second server did not exit 0 on SIGINT")
         rc, spectated, err = reports.pop()  # the spectator's
         check(rc == 0 and len(spectated) == 1, f"the spectator failed (exit {rc}): {err.strip()}")
@@ -148,7 +221,7 @@ def test_moves():
         ms = [r["ms"] for r in reply["rooms"]]
         print(f"handover: 2 rooms x {BOTS} bots, hand-over {max(ms):.1f} ms (console), every bot on the new server "
               f"{followed_s * 1000:.0f} ms after the command; earned {sum(earned.values())}")
-    for proc, _ in groups:
+    for proc, _ in groups + ([home] if home else []):
         proc.kill()
 
 
@@ -171,8 +244,12 @@ def test_faults():
             ("another secret", stranger.handover, "another fleet secret"),
             ("the room's own server", a.handover, f"room {code} is open here already"),
             ("a full peer", full.handover, "full: this server has --max-rooms rooms"),
+            ("a peer that dies mid-hand-over", None, "closed the connection before answering"),
         ]
+        died = None
         for what, peer, says in cases:
+            if peer is None:
+                peer, died = dying_peer()
             before = rooms_of(a)[code]["tick"]
             reply = console(a.sock, {"cmd": "handover", "room": code, "peer": peer})
             check(not reply.get("ok") and says in reply.get("error", "") and "plays on here" in reply["error"],
@@ -182,7 +259,15 @@ def test_faults():
                   f"{what}: no handover_refused line")
         check(re.search(r"handover_denied from=127\.0\.0\.1:\d+ reason=not authenticated", stranger.text()),
               "the stranger did not log the unauthenticated request")
+        check(died.is_set(), "the dying peer never took the request")
         check(rooms_of(stranger) == {} and list(rooms_of(full)) != [code], "a refusing peer took the room")
+        # Another version: the peer says so, authentically, and takes nothing.
+        other_version = request_of_another_version(full.handover, channel_key(secret))
+        check(other_version.get("ok") is False and "another version" in other_version.get("error", "")
+              and "0.0.1-older" in other_version["error"], f"another version: {other_version}")
+        check(re.search(r"handover_denied from=127\.0\.0\.1:\d+ reason=another version", full.text()),
+              "the peer did not log the other version's request")
+        check("OLDER" not in rooms_of(full), "the peer took a room of another version")
         check(not re.search(r"room_moved|disconnect player=\d+ reason=moved", a.text()), "a refused room moved")
         check(not re.search(r"\breconnect player=", a.text()), "a bot had to reconnect")
         bad = console(a.sock, {"cmd": "handover", "room": "NOPE1", "peer": full.handover})
@@ -196,7 +281,8 @@ def test_faults():
             p[0].send_signal(signal.SIGINT)
             finish_bots(p, 30)
         bots = None
-        print(f"handover faults: {len(cases)} refusals, room {code} played on at its server after each")
+        print(f"handover faults: {len(cases)} refusals, room {code} played on at its server after each; "
+              "another version refused by the peer")
     if bots:
         bots[0].kill()
 
@@ -276,5 +362,52 @@ def test_client():
         subprocess.run([*tmux, "kill-server"], capture_output=True)
 
 
+def test_drain_agones():
+    """Under Agones (stand-in sidecars, tests/integration/agones_sidecar.py), SIGTERM drains a
+    server started with --handover-to PEER: its room goes to the peer, the room's code leaves
+    this GameServer's rooms List for the peer's (allocation by code finds the new home), the
+    bots follow, and the drained server tells Agones Shutdown and exits 0."""
+    from agones_sidecar import Sidecar
+    from test_agones import codes
+    work = tempfile.mkdtemp(prefix="fts-handover-")
+    secret = secret_file(work, "fleet.secret", 7)
+    sidecars = {name: Sidecar(free_port()) for name in ("a", "b")}
+    for sc in sidecars.values():
+        sc.start()
+    bots = None
+    try:
+        agones = {name: ("--agones", str(sc.port), "--agones-health-ms", "200") for name, sc in sidecars.items()}
+        with fleet_server(work, "b", secret, extra=agones["b"]) as b, \
+                fleet_server(work, "a", secret, listen=False, extra=(*agones["a"], "--handover-to", b.handover)) as a:
+            wait_for(lambda: all(sc.paths("/ready") for sc in sidecars.values()), 10, "both GameServers Ready")
+            bots = start_bots("--connect", a.address, "--name", "ann", "--count", "2", "--behavior", "shopper",
+                              "--room", "create", "--duration", "600")
+            wait_for(lambda: re.search(r"level_start level=1 room=", a.text()), 30, "level 1")
+            code = re.search(r"room_open room=\d+ code=([A-Z]{5})", a.text()).group(1)
+            wait_for(lambda: codes(sidecars["a"]) == [code], 10, "the room's code in the first's rooms List")
+            a.proc.send_signal(signal.SIGTERM)
+            wait_for(lambda: re.search(rf"room_adopted code={code} ", b.text()), 20, "the room on the peer")
+            wait_for(lambda: codes(sidecars["b"]) == [code] and codes(sidecars["a"]) == [], 10,
+                     "the code moved from the first's rooms List to the peer's")
+            wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=ann\d", b.text())) >= 2, 20,
+                     "the bots on the peer")
+            check(a.proc.wait(timeout=20) == 0, "the drained server did not exit 0")
+            check(sidecars["a"].paths("/shutdown"), "the drained server did not tell Agones Shutdown")
+            check(not sidecars["b"].paths("/shutdown"), "the peer was shut down")
+            check(re.search(r"drain_handover rooms=1 moved=1 ok=true", a.text()), "no drain_handover line")
+            bots[0].send_signal(signal.SIGINT)
+            rc, report, err = finish_bots(bots, 60)
+            bots = None
+            check(rc == 0 and len(report) == 2, f"bots failed (exit {rc}): {err.strip()}")
+            check(all(x["moves"] == 1 and x["moved_to"] == b.address for x in report), f"bots: {report}")
+            print(f"handover drain under Agones: room {code} and its code moved to the peer on SIGTERM")
+    finally:
+        if bots:
+            bots[0].kill()
+        for sc in sidecars.values():
+            sc.stop()
+
+
 if __name__ == "__main__":
-    sys.exit(main({"moves": test_moves, "faults": test_faults, "client": test_client}))
+    sys.exit(main({"moves": test_moves, "faults": test_faults, "client": test_client,
+                   "drain_agones": test_drain_agones}))
