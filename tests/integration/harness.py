@@ -1,6 +1,6 @@
 """Helpers for the integration tests: real processes on loopback, free ports, and
 waits with deadlines (poll for an event, never sleep and hope)."""
-import json, os, re, signal, socket, subprocess, sys, tempfile, time
+import json, os, re, shutil, signal, socket, subprocess, sys, tempfile, time
 from datetime import datetime, timezone
 
 BIN = os.environ.get("FTS_BIN_DIR", "build")
@@ -131,10 +131,24 @@ def main(tests):
     if name not in tests:
         print(f"unknown test {name!r}; known: {', '.join(tests)}")
         return 2
+    # Every temporary directory of the case (tempfile's) inside one of its own: removed when
+    # the case passes, kept (and named) when it fails, for its logs.
+    own = tempfile.mkdtemp(prefix=f"fts-test-{name}-")
+    os.chmod(own, 0o711)  # others may pass through (PostgreSQL's own user, to its data directory)
+    tempfile.tempdir = own
+    keep = True
     try:
         tests[name]()
+        keep = False
     except Failure as e:
-        print(f"FAIL {name}: {e}")
+        print(f"FAIL {name}: {e} (its files: {own})")
         return 1
+    except SystemExit as e:  # a skip (77) leaves nothing worth keeping
+        keep = e.code not in (None, 0, 77)
+        raise
+    finally:
+        tempfile.tempdir = None
+        if not keep:
+            shutil.rmtree(own, ignore_errors=True)
     print(f"ok {name}")
     return 0
