@@ -153,6 +153,7 @@ for ct in tspec.get("containers") or []:
         continue
     need(env.get("FTS_FLEET_SECRET") and env.get("FTS_JOURNAL_DIR"),
          "fleet.yaml: the hand-over needs FTS_FLEET_SECRET and FTS_JOURNAL_DIR")
+    need(env.get("FTS_RESUME") == "1", "fleet.yaml: FTS_RESUME=1 (a restarted container refuses its journals without)")
     mounts = {m["mountPath"]: m["name"] for m in ct.get("volumeMounts") or []}
     for var in ("FTS_FLEET_SECRET", "FTS_JOURNAL_DIR"):
         need(any(env.get(var, "").startswith(path.rstrip("/") + "/") or env.get(var) == path for path in mounts),
