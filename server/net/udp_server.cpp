@@ -181,15 +181,32 @@ class Loop {
   }
 
   // --handover-to: a drain (the console's, or SIGTERM under Agones) first hands every room
-  // to that peer; a room it refuses stays and plays on, as a drain's rooms do, and the
-  // drain goes on as before (the process ends with its last room, or its grace).
+  // to that peer. A room refused is tried again a second later, kDrainAttempts times in
+  // all (a Service may send the next connection to another peer; a full one may have room
+  // by then); then it stays and plays on, as a drain's rooms do, and the drain goes on as
+  // before (the process ends with its last room, or its grace).
+  static constexpr int kDrainAttempts = 3;
   void hand_over_on_drain() {
     if (handed_over_all_ || !handover_ || options_.handover_to.empty() || !host_.draining()) return;
-    hand_over("all", options_.handover_to, [](nlohmann::ordered_json j) {
+    hand_over("all", options_.handover_to, [this](nlohmann::ordered_json j) {
       std::size_t moved = 0;
-      for (const auto& r : j["rooms"]) moved += r.value("ok", false);
+      for (const auto& r : j["rooms"]) {
+        moved += r.value("ok", false);
+        if (!r.value("ok", false)) retry_on_drain(r.value("room", std::string()), 2);
+      }
       log_record(spdlog::level::info, "drain_handover",
                  {{"rooms", j["rooms"].size()}, {"moved", moved}, {"ok", j.value("ok", false)}});
+    });
+  }
+  void retry_on_drain(std::string code, int attempt) {
+    auto timer = std::make_shared<asio::steady_timer>(io_, std::chrono::seconds(1));
+    timer->async_wait([this, timer, code = std::move(code), attempt](const boost::system::error_code& e) {
+      if (e || stopping_ || !host_.room_by_code(code)) return;  // the room ended meanwhile
+      handover_->hand_over(code, options_.handover_to, [this, code, attempt](nlohmann::ordered_json j) {
+        const bool ok = j.value("ok", false);
+        log_record(spdlog::level::info, "drain_handover_retry", {{"room", code}, {"attempt", attempt}, {"ok", ok}});
+        if (!ok && attempt < kDrainAttempts) retry_on_drain(code, attempt + 1);
+      });
     });
   }
 

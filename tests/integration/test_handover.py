@@ -112,6 +112,45 @@ def dying_peer():
     return f"127.0.0.1:{listener.getsockname()[1]}", died
 
 
+def flaky_service(target):
+    """A stand-in for the fleet's hand-over Service whose first connection lands on a peer
+    that is gone (closed at once); every later one is passed to `target`. Its address and a
+    list of the connections it took ("closed" or "passed")."""
+    listener = socket.create_server(("127.0.0.1", 0))
+    taken = []
+    host, port = target.rsplit(":", 1)
+
+    def pipe(a, b):
+        try:
+            while chunk := a.recv(65536):
+                b.sendall(chunk)
+        except OSError:
+            pass
+        for c in (a, b):
+            try:
+                c.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+
+    def serve():
+        while True:
+            try:
+                conn, _ = listener.accept()
+            except OSError:
+                return
+            if not taken:
+                taken.append("closed")
+                conn.close()
+                continue
+            taken.append("passed")
+            up = socket.create_connection((host, int(port)))
+            threading.Thread(target=pipe, args=(conn, up), daemon=True).start()
+            threading.Thread(target=pipe, args=(up, conn), daemon=True).start()
+
+    threading.Thread(target=serve, daemon=True).start()
+    return f"127.0.0.1:{listener.getsockname()[1]}", taken
+
+
 def request_of_another_version(peer, key):
     """Asks `peer` to take a room as a server of another version would: its answer, checked
     authentic."""
@@ -364,9 +403,11 @@ def test_client():
 
 def test_drain_agones():
     """Under Agones (stand-in sidecars, tests/integration/agones_sidecar.py), SIGTERM drains a
-    server started with --handover-to PEER: its room goes to the peer, the room's code leaves
-    this GameServer's rooms List for the peer's (allocation by code finds the new home), the
-    bots follow, and the drained server tells Agones Shutdown and exits 0."""
+    server started with --handover-to SERVICE: its room goes to the peer, the room's code
+    leaves this GameServer's rooms List for the peer's (allocation by code finds the new
+    home), the bots follow, and the drained server tells Agones Shutdown and exits 0. The
+    Service's first connection lands on a peer that is gone: the room is tried again a
+    second later and goes."""
     from agones_sidecar import Sidecar
     from test_agones import codes
     work = tempfile.mkdtemp(prefix="fts-handover-")
@@ -377,30 +418,34 @@ def test_drain_agones():
     bots = None
     try:
         agones = {name: ("--agones", str(sc.port), "--agones-health-ms", "200") for name, sc in sidecars.items()}
-        with fleet_server(work, "b", secret, extra=agones["b"]) as b, \
-                fleet_server(work, "a", secret, listen=False, extra=(*agones["a"], "--handover-to", b.handover)) as a:
-            wait_for(lambda: all(sc.paths("/ready") for sc in sidecars.values()), 10, "both GameServers Ready")
-            bots = start_bots("--connect", a.address, "--name", "ann", "--count", "2", "--behavior", "shopper",
-                              "--room", "create", "--duration", "600")
-            wait_for(lambda: re.search(r"level_start level=1 room=", a.text()), 30, "level 1")
-            code = re.search(r"room_open room=\d+ code=([A-Z]{5})", a.text()).group(1)
-            wait_for(lambda: codes(sidecars["a"]) == [code], 10, "the room's code in the first's rooms List")
-            a.proc.send_signal(signal.SIGTERM)
-            wait_for(lambda: re.search(rf"room_adopted code={code} ", b.text()), 20, "the room on the peer")
-            wait_for(lambda: codes(sidecars["b"]) == [code] and codes(sidecars["a"]) == [], 10,
-                     "the code moved from the first's rooms List to the peer's")
-            wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=ann\d", b.text())) >= 2, 20,
-                     "the bots on the peer")
-            check(a.proc.wait(timeout=20) == 0, "the drained server did not exit 0")
-            check(sidecars["a"].paths("/shutdown"), "the drained server did not tell Agones Shutdown")
-            check(not sidecars["b"].paths("/shutdown"), "the peer was shut down")
-            check(re.search(r"drain_handover rooms=1 moved=1 ok=true", a.text()), "no drain_handover line")
-            bots[0].send_signal(signal.SIGINT)
-            rc, report, err = finish_bots(bots, 60)
-            bots = None
-            check(rc == 0 and len(report) == 2, f"bots failed (exit {rc}): {err.strip()}")
-            check(all(x["moves"] == 1 and x["moved_to"] == b.address for x in report), f"bots: {report}")
-            print(f"handover drain under Agones: room {code} and its code moved to the peer on SIGTERM")
+        with fleet_server(work, "b", secret, extra=agones["b"]) as b:
+            service, taken = flaky_service(b.handover)
+            with fleet_server(work, "a", secret, listen=False, extra=(*agones["a"], "--handover-to", service)) as a:
+                wait_for(lambda: all(sc.paths("/ready") for sc in sidecars.values()), 10, "both GameServers Ready")
+                bots = start_bots("--connect", a.address, "--name", "ann", "--count", "2", "--behavior", "shopper",
+                                  "--room", "create", "--duration", "600")
+                wait_for(lambda: re.search(r"level_start level=1 room=", a.text()), 30, "level 1")
+                code = re.search(r"room_open room=\d+ code=([A-Z]{5})", a.text()).group(1)
+                wait_for(lambda: codes(sidecars["a"]) == [code], 10, "the room's code in the first's rooms List")
+                a.proc.send_signal(signal.SIGTERM)
+                wait_for(lambda: re.search(rf"room_adopted code={code} ", b.text()), 20, "the room on the peer")
+                wait_for(lambda: codes(sidecars["b"]) == [code] and codes(sidecars["a"]) == [], 10,
+                         "the code moved from the first's rooms List to the peer's")
+                wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=ann\d", b.text())) >= 2, 20,
+                         "the bots on the peer")
+                check(a.proc.wait(timeout=20) == 0, "the drained server did not exit 0")
+                check(sidecars["a"].paths("/shutdown"), "the drained server did not tell Agones Shutdown")
+                check(not sidecars["b"].paths("/shutdown"), "the peer was shut down")
+                check(re.search(r"drain_handover rooms=1 moved=0 ok=false", a.text()) and
+                      re.search(rf"drain_handover_retry room={code} attempt=2 ok=true", a.text()),
+                      "the room was not tried again after the gone peer")
+                check(taken[:2] == ["closed", "passed"], f"the Service's connections: {taken}")
+                bots[0].send_signal(signal.SIGINT)
+                rc, report, err = finish_bots(bots, 60)
+                bots = None
+                check(rc == 0 and len(report) == 2, f"bots failed (exit {rc}): {err.strip()}")
+                check(all(x["moves"] == 1 and x["moved_to"] == b.address for x in report), f"bots: {report}")
+                print(f"handover drain under Agones: room {code} and its code moved to the peer on SIGTERM")
     finally:
         if bots:
             bots[0].kill()
