@@ -58,6 +58,19 @@ struct HostRig {
     c.name = name;
     return connect(c);
   }
+  // A client asking to join `how` ("create", "quick", "join" a room code...; a token to
+  // come back), ticked until it is welcomed or refused (at most 50 ticks).
+  protocol::ClientEndpoint& join(const std::string& name, const std::string& how, const std::string& room = "",
+                                 const std::string& token = "") {
+    protocol::ClientConfig c;
+    c.name = name;
+    c.join = how;
+    c.room = room;
+    c.token = token;
+    auto& client = connect(c);
+    for (int i = 0; i < 50 && client.state() == protocol::ClientState::connecting; ++i) tick();
+    return client;
+  }
   // Every client's datagrams to the host.
   void send() {
     for (std::size_t i = 0; i < clients.size(); ++i) {

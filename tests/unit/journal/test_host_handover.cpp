@@ -25,19 +25,9 @@ struct HandoverRig : test::HostRig {
     store::JournalConfig jc;
     jc.dir = root;
     jc.sync_ms = 5;
-    protocol::ServerKey k{};
-    k.fill(key_byte);
-    host = std::make_unique<server::GameHost>(options, config, k);
+    key.fill(key_byte);
+    start();
     host->journal_rooms(jc);
-  }
-  protocol::ClientEndpoint& join(const std::string& name, const std::string& how, const std::string& room = "") {
-    protocol::ClientConfig c;
-    c.name = name;
-    c.join = how;
-    c.room = room;
-    auto& client = connect(c);
-    for (int i = 0; i < 50 && client.state() == ClientState::connecting; ++i) tick();
-    return client;
   }
 };
 

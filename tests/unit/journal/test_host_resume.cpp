@@ -22,12 +22,6 @@ using protocol::ClientState;
 
 namespace {
 
-protocol::ServerKey key_of(std::uint8_t b) {
-  protocol::ServerKey k{};
-  k.fill(b);
-  return k;
-}
-
 struct Rig : test::HostRig {
   store::JournalConfig jc;
   Rig(const fs::path& root, std::uint8_t key_byte) {
@@ -38,19 +32,9 @@ struct Rig : test::HostRig {
     jc.dir = root;
     jc.sync_ms = 5;
     jc.checkpoint_every_ticks = 150;
-    host = std::make_unique<server::GameHost>(options, config, key_of(key_byte));
+    key.fill(key_byte);
+    start();
     host->journal_rooms(jc);
-  }
-  protocol::ClientEndpoint& join(const std::string& name, const std::string& how, const std::string& room = "",
-                                 const std::string& token = "") {
-    protocol::ClientConfig c;
-    c.name = name;
-    c.join = how;
-    c.room = room;
-    c.token = token;
-    auto& client = connect(c);
-    for (int i = 0; i < 50 && client.state() == ClientState::connecting; ++i) tick();
-    return client;
   }
   const server::Room& room_of(const protocol::ClientEndpoint& c) const {
     return *host->room_by_code(c.welcome()->room);
