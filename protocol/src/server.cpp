@@ -467,12 +467,31 @@ std::vector<PlayerCommand> ServerEndpoint::take_commands() {
   return std::exchange(commands_, {});
 }
 
+namespace {
+template <class S>
+SessionInfo info_of(std::uint32_t id, const S& s) {
+  return {id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
+          s.rate_limited, s.room, s.spectator, s.seal.drops(), s.identity};
+}
+}  // namespace
+
 std::vector<SessionInfo> ServerEndpoint::sessions() const {
   std::vector<SessionInfo> out;
-  for (const auto& [id, s] : sessions_)
-    out.push_back({id, s.name, s.address, s.connected, s.acks.rtt_ms(), s.snapshots.acked_tick(), s.encoding,
-                   s.rate_limited, s.room, s.spectator, s.seal.drops(), s.identity});
+  for (const auto& [id, s] : sessions_) out.push_back(info_of(id, s));
   return out;
+}
+
+std::vector<SessionInfo> ServerEndpoint::sessions_of_room(std::uint32_t room) const {
+  std::vector<SessionInfo> out;
+  for (const auto& [id, s] : sessions_)
+    if (s.room == room) out.push_back(info_of(id, s));
+  return out;
+}
+
+std::optional<SessionInfo> ServerEndpoint::session_info(std::uint32_t player_id) const {
+  const auto it = sessions_.find(player_id);
+  if (it == sessions_.end()) return std::nullopt;
+  return info_of(it->first, it->second);
 }
 
 std::vector<std::uint32_t> ServerEndpoint::connected_players() const {

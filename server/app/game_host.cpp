@@ -205,8 +205,7 @@ void GameHost::relay_chat(const protocol::PlayerCommand& pc, std::uint64_t now_m
   protocol::Chat line;
   line.from = pc.player_id;
   line.name = "player " + std::to_string(pc.player_id);
-  for (const auto& s : endpoint_.sessions())
-    if (s.player_id == pc.player_id) line.name = s.name;
+  if (const auto s = endpoint_.session_info(pc.player_id)) line.name = s->name;
   // The name the legend shows: a second "ann" speaks as "ann-2".
   if (const Room* r = room(pc.room)) line.name = r->shown_name(pc.player_id, line.name);
   line.text = v.text;
@@ -377,8 +376,7 @@ void GameHost::close_room(std::uint32_t id, protocol::ErrorCode code, const std:
                           std::uint64_t now_ms) {
   auto it = rooms_.find(id);
   if (it == rooms_.end()) return;
-  for (const auto& s : endpoint_.sessions())
-    if (s.room == id) endpoint_.kick(s.player_id, code, message, now_ms);
+  for (const auto& s : endpoint_.sessions_of_room(id)) endpoint_.kick(s.player_id, code, message, now_ms);
   Room& r = *it->second;
   r.close_careers();  // the players' matches end with the room (before the kicks' releases count as quits)
   log_record(spdlog::level::info, "room_closed",

@@ -312,8 +312,8 @@ void Room::resume_from(const store::ResumedRoom& room) { stepper_ = room::RoomSt
 
 void Room::journal_to(store::JournalConfig config, const protocol::ServerEndpoint& endpoint) {
   std::vector<store::JournalSession> sessions;
-  for (const auto& s : endpoint.sessions())
-    if (s.room == id_ && !s.spectator)
+  for (const auto& s : endpoint.sessions_of_room(id_))
+    if (!s.spectator)
       sessions.push_back({s.player_id, s.name, endpoint.session_verifier(s.player_id), !s.connected, s.identity,
                           careers_.saved(s.player_id)});
   journal_ = std::make_unique<store::JournalWriter>(std::move(config), stepper_.match().cfg, stepper_.match(), stepper_.event_seq(),

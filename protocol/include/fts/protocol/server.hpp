@@ -339,6 +339,9 @@ class ServerEndpoint {
 
   const RejectCounters& rejects() const { return rejects_; }
   std::vector<SessionInfo> sessions() const;
+  // One room's sessions (without copying every other room's), and one session's.
+  std::vector<SessionInfo> sessions_of_room(std::uint32_t room) const;
+  std::optional<SessionInfo> session_info(std::uint32_t player_id) const;
   std::vector<std::uint32_t> connected_players() const;
   // Rooms: connected sessions of a room (players and spectators), seats taken (players
   // not quit, connected or held for a reconnect), connected spectators, every session.
