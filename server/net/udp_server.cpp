@@ -83,7 +83,8 @@ class Loop {
                 {"tick_rate_hz", options_.tick_rate_hz}, {"snapshot_rate_hz", options_.snapshot_rate_hz},
                 {"max_players", options_.max_players}, {"model", options_.model}, {"seed", options_.seed},
                 {"time_scale", options_.time_scale}, {"record", options_.record_path}, {"max_rooms", options_.max_rooms},
-                {"threads", host_.workers().threads()}, {"console", options_.console_path}, {"version", FTS_VERSION}});
+                {"threads", host_.workers().threads()}, {"console", options_.console_path}, {"version", FTS_VERSION},
+                {"receive_buffer", socket_.receive_buffer_bytes()}});
     fleet_->bound();
     receive();
     clock_.start(now_ns());

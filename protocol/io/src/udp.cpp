@@ -56,7 +56,19 @@ boost::system::error_code UdpSocket::bind(const udp::endpoint& local) {
   socket_.open(local.protocol(), ec);
   if (!ec) socket_.bind(local, ec);
   if (!ec) socket_.non_blocking(true, ec);
+  if (!ec) {
+    boost::system::error_code ignored;  // a smaller buffer than asked is no failure
+    socket_.set_option(udp::socket::receive_buffer_size(kServerBufferBytes), ignored);
+    socket_.set_option(udp::socket::send_buffer_size(kServerBufferBytes), ignored);
+  }
   return ec;
+}
+
+std::size_t UdpSocket::receive_buffer_bytes() const {
+  udp::socket::receive_buffer_size size;
+  boost::system::error_code ec;
+  socket_.get_option(size, ec);
+  return ec ? 0 : static_cast<std::size_t>(size.value());
 }
 
 boost::system::error_code UdpSocket::connect(const udp::endpoint& server, const std::optional<asio::ip::address>& from) {

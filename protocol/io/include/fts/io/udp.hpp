@@ -43,8 +43,14 @@ class UdpSocket {
   UdpSocket(const UdpSocket&) = delete;
   UdpSocket& operator=(const UdpSocket&) = delete;
 
-  // A server's socket on a local address (port 0: any free port).
+  // A server's socket on a local address (port 0: any free port), with receive and send
+  // buffers of kServerBufferBytes asked for: the default 208 KiB overflowed when 512
+  // clients of rooms handed over came at once (their hellos are padded to 1200 bytes),
+  // and each lost hello cost its client a 250 ms resend. The kernel caps the ask at
+  // net.core.rmem_max / wmem_max; receive_buffer_bytes() says what it gave.
+  static constexpr int kServerBufferBytes = 4 << 20;
   boost::system::error_code bind(const udp::endpoint& local);
+  std::size_t receive_buffer_bytes() const;
   // A client's socket: a fresh local port that hears only `server`. Calling it again
   // closes the old socket first (a reconnect from a new address).
   // `from`: send from this local address (any port) instead of the route's own.
