@@ -118,7 +118,9 @@ class GameHost {
     std::int64_t tick = 0;
     std::vector<std::pair<std::string, std::string>> files;  // the journal's segments: name, text
   };
-  std::variant<RoomExport, std::string> export_room(const std::string& code);
+  // Each room named, frozen with its export, or why not (it plays on); their journals
+  // sync together.
+  std::vector<std::variant<RoomExport, std::string>> export_rooms(const std::vector<std::string>& codes);
   std::size_t room_moved(const std::string& code, const std::string& address, std::uint64_t now_ms);
   void room_kept(const std::string& code, const std::string& why);
   // A room from a peer: its journal's segments. "" when it plays here now (at the tick it

@@ -289,9 +289,14 @@ void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<
   for (auto id : members) endpoint.send_snapshot(id, snap, now_ms, lane);
 }
 
-bool Room::sync_journal() {
-  if (!journal_) return false;
+void Room::start_sync() {
+  if (!journal_) return;
   journal_->checkpoint_now(stepper_.match(), stepper_.event_seq());
+  journal_->request_flush();
+}
+
+bool Room::finish_sync() {
+  if (!journal_) return false;
   journal_->flush();
   const auto st = journal_->stats();
   return !st.failing && st.dropped == 0 && st.error.empty();

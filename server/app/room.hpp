@@ -122,13 +122,16 @@ class Room {
   const InputTiming& input_timing() const { return timing_; }
   // When the room last had a connected session (the host closes it after a while).
   std::uint64_t last_occupied_ms = 0;
-  // Being handed over to a peer (GameHost::export_room): it steps, publishes and closes
+  // Being handed over to a peer (GameHost::export_rooms): it steps, publishes and closes
   // for idling no more until the peer answers.
   bool frozen = false;
   // Its journal written and synced to the state now, a new segment beginning with a
   // checkpoint of it (a hand-over ships that segment). False without a journal or while
-  // the journal fails or drops records.
-  bool sync_journal();
+  // the journal fails or drops records. Or in two halves, for several rooms' writers to
+  // sync at once: start_sync asks for it, finish_sync waits for it.
+  bool sync_journal() { return start_sync(), finish_sync(); }
+  void start_sync();
+  bool finish_sync();
   // The host (address without port) whose hello made the room; "" for a resumed one.
   // Its open rooms count against it (Options::max_rooms_per_host).
   std::string maker_host;

@@ -3,6 +3,7 @@
 
 #include <sodium.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstring>
@@ -25,7 +26,9 @@ using namespace handover;
 // A whole exchange, either side (one room; the console waits for a deferred reply up to
 // net/console.hpp's kDeferredMs).
 constexpr auto kDeadline = std::chrono::seconds(4);
-constexpr int kMaxDepth = 4;  // a request nests 3 deep (files, a file, its fields)
+// The peer's time to take a request's rooms, well inside the sender's kDeadline.
+constexpr auto kAdoptBudget = std::chrono::seconds(2);
+constexpr int kMaxDepth = 5;  // a request nests 4 deep (rooms, a room, its files, a file)
 
 nlohmann::ordered_json refusal(const std::string& why) { return {{"ok", false}, {"error", why}}; }
 
@@ -51,25 +54,28 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
   std::function<void()> flush;
   tcp::acceptor acceptor;
   bool closed = false;
-  // Hand-overs in flight, and those waiting their turn (their rooms play on meanwhile):
-  // the peer takes one room at a time on its loop, so a room that waited behind 63 others
-  // there had used up its 4 s before its turn (64 rooms at once, 2026-12-06).
+  // Exchanges in flight, and those waiting their turn (their rooms play on meanwhile).
+  // Rooms handed over together go in one exchange of up to kMaxRoomsPerExchange: one room
+  // per exchange, 64 rooms took 4-10 s to move (each exchange's round trips waited for
+  // two loaded loops); in one exchange about 0.5 s (2026-12-07, BENCHMARKS.md).
   struct Waiting {
-    std::string code, peer;
-    HandoverChannel::Done done;
+    std::vector<std::string> codes;
+    std::string peer;
+    HandoverChannel::EachDone each;
   };
-  // Two: with 8 the 64-room move ended 5 % sooner but each room stood frozen 3x longer
-  // (p50 231 against 79 ms) while the peer worked through the others.
+  // Two exchanges at a time: when there was one room per exchange, 8 in flight ended the
+  // 64-room move 5 % sooner but left each room frozen 3x longer while the peer worked
+  // through the others (2026-12-06).
   std::deque<Waiting> waiting;
   std::size_t in_flight = 0;
   static constexpr std::size_t kMaxInFlight = 2;
 
-  void start(std::string code, std::string peer, HandoverChannel::Done done);
+  void start(Waiting w);
   void next() {
     while (in_flight < kMaxInFlight && !waiting.empty()) {
       Waiting w = std::move(waiting.front());
       waiting.pop_front();
-      start(std::move(w.code), std::move(w.peer), std::move(w.done));
+      start(std::move(w));
     }
   }
 
@@ -86,6 +92,9 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     Bytes hello, body, reply;
     std::array<std::uint8_t, 4> length{};
     std::string from;
+    nlohmann::json incoming;                                      // the request's rooms
+    nlohmann::ordered_json adopted = nlohmann::ordered_json::array();  // an answer for each so far
+    std::chrono::steady_clock::time_point adopt_until;
 
     Inbound(std::shared_ptr<Impl> o, tcp::socket s)
         : owner(std::move(o)), socket(std::move(s)), deadline(owner->io) {}
@@ -119,31 +128,60 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     void on_request() {
       const auto opened = open_body(owner->key, kRequestLabel, challenge, body);
       if (!opened) return answer(refusal("not authenticated: another fleet secret?"), true);
-      const std::string& json = *opened;
       std::string unread;
-      const auto parsed = room::parse_json(json, unread, kMaxDepth);
-      if (!parsed) return answer(refusal("not a hand-over request: " + unread), true);
+      const auto parsed = room::parse_json(*opened, unread, kMaxDepth);
+      if (!parsed || !parsed->is_object() || !parsed->contains("fts_handover"))
+        return answer(refusal("not a hand-over request: " + unread), true);
       const nlohmann::json& req = *parsed;
-      if (int_of(req, "fts_handover") != kFormat || text_of(req, "room").empty() || !req.contains("files") ||
-          !req["files"].is_array())
-        return answer(refusal("not a hand-over request of format " + std::to_string(kFormat)), true);
+      // The version first: another version's request may be shaped otherwise.
       if (text_of(req, "version") != FTS_VERSION)
         return answer(refusal("another version: this server runs " + std::string(FTS_VERSION) +
                               ", the room comes from " + text_of(req, "version")),
                       true);
+      if (int_of(req, "fts_handover") != kFormat || !req.contains("rooms") || !req["rooms"].is_array() ||
+          req["rooms"].empty() || req["rooms"].size() > kMaxRoomsPerExchange)
+        return answer(refusal("not a hand-over request of format " + std::to_string(kFormat) + " (1 to " +
+                              std::to_string(kMaxRoomsPerExchange) + " rooms)"),
+                      true);
+      incoming = req["rooms"];
+      adopt_until = std::chrono::steady_clock::now() + kAdoptBudget;
+      adopt_next();
+    }
+    // One room per turn of the loop, so the peer's own rooms tick between them; rooms
+    // left when the budget is spent are refused (the sender keeps them) well before the
+    // sender gives up on the answer, which would leave a room running on both servers.
+    void adopt_next() {
+      if (adopted.size() == incoming.size()) {
+        owner->flush();
+        return answer({{"ok", true}, {"port", owner->game_port}, {"rooms", std::move(adopted)}}, false);
+      }
+      const nlohmann::json& entry = incoming[adopted.size()];
+      if (std::chrono::steady_clock::now() > adopt_until)
+        adopted.push_back({{"room", text_of(entry, "room")}, {"ok", false}, {"error", "out of time for more rooms"}});
+      else
+        adopted.push_back(adopt(entry));
+      owner->flush();
+      asio::post(owner->io, [self = shared_from_this()] { self->adopt_next(); });
+    }
+    // One room of a request: {"room","ok":true,"tick"} or {"room","ok":false,"error"}.
+    nlohmann::ordered_json adopt(const nlohmann::json& entry) {
+      const std::string code = text_of(entry, "room");
+      auto refused = [&](const std::string& why) {
+        return nlohmann::ordered_json{{"room", code}, {"ok", false}, {"error", why}};
+      };
+      if (code.empty() || !entry.contains("files") || !entry["files"].is_array())
+        return refused("a room of the request is not {room, tick, files}");
       std::vector<std::pair<std::string, std::string>> files;
-      for (const auto& f : req["files"]) {
+      for (const auto& f : entry["files"]) {
         if (!f.is_object() || !f.contains("name") || !f["name"].is_string() || !f.contains("text") ||
             !f["text"].is_string())
-          return answer(refusal("a file of the request is not {name, text}"), true);
+          return refused("a file of the request is not {name, text}");
         files.emplace_back(f["name"].get<std::string>(), f["text"].get<std::string>());
       }
-      const std::string room = req["room"].get<std::string>();
-      const std::string why = owner->host.adopt_room(room, files, owner->now_ms());
-      owner->flush();
-      if (!why.empty()) return answer(refusal(why), false);
-      const Room* r = owner->host.room_by_code(room);
-      answer({{"ok", true}, {"room", room}, {"tick", r ? r->match().tick : 0}, {"port", owner->game_port}}, false);
+      if (const std::string why = owner->host.adopt_room(code, files, owner->now_ms()); !why.empty())
+        return refused(why);
+      const Room* r = owner->host.room_by_code(code);
+      return {{"room", code}, {"ok", true}, {"tick", r ? r->match().tick : 0}};
     }
     void answer(const nlohmann::ordered_json& j, bool unauthenticated) {
       if (unauthenticated)
@@ -165,11 +203,17 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     });
   }
 
-  // ---- the sender's side.
+  // ---- the sender's side: one connection, the rooms of one exchange.
   struct Outbound : std::enable_shared_from_this<Outbound> {
+    struct Moving {
+      std::string code;
+      std::int64_t tick = 0;
+      bool finished = false;
+    };
     std::shared_ptr<Impl> owner;
-    std::string code, peer_host, peer;
-    Done done;
+    std::string peer_host, peer;
+    std::vector<Moving> rooms;
+    EachDone each;
     tcp::resolver resolver;
     tcp::socket socket;
     asio::steady_timer deadline;
@@ -177,20 +221,21 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     Bytes challenge, request, body;
     std::array<std::uint8_t, 4> length{};
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
-    std::int64_t tick = 0;
     bool finished = false;
 
-    Outbound(std::shared_ptr<Impl> o, std::string c, std::string p, Done d)
-        : owner(std::move(o)), code(std::move(c)), peer(std::move(p)), done(std::move(d)), resolver(owner->io),
-          socket(owner->io), deadline(owner->io) {}
+    Outbound(std::shared_ptr<Impl> o, std::string p, EachDone e)
+        : owner(std::move(o)), peer(std::move(p)), each(std::move(e)), resolver(owner->io), socket(owner->io),
+          deadline(owner->io) {}
 
-    void start(GameHost::RoomExport ex, const fts::io::HostPort& hp) {
+    void start(std::vector<GameHost::RoomExport> exports, const fts::io::HostPort& hp) {
       peer_host = hp.host;
-      tick = ex.tick;
-      nlohmann::json req = {{"fts_handover", kFormat}, {"version", FTS_VERSION}, {"room", ex.code}, {"tick", ex.tick}};
-      req["files"] = nlohmann::json::array();
-      for (auto& [name, text] : ex.files) req["files"].push_back({{"name", name}, {"text", std::move(text)}});
-      request.clear();
+      nlohmann::json req = {{"fts_handover", kFormat}, {"version", FTS_VERSION}, {"rooms", nlohmann::json::array()}};
+      for (auto& ex : exports) {
+        rooms.push_back({ex.code, ex.tick, false});
+        nlohmann::json room = {{"room", ex.code}, {"tick", ex.tick}, {"files", nlohmann::json::array()}};
+        for (auto& [name, text] : ex.files) room["files"].push_back({{"name", name}, {"text", std::move(text)}});
+        req["rooms"].push_back(std::move(room));
+      }
       const std::string json = req.dump();
       request.assign(json.begin(), json.end());  // framed once the challenge is known
       deadline.expires_after(kDeadline);
@@ -231,9 +276,8 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     void on_reply() {
       const auto opened = open_body(owner->key, kReplyLabel, challenge, body);
       if (!opened) return fail("the peer " + peer + "'s answer is not authentic: it holds another fleet secret");
-      const std::string& json = *opened;
       std::string why;
-      const auto parsed = room::parse_json(json, why, kMaxDepth);
+      const auto parsed = room::parse_json(*opened, why, kMaxDepth);
       if (!parsed || !parsed->is_object()) return fail("the peer's answer is not a JSON object: " + why);
       const nlohmann::json& reply = *parsed;
       if (!true_at(reply, "ok")) return fail("the peer " + peer + " refused: " + text_of(reply, "error"));
@@ -241,38 +285,65 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       if (port <= 0 || port > 65535) return fail("the peer's answer names no game port");
       const bool v6 = peer_host.find(':') != std::string::npos;
       const std::string address = (v6 ? "[" + peer_host + "]" : peer_host) + ":" + std::to_string(port);
-      const std::size_t told = owner->host.room_moved(code, address, owner->now_ms());
-      owner->flush();
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
-      finish({{"ok", true}, {"room", code}, {"to", address}, {"tick", tick}, {"clients_told", told}, {"ms", ms}});
+      const nlohmann::json none = nlohmann::json::object();
+      for (auto& room : rooms) {
+        const nlohmann::json* answer = &none;
+        if (reply.contains("rooms") && reply["rooms"].is_array())
+          for (const auto& r : reply["rooms"])
+            if (text_of(r, "room") == room.code) answer = &r;
+        if (!true_at(*answer, "ok")) {
+          const std::string error = text_of(*answer, "error");
+          keep(room, "the peer " + peer + " refused: " + (error.empty() ? "no answer for the room" : error));
+          continue;
+        }
+        room.finished = true;
+        const std::size_t told = owner->host.room_moved(room.code, address, owner->now_ms());
+        each(room.code, {{"ok", true}, {"room", room.code}, {"to", address}, {"tick", room.tick},
+                         {"clients_told", told}, {"ms", ms}});
+      }
+      owner->flush();
+      finish();
+    }
+    void keep(Moving& room, const std::string& why) {
+      if (room.finished) return;
+      room.finished = true;
+      owner->host.room_kept(room.code, why);
+      each(room.code, refusal(why + "; room " + room.code + " plays on here"));
     }
     void fail(const std::string& why) {
       if (finished) return;
-      owner->host.room_kept(code, why);
-      finish(refusal(why + "; room " + code + " plays on here"));
+      for (auto& room : rooms) keep(room, why);
+      finish();
     }
-    void finish(nlohmann::ordered_json reply) {
+    void finish() {
       if (finished) return;
       finished = true;
       deadline.cancel();
       boost::system::error_code ignored;
       socket.close(ignored);
-      done(std::move(reply));
       --owner->in_flight;
       owner->next();
     }
   };
 };
 
-void HandoverChannel::Impl::start(std::string code, std::string peer, HandoverChannel::Done done) {
-  const auto hp = fts::io::parse_host_port(peer);
-  if (!hp) return done(refusal("the peer must be HOST:PORT (its --handover-listen), got \"" + peer + "\""));
-  auto exported = host.export_room(code);
-  if (auto* why = std::get_if<std::string>(&exported)) return done(refusal(*why));
-  auto& ex = std::get<GameHost::RoomExport>(exported);
+void HandoverChannel::Impl::start(Waiting w) {
+  const auto hp = fts::io::parse_host_port(w.peer);
+  if (!hp) {
+    for (const auto& code : w.codes)
+      w.each(code, refusal("the peer must be HOST:PORT (its --handover-listen), got \"" + w.peer + "\""));
+    return;
+  }
+  auto exported = host.export_rooms(w.codes);
+  std::vector<GameHost::RoomExport> exports;
+  for (std::size_t i = 0; i < exported.size(); ++i) {
+    if (auto* why = std::get_if<std::string>(&exported[i])) w.each(w.codes[i], refusal(*why));
+    else exports.push_back(std::move(std::get<GameHost::RoomExport>(exported[i])));
+  }
+  if (exports.empty()) return;
   ++in_flight;
-  auto out = std::make_shared<Outbound>(shared_from_this(), ex.code, peer, std::move(done));
-  out->start(std::move(ex), *hp);
+  std::make_shared<Outbound>(shared_from_this(), std::move(w.peer), std::move(w.each))->start(std::move(exports), *hp);
 }
 
 HandoverChannel::HandoverChannel(asio::io_context& io, GameHost& host, std::string key, std::uint16_t game_port,
@@ -308,7 +379,16 @@ std::uint16_t HandoverChannel::port() const {
 }
 
 void HandoverChannel::hand_over(const std::string& code, const std::string& peer, Done done) {
-  impl_->waiting.push_back({code, peer, std::move(done)});
+  hand_over(std::vector<std::string>{code}, peer, [done = std::move(done)](const std::string&, nlohmann::ordered_json j) {
+    done(std::move(j));
+  });
+}
+
+void HandoverChannel::hand_over(const std::vector<std::string>& codes, const std::string& peer, EachDone each) {
+  for (std::size_t i = 0; i < codes.size(); i += kMaxRoomsPerExchange) {
+    const auto end = codes.begin() + static_cast<std::ptrdiff_t>(std::min(codes.size(), i + kMaxRoomsPerExchange));
+    impl_->waiting.push_back({{codes.begin() + static_cast<std::ptrdiff_t>(i), end}, peer, each});
+  }
   impl_->next();
 }
 

@@ -3,10 +3,10 @@
 // (GameHost::adopt_room) at the tick it left, and only then are the room's clients told
 // where it went (`moved`, PROTOCOL.md 4.9b). Both ends prove the fleet's shared secret.
 //
-// The exchange (PROTOCOL.md 14), one room per TCP connection:
+// The exchange (PROTOCOL.md 14), up to kMaxRoomsPerExchange rooms per TCP connection:
 //   peer   -> sender  "FTSHOV01" and a 32-byte random challenge
-//   sender -> peer    a frame: the request (JSON: the room, its tick, its journal's segments)
-//   peer   -> sender  a frame: the reply (JSON: ok and the peer's game port, or why not)
+//   sender -> peer    a frame: the request (JSON: each room, its tick, its journal's segments)
+//   peer   -> sender  a frame: the reply (JSON: the peer's game port, each room taken or why not)
 // A frame is a 4-byte big-endian length n (at most 64 MiB), n bytes of JSON and a 32-byte
 // HMAC-SHA-256 (libsodium crypto_auth_hmacsha256) over a label ("fts-handover-1 request" or
 // "fts-handover-1 reply"), the challenge and the JSON, keyed with BLAKE2b-256 of the secret
@@ -17,6 +17,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -45,6 +46,12 @@ class HandoverChannel {
   // or {"ok":false,"error"} (the room then plays on here).
   using Done = std::function<void(nlohmann::ordered_json)>;
   void hand_over(const std::string& code, const std::string& peer, Done done);
+  // Several rooms to one peer, in exchanges of up to kMaxRoomsPerExchange rooms (their
+  // journals sync together, the peer takes them in one go): `each` gets every room's
+  // reply as hand_over's `done` would, in no set order.
+  using EachDone = std::function<void(const std::string& code, nlohmann::ordered_json)>;
+  void hand_over(const std::vector<std::string>& codes, const std::string& peer, EachDone each);
+  static constexpr std::size_t kMaxRoomsPerExchange = 64;
 
   struct Impl;
 

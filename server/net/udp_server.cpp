@@ -171,14 +171,12 @@ class Loop {
       HandoverChannel::Done done;
     };
     auto all = std::make_shared<All>(All{codes.size(), {}, true, std::move(done)});
-    for (const auto& code : codes) {
-      handover_->hand_over(code, peer, [all, code](nlohmann::ordered_json j) {
-        all->ok = all->ok && j.value("ok", false);
-        j["room"] = code;
-        all->rooms.push_back(std::move(j));
-        if (--all->left == 0) all->done({{"ok", all->ok}, {"rooms", all->rooms}, {"draining", true}});
-      });
-    }
+    handover_->hand_over(codes, peer, [all](const std::string& code, nlohmann::ordered_json j) {
+      all->ok = all->ok && j.value("ok", false);
+      j["room"] = code;
+      all->rooms.push_back(std::move(j));
+      if (--all->left == 0) all->done({{"ok", all->ok}, {"rooms", all->rooms}, {"draining", true}});
+    });
   }
 
   // --handover-to: a drain (the console's, or SIGTERM under Agones) first hands every room

@@ -195,6 +195,13 @@ bool JournalWriter::stopped() const {
   return exited_;
 }
 
+void JournalWriter::request_flush() {
+  std::lock_guard lock(mu_);
+  if (!thread_.joinable()) return;
+  flush_requested_ = true;
+  wake_.notify_one();
+}
+
 void JournalWriter::flush() {
   std::unique_lock lock(mu_);
   if (!thread_.joinable()) return;

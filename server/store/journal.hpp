@@ -124,6 +124,9 @@ class JournalWriter {
   void checkpoint_now(const sim::MatchState& state, std::uint32_t event_seq) { checkpoint(state, event_seq); }
   // Blocks until everything queued so far is written and synced (tests, shutdown).
   void flush();
+  // Asks the writer to sync what is queued now, without waiting (a later flush() waits
+  // for it): rooms handed over together sync at once, each on its writer's thread.
+  void request_flush();
   // The room closed: nothing more is journaled; the writer thread writes what is queued,
   // then removes the room's directory (rename to <dir>.closed, then delete) and stops.
   // Returns at once; stopped() says when it is done (the destructor waits for it).

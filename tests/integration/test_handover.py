@@ -159,8 +159,8 @@ def request_of_another_version(peer, key):
         hello = read_exactly(conn, len(MAGIC) + CHALLENGE)
         check(hello.startswith(MAGIC), f"the peer's hello: {hello[:8]!r}")
         challenge = hello[len(MAGIC):]
-        body = json.dumps({"fts_handover": 1, "version": "0.0.1-older", "room": "OLDER", "tick": 10,
-                           "files": []}).encode()
+        body = json.dumps({"fts_handover": 1, "version": "0.0.1-older",
+                           "rooms": [{"room": "OLDER", "tick": 10, "files": []}]}).encode()
         conn.sendall(len(body).to_bytes(4, "big") + body + channel_mac(key, REQUEST, challenge, body))
         length = int.from_bytes(read_exactly(conn, 4), "big")
         answer, mac = read_exactly(conn, length), read_exactly(conn, 32)

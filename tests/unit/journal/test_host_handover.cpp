@@ -54,11 +54,11 @@ TEST_CASE("Host hand-over: the peer runs the room at its tick and hash, and its 
   REQUIRE(a.host->room_by_code(code)->match().phase == sim::Phase::playing);
 
   // Refusals before anything moves: no such room; a peer of another match configuration.
-  CHECK(std::get<std::string>(a.host->export_room("QQQQQ")) == "no room QQQQQ on this server");
-  auto exported = a.host->export_room(code);
+  CHECK(std::get<std::string>(a.host->export_rooms({"QQQQQ"})[0]) == "no room QQQQQ on this server");
+  auto exported = a.host->export_rooms({code})[0];
   REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(exported));
   const auto ex = std::get<server::GameHost::RoomExport>(exported);
-  CHECK(std::get<std::string>(a.host->export_room(code)).find("being handed over already") != std::string::npos);
+  CHECK(std::get<std::string>(a.host->export_rooms({code})[0]).find("being handed over already") != std::string::npos);
   // Frozen: the room does not step while the peer decides.
   for (int i = 0; i < 10; ++i) a.tick();
   CHECK(a.host->room_by_code(code)->match().tick == ex.tick);
@@ -108,7 +108,7 @@ TEST_CASE("Host hand-over: a room the peer refused plays on where it was", "[jou
   const std::string code = ann.welcome()->room;
   ann.send_command(protocol::CommandOp::ready, 0, a.now);
   for (int i = 0; i < 50; ++i) a.tick();
-  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(a.host->export_room(code)));
+  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(a.host->export_rooms({code})[0]));
   const auto frozen_at = a.host->room_by_code(code)->match().tick;
   a.host->room_kept(code, "the peer is full");
   CHECK(a.host->handovers_refused() == 1);
@@ -119,6 +119,46 @@ TEST_CASE("Host hand-over: a room the peer refused plays on where it was", "[jou
   // A draining server takes no room.
   a.host->stop_new_rooms();
   CHECK(a.host->adopt_room("BBBBB", {{"journal-000001.jsonl", "{}\n"}}, a.now) == "this server is draining");
+  std::error_code ec;
+  fs::remove_all(ra, ec);
+}
+
+TEST_CASE("Host hand-over: rooms exported together are each frozen or refused on their own", "[journal][handover]") {
+  const fs::path ra = fresh_dir("together");
+  HandoverRig a(ra, 1);
+  auto& ann = a.join("ann", "create");
+  auto& bob = a.join("bob", "create");
+  REQUIRE(ann.state() == ClientState::connected);
+  REQUIRE(bob.state() == ClientState::connected);
+  const std::string one = ann.welcome()->room, two = bob.welcome()->room;
+  REQUIRE(one != two);
+  for (auto* c : {&ann, &bob}) c->send_command(protocol::CommandOp::ready, 0, a.now);
+  for (int i = 0; i < 50; ++i) a.tick();
+  const auto tick_one = a.host->room_by_code(one)->match().tick;
+  const auto tick_two = a.host->room_by_code(two)->match().tick;
+
+  auto out = a.host->export_rooms({one, "QQQQQ", two, one});
+  REQUIRE(out.size() == 4);
+  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(out[0]));
+  CHECK(std::get<std::string>(out[1]) == "no room QQQQQ on this server");
+  REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(out[2]));
+  CHECK(std::get<std::string>(out[3]).find("named twice") != std::string::npos);
+  const auto& ex_one = std::get<server::GameHost::RoomExport>(out[0]);
+  const auto& ex_two = std::get<server::GameHost::RoomExport>(out[2]);
+  CHECK(ex_one.code == one);
+  CHECK(ex_two.code == two);
+  CHECK(ex_one.tick == tick_one);
+  CHECK(ex_two.tick == tick_two);
+  // Each ships the segment its own checkpoint began, synced to the tick it stopped at.
+  for (const auto* ex : {&ex_one, &ex_two}) {
+    REQUIRE(ex->files.size() == 1);
+    CHECK(ex->files[0].second.find("\"room\":\"" + ex->code + "\"") != std::string::npos);
+  }
+  // Both frozen; one kept plays on while the other stays frozen.
+  a.host->room_kept(one, "the peer is full");
+  for (int i = 0; i < 10; ++i) a.tick();
+  CHECK(a.host->room_by_code(one)->match().tick > tick_one);
+  CHECK(a.host->room_by_code(two)->match().tick == tick_two);
   std::error_code ec;
   fs::remove_all(ra, ec);
 }
