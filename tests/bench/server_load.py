@@ -54,7 +54,9 @@ def main():
         os.sched_setaffinity(0, set(cpus[1:]))  # the bots inherit this
     clients = a.rooms * a.bots
     with Server("--stats-interval-ms", "10000", "--log-format", "json", "--tick-rate", "100",
-                "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8)), "--threads", str(a.threads)) as srv:
+                "--max-rooms", str(max(64, a.rooms)), "--max-per-address", str(min(1024, clients + 8)),
+                # Every bot is on 127.0.0.1: one host for the per-host room cap (5bc01f0).
+                "--max-rooms-per-host", str(min(1024, max(4, a.rooms))), "--threads", str(a.threads)) as srv:
         if a.pin:
             os.sched_setaffinity(srv.proc.pid, {cpus[0]})
         rss0 = rss_kib(srv.proc.pid)  # bound, no room yet
