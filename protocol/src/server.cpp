@@ -39,34 +39,9 @@ void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   lane_.out.push_back({to, std::move(bytes)});
 }
 
-void ServerEndpoint::seal_into(Session& s, const Header& h, const std::vector<std::uint8_t>& payload,
-                               std::vector<Outgoing>& out, std::vector<Outgoing>& spare) {
-  if (spare.empty()) {
-    out.emplace_back();
-  } else {
-    out.push_back(std::move(spare.back()));
-    spare.pop_back();
-  }
-  Outgoing& o = out.back();
-  o.to.assign(s.address);  // within the capacity a sent datagram's address left
-  o.bytes.clear();
-  s.seal.seal(h, payload, o.bytes);
-  if (o.bytes.size() > kMaxDatagramBytes) {  // never sent; the limits make it unreachable
-    spare.push_back(std::move(o));
-    out.pop_back();
-  }
-}
+void ServerEndpoint::emit_sealed(Session& s, const Header& h) { s.seal_into(h, lane_.payload, lane_.out, lane_.spare); }
 
-void ServerEndpoint::emit_sealed(Session& s, const Header& h) { seal_into(s, h, lane_.payload, lane_.out, lane_.spare); }
-
-Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) {
-  Header h;
-  h.version = config_.version;
-  h.encoding = s.encoding;
-  h.session = s.session_id;
-  s.acks.stamp(h, now_ms);
-  return h;
-}
+Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) { return s.next_header(config_.version, now_ms); }
 
 // The server's own stall (a hitch, a debugger, swap) is not the clients' silence: a gap
 // between two calls longer than stall_threshold_ms moves every session's clocks forward
@@ -308,7 +283,7 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot
     s.last_send_ms = now_ms;
     lane.payload.clear();
     append_snapshot_payload(s.encoding, part, lane.payload);
-    seal_into(s, h, lane.payload, lane.out, lane.spare);
+    s.seal_into(h, lane.payload, lane.out, lane.spare);
   }
 }
 

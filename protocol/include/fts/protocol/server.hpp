@@ -3,7 +3,9 @@
 // stateless cookies, allocates a player only for a client that proved its address,
 // keeps sessions alive (heartbeats, time-outs, reconnect by token), delivers commands
 // exactly once and sends snapshots as deltas. Addresses are opaque strings
-// ("127.0.0.1:5000"), made by the caller from its sockets.
+// ("127.0.0.1:5000"), made by the caller from its sockets. One client's state is a
+// ServerSession (server_session.hpp, which also says where a datagram is screened,
+// opened, applied and answered); the per-host limits are AddressLimits (limits.hpp).
 #pragma once
 
 #include <cstdint>
@@ -24,11 +26,10 @@
 #include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
+#include "fts/protocol/server_session.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
 namespace fts::protocol {
-
-using Address = std::string;
 
 class ServerEndpoint;
 
@@ -165,11 +166,6 @@ struct RestoredSession {
   // A session of a room handed over by another server (issue 42): its id is that server's,
   // taken here (take_player_id) without moving this endpoint's own ids on to it.
   bool foreign = false;
-};
-
-struct Outgoing {
-  Address to;
-  std::vector<std::uint8_t> bytes;
 };
 
 // A room's own queue of sealed snapshots (issue 29): rooms on several threads each seal
@@ -387,40 +383,7 @@ class ServerEndpoint {
     if (kPhaseChecks && parallel_)
       throw std::logic_error(std::string("ServerEndpoint::") + call + " called while a pool's jobs run on the endpoint");
   }
-  struct Session {
-    std::uint32_t player_id = 0;
-    std::string name;
-    std::string token;     // "" for a restored session until its client comes back
-    std::string verifier;  // token_verifier(token)
-    std::string identity;  // the proven identity's fingerprint ("" a guest)
-    std::uint32_t session_id = 0;
-    Address address;
-    Encoding encoding = Encoding::msgpack;
-    bool connected = false;
-    bool quit = false;  // left with bye "quit": its seat is free, its progress kept
-    std::string nonce;  // the connection attempt this session was started by (Hello::nonce)
-    bool welcomed_as_reconnect = false;
-    std::uint64_t last_receive_ms = 0;
-    std::uint64_t last_send_ms = 0;
-    std::uint64_t disconnected_ms = 0;
-    std::uint32_t last_input_seq = 0;
-    std::size_t unanswered = 0;  // commands handed to the game, not yet answered
-    std::uint64_t last_active_ms = 0;  // last real input (idle time-out)
-    bool played = false;  // sent real input once: a lost connection holds its slot
-    std::uint64_t rate_limited = 0;
-    TokenBucket datagrams;
-    SealedChannel seal;  // this session's keys and replay window (PROTOCOL.md 5.7)
-    AckWindow acks;
-    ReliableSender<Result> results;
-    ReliableSender<Chat> chats;
-    ReliableReceiver<Command> commands;
-    SnapshotSender snapshots;
-    std::uint32_t room = 0;
-    std::string room_code;
-    bool spectator = false;  // no seat; inputs dropped; never idle
-    bool watching = false;   // out of lives (set_watching): never idle
-    bool kept = false;       // past its reconnect window, kept while its room's match runs
-  };
+  using Session = ServerSession;  // server_session.hpp: one client's session
 
   void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
   void answer_fault(Session& s, const Command& c, std::uint64_t now_ms);
@@ -447,10 +410,6 @@ class ServerEndpoint {
   Header session_header(Session& s, std::uint64_t now_ms);
   // Seals lane_.payload for `s` under `h` and queues it.
   void emit_sealed(Session& s, const Header& h);
-  // Seals `payload` for `s` under `h` into the next datagram of `out` (the buffers of one
-  // from `spare` when there is one).
-  static void seal_into(Session& s, const Header& h, const std::vector<std::uint8_t>& payload,
-                        std::vector<Outgoing>& out, std::vector<Outgoing>& spare);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
   void release(std::uint32_t player_id, const std::string& reason);
   void emit(const Address& to, std::vector<std::uint8_t> bytes);

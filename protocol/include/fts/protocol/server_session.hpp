@@ -1,0 +1,82 @@
+// One client's session on the server (issue 39): everything one client's datagrams touch,
+// kept by the endpoint (server.hpp) in its table of sessions by player id. A datagram
+// from a client goes through four places, each findable by name:
+//   screened  ServerEndpoint::screen (server.cpp): the sender's rate, the header, the
+//             version, the session its id names and the address it must come from; a
+//             handshake datagram goes to handle_hello (server_handshake.cpp) instead;
+//   opened    open_sealed with the session's `seal` (its keys and replay window): at once
+//             in receive(), or per session on a worker in open_inbox (server_inbox.cpp);
+//   applied   ServerEndpoint::handle_opened, then handle_session (server.cpp): acks,
+//             inputs, commands exactly once, chat, bye;
+//   answered  send_packet / send_snapshot (server.cpp), each datagram stamped by
+//             next_header and sealed by seal_into below.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fts/protocol/ack.hpp"
+#include "fts/protocol/codec.hpp"
+#include "fts/protocol/header.hpp"
+#include "fts/protocol/limits.hpp"
+#include "fts/protocol/reliable.hpp"
+#include "fts/protocol/seal.hpp"
+#include "fts/protocol/snapshot_delta.hpp"
+
+namespace fts::protocol {
+
+// Addresses are opaque strings ("127.0.0.1:5000"), made by the caller from its sockets.
+using Address = std::string;
+
+// A datagram to send: where, and its bytes.
+struct Outgoing {
+  Address to;
+  std::vector<std::uint8_t> bytes;
+};
+
+struct ServerSession {
+  std::uint32_t player_id = 0;
+  std::string name;
+  std::string token;     // "" for a restored session until its client comes back
+  std::string verifier;  // token_verifier(token)
+  std::string identity;  // the proven identity's fingerprint ("" a guest)
+  std::uint32_t session_id = 0;
+  Address address;
+  Encoding encoding = Encoding::msgpack;
+  bool connected = false;
+  bool quit = false;  // left with bye "quit": its seat is free, its progress kept
+  std::string nonce;  // the connection attempt this session was started by (Hello::nonce)
+  bool welcomed_as_reconnect = false;
+  std::uint64_t last_receive_ms = 0;
+  std::uint64_t last_send_ms = 0;
+  std::uint64_t disconnected_ms = 0;
+  std::uint32_t last_input_seq = 0;
+  std::size_t unanswered = 0;  // commands handed to the game, not yet answered
+  std::uint64_t last_active_ms = 0;  // last real input (idle time-out)
+  bool played = false;  // sent real input once: a lost connection holds its slot
+  std::uint64_t rate_limited = 0;
+  TokenBucket datagrams;
+  SealedChannel seal;  // this session's keys and replay window (PROTOCOL.md 5.7)
+  AckWindow acks;
+  ReliableSender<Result> results;
+  ReliableSender<Chat> chats;
+  ReliableReceiver<Command> commands;
+  SnapshotSender snapshots;
+  std::uint32_t room = 0;
+  std::string room_code;
+  bool spectator = false;  // no seat; inputs dropped; never idle
+  bool watching = false;   // out of lives (set_watching): never idle
+  bool kept = false;       // past its reconnect window, kept while its room's match runs
+
+  // The header of this session's next datagram: its encoding and id, its acks stamped
+  // (the sequence counts on).
+  Header next_header(std::uint16_t version, std::uint64_t now_ms);
+  // Seals `payload` under `h` for this session into the next datagram of `out`, reusing
+  // the buffers of one from `spare` when there is one. Touches this session and the two
+  // vectors only: rooms on different threads seal into lanes of their own.
+  void seal_into(const Header& h, const std::vector<std::uint8_t>& payload, std::vector<Outgoing>& out,
+                 std::vector<Outgoing>& spare);
+};
+
+}  // namespace fts::protocol
