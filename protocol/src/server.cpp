@@ -30,7 +30,7 @@ ServerEndpoint::ServerEndpoint(ServerConfig config)
       kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
       kx_hex_(public_key_hex(kx_.public_key)),
       limits_(address_rates(config_)) {
-  next_player_id_ = std::max<std::uint32_t>(config_.first_player_id, 1);
+  sessions_ = SessionTable(std::max<std::uint32_t>(config_.first_player_id, 1));
   if (!config_.admit) throw std::invalid_argument("ServerConfig::admit is required: the host picks a new player's room");
 }
 
@@ -112,9 +112,9 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
     return nullptr;
   }
   if (header->session != 0) {
-    auto sid = by_session_id_.find(header->session);
-    if (sid == by_session_id_.end()) return drop(Reject::unknown_session);
-    Session& s = sessions_.at(sid->second);
+    Session* found = sessions_.with_session_id(header->session);
+    if (!found) return drop(Reject::unknown_session);
+    Session& s = *found;
     if (s.address != from) return drop(Reject::address_mismatch);
     if (!s.connected) return drop(Reject::unknown_session);
     return &s;

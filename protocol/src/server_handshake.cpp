@@ -39,11 +39,10 @@ void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t requ
 
 void ServerEndpoint::start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
                                    const SessionKeys& keys, std::uint64_t now_ms) {
-  if (s.session_id != 0) by_session_id_.erase(s.session_id);
-  if (!s.address.empty()) by_address_.erase(s.address);
+  sessions_.unindex(s);
   ++sessions_made_;
   s.session_id = derive_session_id(config_.key, sessions_made_);
-  while (by_session_id_.count(s.session_id))
+  while (sessions_.session_id_taken(s.session_id))
     s.session_id = derive_session_id(config_.key, ++sessions_made_);
   s.address = from;
   s.encoding = encoding;
@@ -64,8 +63,7 @@ void ServerEndpoint::start_session(Session& s, const Address& from, Encoding enc
   s.chats = ReliableSender<Chat>{};
   s.commands = ReliableReceiver<Command>{};
   s.snapshots = SnapshotSender(config_.snapshot_max_base_age_ticks, config_.settings.tick_rate_hz());
-  by_session_id_[s.session_id] = s.player_id;
-  by_address_[from] = s.player_id;
+  sessions_.index(s);
 }
 
 void ServerEndpoint::handle_hello(const Address& from, const Header& header, const Hello& hello,
@@ -89,8 +87,7 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     return;
   }
   Session* here = nullptr;
-  if (auto it = by_address_.find(from); it != by_address_.end()) {
-    here = &sessions_.at(it->second);
+  if ((here = sessions_.at_address(from))) {
     // The same connection attempt again (a lost welcome, a duplicated or resent hello):
     // the same welcome, whatever was heard on the session since. Idempotent.
     if (here->connected && here->nonce == hello.nonce) {
@@ -207,12 +204,10 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     reply_unconnected(from, enc, 0, make_error(ErrorCode::address_full, text), request_bytes);
     return;
   }
-  // Ids are never reused (server.hpp reserve_player_ids) nor given where a room from
-  // another server took them (take_player_id); when they run out (2^32 - 2 sessions in
-  // one process life) the server takes nobody new.
-  while (next_player_id_ != kNoPlayerIdLeft && taken_player_ids_.erase(next_player_id_) != 0)
-    reserve_player_ids(next_player_id_);
-  if (next_player_id_ == kNoPlayerIdLeft) return refuse_full(from, enc, request_bytes);
+  // Ids are never reused nor given where a room from another server took them; when
+  // they run out the server takes nobody new (SessionTable::next_player_id).
+  const std::uint32_t player_id = sessions_.next_player_id();
+  if (player_id == kNoPlayerIdLeft) return refuse_full(from, enc, request_bytes);
   // The host picks the room last: a refused hello above creates no room.
   // A host that named too many rooms that do not exist is guessing codes (10.1).
   const bool by_code = hello.join == "join" || watching;
@@ -235,7 +230,6 @@ void ServerEndpoint::handle_hello(const Address& from, const Header& header, con
     return;
   }
   room_ticks_[admission.room] = admission.server_tick;
-  const std::uint32_t player_id = next_player_id_;
   reserve_player_ids(player_id);
   Session& s = sessions_[player_id];
   s.player_id = player_id;

@@ -19,19 +19,16 @@ void ServerEndpoint::overflow(Session& s, const std::string& what, std::uint64_t
 void ServerEndpoint::drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms) {
   s.connected = false;
   s.disconnected_ms = now_ms;
-  by_session_id_.erase(s.session_id);
-  by_address_.erase(s.address);
+  sessions_.unindex(s);
   events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, reason, s.quit, s.room, s.spectator, s.identity});
 }
 
 void ServerEndpoint::release(std::uint32_t player_id, const std::string& reason) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
-  by_session_id_.erase(it->second.session_id);
-  by_address_.erase(it->second.address);
   events_.push_back({ServerEvent::Kind::released, player_id, it->second.name, reason, false, it->second.room,
                      it->second.spectator, it->second.identity});
-  sessions_.erase(it);
+  sessions_.erase(it);  // and its index entries
 }
 
 void ServerEndpoint::kick(std::uint32_t player_id, ErrorCode code, const std::string& message, std::uint64_t now_ms) {

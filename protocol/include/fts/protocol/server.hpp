@@ -260,17 +260,13 @@ class ServerEndpoint {
   // new session gets an id up to `id` (a resumed room's players; restore_session does it
   // for its own). kNoPlayerIdLeft is never given: with it reached, every hello is
   // refused server_full.
-  static constexpr std::uint32_t kNoPlayerIdLeft = 0xFFFFFFFFu;
-  void reserve_player_ids(std::uint32_t id) {
-    if (id >= next_player_id_) next_player_id_ = id >= kNoPlayerIdLeft - 1 ? kNoPlayerIdLeft : id + 1;
-  }
+  static constexpr std::uint32_t kNoPlayerIdLeft = SessionTable::kNoPlayerIdLeft;
+  void reserve_player_ids(std::uint32_t id) { sessions_.reserve_player_ids(id); }
   // One id no newcomer gets, leaving the ids below and above it to this endpoint: a room
   // from another server names ids of that server's range (reserving them would move this
   // server's newcomers into that range, where the other server's next room would find
   // them in use). The set is emptied as the endpoint's own ids pass them.
-  void take_player_id(std::uint32_t id) {
-    if (id != 0 && id >= next_player_id_ && id != kNoPlayerIdLeft) taken_player_ids_.insert(id);
-  }
+  void take_player_id(std::uint32_t id) { sessions_.take_player_id(id); }
   // The verifier of a session's token ("" for no such player).
   std::string session_verifier(std::uint32_t player_id) const;
   // Whether a session (connected or held) has this player id.
@@ -418,16 +414,12 @@ class ServerEndpoint {
   KxKeyPair kx_;        // derived from config_.key: its public half goes in challenges
   std::string kx_hex_;  // that public key in hex
   std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
-  std::map<std::uint32_t, Session> sessions_;  // by player id
-  std::map<Address, std::uint32_t> by_address_;
-  std::map<std::uint32_t, std::uint32_t> by_session_id_;
+  SessionTable sessions_;  // by player id, address and session id; the player ids (server_session.hpp)
   AddressLimits limits_;  // the per-host limits: the one part the sessions of a host share
   std::uint64_t last_forget_ms_ = 0;
   std::set<std::uint32_t> idle_paused_rooms_;
   std::set<std::uint32_t> keeping_rooms_;  // set_keeps_departed
   std::uint64_t sessions_made_ = 0;
-  std::uint32_t next_player_id_ = 1;  // the next new session's (reserve_player_ids)
-  std::set<std::uint32_t> taken_player_ids_;  // ids above it taken by rooms from elsewhere (take_player_id)
   std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;

@@ -13,6 +13,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -77,6 +79,61 @@ struct ServerSession {
   // vectors only: rooms on different threads seal into lanes of their own.
   void seal_into(const Header& h, const std::vector<std::uint8_t>& payload, std::vector<Outgoing>& out,
                  std::vector<Outgoing>& spare);
+};
+
+// The endpoint's sessions (issue 39): by player id, indexed by the address and the
+// session id of each connected one (what screen() looks a datagram up by), and the player
+// ids given so far. Iterates and finds like the map it wraps; the indexes change only
+// through index and unindex.
+class SessionTable {
+ public:
+  using Map = std::map<std::uint32_t, ServerSession>;
+
+  explicit SessionTable(std::uint32_t first_player_id = 1) : next_player_id_(first_player_id == 0 ? 1 : first_player_id) {}
+
+  Map::iterator begin() { return by_id_.begin(); }
+  Map::iterator end() { return by_id_.end(); }
+  Map::const_iterator begin() const { return by_id_.begin(); }
+  Map::const_iterator end() const { return by_id_.end(); }
+  std::size_t size() const { return by_id_.size(); }
+  std::size_t count(std::uint32_t player_id) const { return by_id_.count(player_id); }
+  Map::iterator find(std::uint32_t player_id) { return by_id_.find(player_id); }
+  Map::const_iterator find(std::uint32_t player_id) const { return by_id_.find(player_id); }
+  ServerSession& at(std::uint32_t player_id) { return by_id_.at(player_id); }
+  // A new session (or the one there is) with this player id, not indexed yet.
+  ServerSession& operator[](std::uint32_t player_id) { return by_id_[player_id]; }
+  // Removes the session, and its entries in the indexes.
+  void erase(Map::iterator it) {
+    unindex(it->second);
+    by_id_.erase(it);
+  }
+
+  // The connected session at `address`, or with session id `id` (nullptr: none).
+  ServerSession* at_address(const Address& address);
+  ServerSession* with_session_id(std::uint32_t id);
+  bool session_id_taken(std::uint32_t id) const { return by_session_id_.count(id) != 0; }
+  // The session's address and session id are its own in the indexes from now on; unindex
+  // takes them out (the session stays, disconnected or gone).
+  void index(const ServerSession& s);
+  void unindex(const ServerSession& s);
+
+  // Player ids (ServerEndpoint::reserve_player_ids and take_player_id say why): the next
+  // new session's, none at or below `id` from now on, one id no newcomer gets.
+  static constexpr std::uint32_t kNoPlayerIdLeft = 0xFFFFFFFFu;
+  std::uint32_t next_player_id();  // kNoPlayerIdLeft when they ran out
+  void reserve_player_ids(std::uint32_t id) {
+    if (id >= next_player_id_) next_player_id_ = id >= kNoPlayerIdLeft - 1 ? kNoPlayerIdLeft : id + 1;
+  }
+  void take_player_id(std::uint32_t id) {
+    if (id != 0 && id >= next_player_id_ && id != kNoPlayerIdLeft) taken_player_ids_.insert(id);
+  }
+
+ private:
+  Map by_id_;
+  std::map<Address, std::uint32_t> by_address_;
+  std::map<std::uint32_t, std::uint32_t> by_session_id_;
+  std::uint32_t next_player_id_ = 1;
+  std::set<std::uint32_t> taken_player_ids_;  // ids above next_player_id_ taken by rooms from elsewhere
 };
 
 }  // namespace fts::protocol
