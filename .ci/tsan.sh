@@ -14,7 +14,8 @@ cd "$root"
 jobs=${FTS_JOBS:-$(nproc)}
 FTS_TARGETS="fts-server fts-sim fts-bot fts-client fts_server_tests fts_journal_tests fts_fleet_tests fts_profiles_tests" \
   bash .ci/build.sh build-tsan -DFTS_WERROR=ON -DFTS_TSAN=ON
-export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
+# .ci/tsan.supp: races inside Debian libraries (each one explained there).
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$root/.ci/tsan.supp"
 build-tsan/tests/fts_server_tests
 build-tsan/tests/fts_journal_tests
 build-tsan/tests/fts_fleet_tests
