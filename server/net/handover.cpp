@@ -23,8 +23,8 @@ using tcp = asio::ip::tcp;
 namespace {
 
 using namespace handover;
-// A whole exchange, either side (one room; the console waits for a deferred reply up to
-// net/console.hpp's kDeferredMs).
+// A whole exchange, either side (up to 64 rooms; the console waits for a deferred reply
+// up to net/console.hpp's kDeferredMs).
 constexpr auto kDeadline = std::chrono::seconds(4);
 // The peer's time to take a request's rooms, well inside the sender's kDeadline.
 constexpr auto kAdoptBudget = std::chrono::seconds(2);
@@ -57,7 +57,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
   // Exchanges in flight, and those waiting their turn (their rooms play on meanwhile).
   // Rooms handed over together go in one exchange of up to kMaxRoomsPerExchange: one room
   // per exchange, 64 rooms took 4-10 s to move (each exchange's round trips waited for
-  // two loaded loops); in one exchange about 0.5 s (2026-12-07, BENCHMARKS.md).
+  // two loaded loops); in one exchange 0.4-1.1 s (2026-12-07, BENCHMARKS.md).
   struct Waiting {
     std::vector<std::string> codes;
     std::string peer;
