@@ -13,6 +13,11 @@ constexpr double kMarginMs = 5;
 // better than a stall) and shrinks by at most 5 % (it speeds up by 5 %, unseen).
 constexpr double kSlewUp = 0.25, kSlewDown = 0.05;
 constexpr int kMaxBurst = 3;       // intervals allowed for losses in a row
+// Never more than this behind: a client starved of CPU reads its snapshots late and took
+// that for a late link; its delay grew to 8 s, and enemies were drawn where they had been
+// 8 s before beside the predicted own ball (new_player_e2e, 2026-12-07). Past a second the
+// remote balls are extrapolated or wait instead.
+constexpr double kMaxDelayMs = 1000;
 constexpr double kRestartSeconds = 2;  // an arrival this far off the clock starts afresh
 }  // namespace
 
@@ -73,7 +78,7 @@ void JitterBuffer::on_snapshot(std::uint32_t tick, std::uint64_t now_ms) {
 double JitterBuffer::target_ms() const {
   if (fixed_ms_) return *fixed_ms_;
   const double interval_ms = ticks_per_snapshot_ * 1000.0 / tick_rate_hz_;
-  return interval_ms * (1 + std::min(burst_, kMaxBurst)) + jitter_ms_ + kMarginMs;
+  return std::min(kMaxDelayMs, interval_ms * (1 + std::min(burst_, kMaxBurst)) + jitter_ms_ + kMarginMs);
 }
 
 double JitterBuffer::delay_ms(std::uint64_t now_ms) {

@@ -7,7 +7,7 @@
 // server clock a snapshot of the last 3 s came: its 95th percentile; the buffer keeps that
 // clock, so what the remote balls are drawn behind is what their delay was measured
 // against), plus one more interval for each snapshot lost in a row recently (a lost
-// snapshot leaves a gap of two intervals to bridge), plus a small margin. It moves toward that target gradually (up
+// snapshot leaves a gap of two intervals to bridge), plus a small margin, at most 1 s. It moves toward that target gradually (up
 // by at most 25 % of the time that passes, down by at most 5 %), so the drawn clock never
 // runs backwards nor jumps. A fixed delay (--interp-delay-ms) turns it off.
 // Pure: arrivals and times are passed in.

@@ -128,6 +128,26 @@ TEST_CASE("Jitter buffer: the delay follows the link's jitter and losses, slowly
   CHECK(fixed.delay_ms(5000) == 100);
 }
 
+TEST_CASE("Jitter buffer: never more than a second behind, however late the arrivals", "[client][jitter]") {
+  // A client starved of CPU for a minute reads every snapshot 0-1.8 s late: the remote balls
+  // are drawn at most 1 s behind (they were 8 s behind the predicted own ball).
+  JitterBuffer j;
+  j.set_rates(100, 5);
+  std::uint64_t now = 10000;
+  std::uint32_t tick = 1000;
+  double most = 0;
+  for (int i = 0; i < 20 * 60; ++i) {
+    tick += 5;
+    now += 50;
+    j.on_snapshot(tick, now + static_cast<std::uint64_t>((i * 7919) % 1800));
+    most = std::max(most, j.delay_ms(now));
+  }
+  CHECK(j.jitter_ms() > 1200);  // the lateness is seen...
+  CHECK(j.target_ms() == 1000);  // ...but the delay stops at a second
+  CHECK(most <= 1000);
+  CHECK(most > 900);
+}
+
 TEST_CASE("Jitter buffer: a server behind its schedule is not a late link", "[client][jitter]") {
   // A loaded host skips ticks: its tick count runs slower than the clock, here 3 % (a
   // snapshot of 5 ticks every 51.5 ms), for a minute, with no lateness on the link. Every
