@@ -129,7 +129,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       const auto opened = open_body(owner->key, kRequestLabel, challenge, body);
       if (!opened) return answer(refusal("not authenticated: another fleet secret?"), true);
       std::string unread;
-      const auto parsed = room::parse_json(*opened, unread, kMaxDepth);
+      auto parsed = room::parse_json(*opened, unread, kMaxDepth);
       if (!parsed || !parsed->is_object() || !parsed->contains("fts_handover"))
         return answer(refusal("not a hand-over request: " + unread), true);
       const nlohmann::json& req = *parsed;
@@ -143,7 +143,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
         return answer(refusal("not a hand-over request of format " + std::to_string(kFormat) + " (1 to " +
                               std::to_string(kMaxRoomsPerExchange) + " rooms)"),
                       true);
-      incoming = req["rooms"];
+      incoming = std::move((*parsed)["rooms"]);  // the segments: not copied
       adopt_until = std::chrono::steady_clock::now() + kAdoptBudget;
       adopt_next();
     }
@@ -283,8 +283,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       if (!true_at(reply, "ok")) return fail("the peer " + peer + " refused: " + text_of(reply, "error"));
       const auto port = int_of(reply, "port");
       if (port <= 0 || port > 65535) return fail("the peer's answer names no game port");
-      const bool v6 = peer_host.find(':') != std::string::npos;
-      const std::string address = (v6 ? "[" + peer_host + "]" : peer_host) + ":" + std::to_string(port);
+      const std::string address = fts::io::host_port_text(peer_host, static_cast<unsigned>(port));
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
       const nlohmann::json none = nlohmann::json::object();
       for (auto& room : rooms) {

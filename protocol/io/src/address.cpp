@@ -17,4 +17,9 @@ bool is_ip_address(const std::string& text) {
   return inet_pton(AF_INET, text.c_str(), addr) == 1 || inet_pton(AF_INET6, text.c_str(), addr) == 1;
 }
 
+std::string host_port_text(std::string_view host, unsigned port) {
+  const std::string h(host);
+  return (h.find(':') != std::string::npos ? "[" + h + "]" : h) + ":" + std::to_string(port);
+}
+
 }  // namespace fts::io

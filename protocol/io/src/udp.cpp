@@ -1,5 +1,7 @@
 #include "fts/io/udp.hpp"
 
+#include "fts/io/address.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -13,8 +15,7 @@
 namespace fts::io {
 
 std::string to_text(const udp::endpoint& ep) {
-  const auto a = ep.address();
-  return (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" + std::to_string(ep.port());
+  return host_port_text(ep.address().to_string(), ep.port());
 }
 
 std::optional<udp::endpoint> endpoint_from_text(const std::string& text) {
