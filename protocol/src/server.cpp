@@ -29,8 +29,8 @@ ServerEndpoint::ServerEndpoint(ServerConfig config)
     : config_(std::move(config)),
       kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
       kx_hex_(public_key_hex(kx_.public_key)),
+      sessions_(config_.first_player_id),
       limits_(address_rates(config_)) {
-  sessions_ = SessionTable(std::max<std::uint32_t>(config_.first_player_id, 1));
   if (!config_.admit) throw std::invalid_argument("ServerConfig::admit is required: the host picks a new player's room");
 }
 

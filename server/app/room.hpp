@@ -127,9 +127,8 @@ class Room {
   bool frozen = false;
   // Its journal written and synced to the state now, a new segment beginning with a
   // checkpoint of it (a hand-over ships that segment). False without a journal or while
-  // the journal fails or drops records. Or in two halves, for several rooms' writers to
-  // sync at once: start_sync asks for it, finish_sync waits for it.
-  bool sync_journal() { return start_sync(), finish_sync(); }
+  // the journal fails or drops records. In two halves, for several rooms' writers to sync
+  // at once: start_sync asks for it, finish_sync waits for it.
   void start_sync();
   bool finish_sync();
   // The host (address without port) whose hello made the room; "" for a resumed one.
