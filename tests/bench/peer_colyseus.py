@@ -16,7 +16,7 @@ into tests/bench/colyseus/node_modules on its first run (npm and the npm registr
 usage: FTS_BIN_DIR=build-opt python3 tests/bench/peer_colyseus.py [--clients 64,256]
        [--seconds 30] [--warm 5] [--enemies 16] [--no-pin]
 """
-import argparse, json, os, re, socket, subprocess, sys, time
+import argparse, json, os, signal, socket, subprocess, sys, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
 from harness import Server, start_bots, finish_bots, wait_for  # noqa: E402
@@ -85,7 +85,7 @@ def colyseus(n, a, server_cpus, client_cpus):
         time.sleep(a.warm)  # the measured window's start: a workload, not a wait for an event
 
         def sent():
-            srv.send_signal(__import__("signal").SIGUSR2)
+            srv.send_signal(signal.SIGUSR2)
             return read_json_line(srv, "sent_bytes", 10)["sent_bytes"]
 
         t0, c0, b0 = time.monotonic(), cpu_s(srv.pid), sent()
