@@ -59,7 +59,7 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
     const Room* best = nullptr;
     std::size_t best_seats = 0;
     for (const auto& [id, r] : rooms_) {
-      if (r->is_private()) continue;
+      if (r->is_private() || r->unconfirmed_until_ms != 0) continue;  // private, or perhaps not staying
       const auto phase = r->match().phase;
       if (phase != sim::Phase::lobby && phase != sim::Phase::shop) continue;
       const std::size_t seats = endpoint_.seats_in_room(id);
@@ -78,6 +78,9 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
     if (!code) return refusal(protocol::ErrorCode::no_such_room, "a room code is 5 letters (A-Z without I, L, O)");
     const Room* r = room_by_code(*code);
     if (!r) return refusal(protocol::ErrorCode::no_such_room, "there is no room " + *code + " on this server");
+    // Adopted and not yet confirmed by its server (GameHost::confirm_adopted): it may stay there.
+    if (r->unconfirmed_until_ms != 0)
+      return refusal(protocol::ErrorCode::no_such_room, "room " + *code + " is still moving here; try again in a moment");
     if (how == "join") {
       if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
         return refusal(protocol::ErrorCode::room_full, "room " + *code + " has all " + std::to_string(options_.max_players) +

@@ -163,7 +163,7 @@ Reply stats(GameHost& host, const nlohmann::json&, std::uint64_t) {
   Reply out = ok_reply();
   out["rooms"] = host.room_ids().size();
   out["handovers"] = {{"moved", host.rooms_moved()}, {"adopted", host.rooms_adopted()},
-                      {"refused", host.handovers_refused()}};
+                      {"refused", host.handovers_refused()}, {"forgotten", host.rooms_forgotten()}};
   out["max_rooms"] = host.options().max_rooms;
   out["rooms_made"] = host.rooms_made();
   out["players"] = players;

@@ -237,7 +237,12 @@ void GameHost::dispatch(std::uint64_t now_ms) {
       if (profiles_ && !e.identity.empty() && !e.spectator) profiles_->push(profiles::Seen{e.identity, e.name, unix_s_()});
     }
     if (e.kind == K::released) members_.erase(e.player_id);
-    if (auto it = rooms_.find(e.room); it != rooms_.end()) it->second->on_event(e, endpoint_);
+    if (auto it = rooms_.find(e.room); it != rooms_.end()) {
+      // A player of an adopted room came back: the sender told it where, so it had confirmed.
+      if (e.kind == K::reconnected && !e.spectator && it->second->unconfirmed_until_ms != 0)
+        confirm_adopted(it->second->code(), "client");
+      it->second->on_event(e, endpoint_);
+    }
   }
   for (const auto& pi : endpoint_.take_inputs())
     if (auto it = rooms_.find(pi.room); it != rooms_.end()) it->second->on_input(pi, now_ms);
@@ -368,6 +373,7 @@ void GameHost::tick(std::uint64_t now_ms) {
     }
   }
   for (auto id : idle) close_room(id, protocol::ErrorCode::room_closed, "the room was empty and is closed", now_ms);
+  forget_unconfirmed(now_ms);
   std::erase_if(closing_journals_, [](const auto& j) { return j->stopped(); });
   bans_.expire(now_ms);
 }

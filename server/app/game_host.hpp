@@ -127,6 +127,18 @@ class GameHost {
   // left), else why not (nothing changed).
   std::string adopt_room(const std::string& code, const std::vector<std::pair<std::string, std::string>>& files,
                          std::uint64_t now_ms);
+  // A room adopted is held unconfirmed until the sender confirms it (PROTOCOL.md 14, step
+  // 4) or one of its clients arrives here (the sender told them where: it had confirmed).
+  // One confirmed neither way within kUnconfirmedMs is forgotten: closed without a result,
+  // its journal removed, because the sender kept it (its answer or the confirmation was
+  // lost) and a second copy must not live on here. Meanwhile its journal's directory holds
+  // the file kUnconfirmedMark, so that a server restarted with --resume holds it again.
+  static constexpr std::uint64_t kUnconfirmedMs = 10'000;
+  static constexpr const char* kUnconfirmedMark = "unconfirmed";
+  // `by`: "sender" or "client" (logged). False when no such room is held unconfirmed.
+  bool confirm_adopted(const std::string& code, const char* by);
+  bool unconfirmed(const std::string& code) const;
+  std::uint64_t rooms_forgotten() const { return rooms_forgotten_; }
   // Writers of closed rooms still finishing (removed each tick once stopped).
   std::size_t closing_journals() const { return closing_journals_.size(); }
   // The wire events of one step, as the room stepper numbers them (benchmarks that write
@@ -181,6 +193,8 @@ class GameHost {
   // A room leaves the host (closed, or moved to a peer): its journal finishes, its record
   // is sealed, its entries go.
   void retire_room(std::map<std::uint32_t, std::unique_ptr<Room>>::iterator it);
+  // Unconfirmed adopted rooms past their time are forgotten (each tick).
+  void forget_unconfirmed(std::uint64_t now_ms);
   std::map<std::uint32_t, std::unique_ptr<Room>>::iterator room_at(const std::string& code);  // or end()
   void start_journal(Room& r);
   void finish_journal(Room& r);
@@ -204,7 +218,7 @@ class GameHost {
   RoomCodes codes_;
   std::uint32_t next_room_id_ = 1;
   std::uint64_t rooms_made_ = 0;
-  std::uint64_t rooms_moved_ = 0, rooms_adopted_ = 0, handovers_refused_ = 0;
+  std::uint64_t rooms_moved_ = 0, rooms_adopted_ = 0, handovers_refused_ = 0, rooms_forgotten_ = 0;
   std::uint64_t now_ms_ = 0;  // the time last passed in (admit() is called without it)
   bool draining_ = false;
   bool refuse_players_ = false;

@@ -114,7 +114,11 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
   std::error_code ec;
   fs::remove_all(incoming, ec);
   fs::create_directories(incoming, ec);
-  for (const auto& [name, text] : files) {
+  // The segments, and the mark of a room held until the sender confirms it (resume_room
+  // holds a room whose directory has it: a restart in between holds it again).
+  auto with_mark = files;
+  with_mark.emplace_back(kUnconfirmedMark, "");
+  for (const auto& [name, text] : with_mark) {
     std::ofstream out(incoming / name, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.close();
@@ -154,6 +158,40 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
               {"sessions", room->sessions.size()}, {"ticks_replayed", room->ticks_replayed},
               {"hash", room::hex16(sim::match_hash(room->state))}, {"ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count()}});
   return "";
+}
+
+bool GameHost::confirm_adopted(const std::string& code, const char* by) {
+  const auto it = room_at(code);
+  if (it == rooms_.end() || it->second->unconfirmed_until_ms == 0) return false;
+  it->second->unconfirmed_until_ms = 0;
+  std::error_code ec;
+  if (journal_base_) fs::remove(journal_base_->dir / code / kUnconfirmedMark, ec);
+  log_record(spdlog::level::info, "adopt_confirmed", {{"code", code}, {"by", by}});
+  return true;
+}
+
+bool GameHost::unconfirmed(const std::string& code) const {
+  const Room* r = room_by_code(code);
+  return r && r->unconfirmed_until_ms != 0;
+}
+
+void GameHost::forget_unconfirmed(std::uint64_t now_ms) {
+  for (auto it = rooms_.begin(); it != rooms_.end();) {
+    const auto next = std::next(it);
+    Room& r = *it->second;
+    if (r.unconfirmed_until_ms != 0 && now_ms >= r.unconfirmed_until_ms) {
+      log_record(spdlog::level::warn, "adopt_forgotten",
+                 {{"room", r.id()}, {"code", r.code()}, {"tick", r.match().tick},
+                  {"reason", "neither the sender's confirmation nor a client of the room came: the sender kept it"}});
+      ++rooms_forgotten_;
+      // No results (the match goes on at the sender); the journal's directory goes with
+      // the room, mark and all, so no restart brings this copy back.
+      for (const auto& s : endpoint_.sessions_of_room(r.id()))
+        endpoint_.kick(s.player_id, protocol::ErrorCode::room_closed, "the room stayed on its server", now_ms);
+      retire_room(it);
+    }
+    it = next;
+  }
 }
 
 }  // namespace fts::server

@@ -90,6 +90,12 @@ bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_
       log_record(spdlog::level::warn, "resume_session_refused", {{"player", s.player}, {"name", s.name}, {"room", id}});
   }
   start_journal(*r);  // a new segment after the old ones, with the sessions restored
+  // Adopted from a peer and not confirmed yet (adopt_room): held until it is, or forgotten.
+  std::error_code ec;
+  if (journal_base_ && std::filesystem::exists(journal_base_->dir / *code / kUnconfirmedMark, ec)) {
+    r->unconfirmed_until_ms = now_ms + kUnconfirmedMs;
+    log_record(spdlog::level::info, "adopt_unconfirmed", {{"code", *code}, {"forgotten_in_ms", kUnconfirmedMs}});
+  }
   return true;
 }
 

@@ -22,6 +22,7 @@ inline constexpr std::size_t kSecretMinBytes = 32;
 inline constexpr int kFormat = 1;                        // the request's "fts_handover"
 inline constexpr std::string_view kRequestLabel = "fts-handover-1 request";
 inline constexpr std::string_view kReplyLabel = "fts-handover-1 reply";
+inline constexpr std::string_view kConfirmLabel = "fts-handover-1 confirm";
 
 // The channel's key: BLAKE2b-256 (crypto_generichash) of the secret's bytes.
 std::string key_of_secret(std::string_view secret);

@@ -125,6 +125,9 @@ class Room {
   // Being handed over to a peer (GameHost::export_rooms): it steps, publishes and closes
   // for idling no more until the peer answers.
   bool frozen = false;
+  // Adopted from a peer and not yet confirmed (GameHost::confirm_adopted): forgotten at
+  // this time unless confirmed first; 0 once confirmed (or never adopted).
+  std::uint64_t unconfirmed_until_ms = 0;
   // Its journal written and synced to the state now, a new segment beginning with a
   // checkpoint of it (a hand-over ships that segment). False without a journal or while
   // the journal fails or drops records. In two halves, for several rooms' writers to sync

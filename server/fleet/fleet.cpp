@@ -58,6 +58,7 @@ void Fleet::tick(GameHost& host, std::uint64_t ticks, std::uint64_t skipped, std
     s.rooms_moved = host.rooms_moved();
     s.rooms_adopted = host.rooms_adopted();
     s.handovers_refused = host.handovers_refused();
+    s.rooms_forgotten = host.rooms_forgotten();
     if (const auto* w = host.profiles()) {
       const auto ps = w->stats();
       s.profiles = true;

@@ -28,7 +28,7 @@ struct MetricsSample {
   protocol::RejectCounters drops;
   std::uint32_t sessions_connected = 0, sessions_away = 0;
   std::uint64_t journal_failing = 0, journal_failures = 0;  // rooms not journaling now; times one stopped
-  std::uint64_t rooms_moved = 0, rooms_adopted = 0, handovers_refused = 0;  // rooms that move (issue 42)
+  std::uint64_t rooms_moved = 0, rooms_adopted = 0, handovers_refused = 0, rooms_forgotten = 0;  // rooms that move (issue 42)
   std::array<std::uint64_t, kFleetNameCount> agones_update_failures{};  // by row of kFleetNames
   // The profile writer (issue 41), when --profiles is on: writes the tick handed over not
   // yet taken, writes spooled for the database, whether the database answers.
@@ -70,7 +70,7 @@ class Metrics {
   prometheus::Histogram* journal_sync_seconds_ = nullptr;
   // The rows of counter_table() (metrics.cpp): 9 of their own, one per Counter or List of
   // the fleet and one per drop reason.
-  static constexpr std::size_t kCounterRows = 14 + kFleetNameCount + protocol::kRejectCount;
+  static constexpr std::size_t kCounterRows = 15 + kFleetNameCount + protocol::kRejectCount;
   std::unique_ptr<std::array<Cumulative, kCounterRows>> counters_;
 };
 

@@ -94,6 +94,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     std::string from;
     nlohmann::json incoming;                                      // the request's rooms
     nlohmann::ordered_json adopted = nlohmann::ordered_json::array();  // an answer for each so far
+    std::vector<std::string> taken;  // rooms answered ok: held here until the sender confirms them
     std::chrono::steady_clock::time_point adopt_until;
 
     Inbound(std::shared_ptr<Impl> o, tcp::socket s)
@@ -180,6 +181,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       }
       if (const std::string why = owner->host.adopt_room(code, files, owner->now_ms()); !why.empty())
         return refused(why);
+      taken.push_back(code);
       const Room* r = owner->host.room_by_code(code);
       return {{"room", code}, {"ok", true}, {"tick", r ? r->match().tick : 0}};
     }
@@ -187,11 +189,57 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       if (unauthenticated)
         log_record(spdlog::level::warn, "handover_denied", {{"from", from}, {"reason", j.value("error", std::string())}});
       reply = frame(owner->key, kReplyLabel, challenge, j.dump());
-      asio::async_write(socket, asio::buffer(reply), [self = shared_from_this()](auto, std::size_t) {
-        boost::system::error_code ignored;
-        self->socket.shutdown(tcp::socket::shutdown_both, ignored);
-        self->deadline.cancel();
+      asio::async_write(socket, asio::buffer(reply), [self = shared_from_this()](auto e, std::size_t) {
+        if (!e && !self->taken.empty()) return self->read_confirm();
+        self->close();
       });
+    }
+    // Step 4: the sender confirms the rooms it will tell to come here. Rooms taken and not
+    // confirmed stay held (GameHost::confirm_adopted): a client of one that arrives
+    // confirms it, else it is forgotten (the sender kept it: a copy must not live on here).
+    void read_confirm() {
+      deadline.expires_after(kDeadline);
+      deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+        if (!e) self->socket.close();
+      });
+      asio::async_read(socket, asio::buffer(length), [self = shared_from_this()](auto e, std::size_t) {
+        if (e) return self->unconfirmed("the sender closed the connection before confirming");
+        const std::uint32_t n = frame_length(self->length);
+        if (n > kMaxFrameBytes) return self->unconfirmed("a confirmation of " + std::to_string(n) + " bytes");
+        self->body.resize(n + kMacBytes);
+        asio::async_read(self->socket, asio::buffer(self->body), [self](auto e2, std::size_t) {
+          if (e2) return self->unconfirmed("the sender closed the connection before confirming");
+          self->on_confirm();
+        });
+      });
+    }
+    void on_confirm() {
+      const auto opened = open_body(owner->key, kConfirmLabel, challenge, body);
+      if (!opened) return unconfirmed("the confirmation is not authentic");
+      std::string why;
+      const auto parsed = room::parse_json(*opened, why, kMaxDepth);
+      if (!parsed || !parsed->is_object() || int_of(*parsed, "fts_handover_confirm") != kFormat ||
+          !parsed->contains("rooms") || !(*parsed)["rooms"].is_array())
+        return unconfirmed("not a confirmation: " + why);
+      for (const auto& r : (*parsed)["rooms"])
+        if (r.is_string() && std::find(taken.begin(), taken.end(), r.get<std::string>()) != taken.end())
+          owner->host.confirm_adopted(r.get<std::string>(), "sender");
+      // (A room's player may have come first, told by the sender: confirmed already.)
+      const auto confirmed = static_cast<std::size_t>(std::count_if(
+          taken.begin(), taken.end(), [&](const std::string& code) { return !owner->host.unconfirmed(code); }));
+      if (confirmed < taken.size())
+        log_record(spdlog::level::warn, "handover_unconfirmed",
+                   {{"from", from}, {"rooms", taken.size() - confirmed}, {"reason", "the sender did not confirm them"}});
+      close();
+    }
+    void unconfirmed(const std::string& why) {
+      log_record(spdlog::level::warn, "handover_unconfirmed", {{"from", from}, {"rooms", taken.size()}, {"reason", why}});
+      close();
+    }
+    void close() {
+      boost::system::error_code ignored;
+      socket.shutdown(tcp::socket::shutdown_both, ignored);
+      deadline.cancel();
     }
   };
 
@@ -286,6 +334,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       const std::string address = fts::io::host_port_text(peer_host, static_cast<unsigned>(port));
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
       const nlohmann::json none = nlohmann::json::object();
+      nlohmann::json taken = nlohmann::json::array();
       for (auto& room : rooms) {
         const nlohmann::json* answer = &none;
         if (reply.contains("rooms") && reply["rooms"].is_array())
@@ -296,13 +345,31 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
           keep(room, "the peer " + peer + " refused: " + (error.empty() ? "no answer for the room" : error));
           continue;
         }
-        room.finished = true;
-        const std::size_t told = owner->host.room_moved(room.code, address, owner->now_ms());
-        each(room.code, {{"ok", true}, {"room", room.code}, {"to", address}, {"tick", room.tick},
-                         {"clients_told", told}, {"ms", ms}});
+        taken.push_back(room.code);
       }
-      owner->flush();
-      finish();
+      if (taken.empty()) return finish();
+      // Step 4: confirm the rooms taken, and only once the confirmation is written tell
+      // their clients. From here the deadline only closes the socket (the write then
+      // fails and the rooms stay): a confirmation may reach the peer whatever happens
+      // after it is written, so no room is kept once it has been.
+      deadline.expires_after(kDeadline);
+      deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+        if (!e) self->socket.close();
+      });
+      const nlohmann::json confirm = {{"fts_handover_confirm", kFormat}, {"rooms", std::move(taken)}};
+      request = frame(owner->key, kConfirmLabel, challenge, confirm.dump());
+      asio::async_write(socket, asio::buffer(request), [self = shared_from_this(), address, ms](auto e, std::size_t) {
+        if (e) return self->fail("the confirmation to the peer " + self->peer + " failed: " + e.message());
+        for (auto& room : self->rooms) {
+          if (room.finished) continue;
+          room.finished = true;
+          const std::size_t told = self->owner->host.room_moved(room.code, address, self->owner->now_ms());
+          self->each(room.code, {{"ok", true}, {"room", room.code}, {"to", address}, {"tick", room.tick},
+                                 {"clients_told", told}, {"ms", ms}});
+        }
+        self->owner->flush();
+        self->finish();
+      });
     }
     void keep(Moving& room, const std::string& why) {
       if (room.finished) return;

@@ -13,7 +13,8 @@ ledgers of both servers' logs (the first's events up to the tick its room moved 
 client: the terminal client in tmux (80x24) through a move: told, the same room, coins
 and lives on its HUD from the new server, its ball answering the keys there, a clean quit.
 
-faults: a peer that is not there, a peer with another secret, a room handed to the
+faults: a peer whose answer is lost on the way (it took the room, held it unconfirmed
+and forgets it after 10 s: no second copy), a peer that is not there, a peer with another secret, a room handed to the
 server that runs it (the room twice at one server), a full peer and a peer that dies
 mid-hand-over (it takes the room's files and is gone before it answers): each is refused,
 the room stays and plays on where it was (its tick goes on), and says why (console, log,
@@ -110,6 +111,28 @@ def dying_peer():
 
     threading.Thread(target=serve, daemon=True).start()
     return f"127.0.0.1:{listener.getsockname()[1]}", died
+
+
+def answer_cutter(target):
+    """A path to the peer `target` that loses the peer's answer: the request goes through,
+    then the connection breaks before any of the answer comes back (the peer has taken the
+    room; the sender never learns it). Its address."""
+    listener = socket.create_server(("127.0.0.1", 0))
+    host, port = target.rsplit(":", 1)
+
+    def serve():
+        conn, _ = listener.accept()
+        listener.close()
+        with conn, socket.create_connection((host, int(port))) as up:
+            conn.sendall(read_exactly(up, len(MAGIC) + CHALLENGE))
+            head = read_exactly(conn, 4)
+            up.sendall(head + read_exactly(conn, int.from_bytes(head, "big") + 32))
+            read_exactly(up, 4)  # the answer begins: the line breaks here
+            for c in (conn, up):
+                c.shutdown(socket.SHUT_RDWR)
+
+    threading.Thread(target=serve, daemon=True).start()
+    return f"127.0.0.1:{listener.getsockname()[1]}"
 
 
 def flaky_service(target):
@@ -212,6 +235,10 @@ def test_moves():
         adopted = {m["code"]: int(m["tick"]) for m in re.finditer(r"room_adopted code=(?P<code>[A-Z]{5}) "
                                                                  r"tick=(?P<tick>\d+)", b.text())}
         check(moved == adopted and len(moved) == 2, f"moved at {moved}, resumed at {adopted}: not the same ticks")
+        # Each confirmed (PROTOCOL.md 14, step 4; by the first server, or by a bot that came
+        # before the confirmation was read): none is held there.
+        confirmed = set(re.findall(r"adopt_confirmed code=([A-Z]{5}) by=(?:sender|client)", b.text()))
+        check(confirmed == set(moved), f"rooms confirmed by the sender: {confirmed}, moved: {set(moved)}")
         check(a.proc.wait(timeout=10) == 0, "the first server did not exit 0 once its rooms had gone")
         wait_for(lambda: len(re.findall(r"\breconnect player=\d+ name=[a-z]+\d", b.text())) >= 2 * BOTS, 20,
                  "every bot on the second server")
@@ -270,7 +297,8 @@ def test_faults():
     other = secret_file(work, "other.secret", 9)
     bots = None
     with fleet_server(work, "a", secret) as a, fleet_server(work, "stranger", other) as stranger, \
-            fleet_server(work, "full", secret, extra=("--max-rooms", "1")) as full:
+            fleet_server(work, "full", secret, extra=("--max-rooms", "1")) as full, \
+            fleet_server(work, "taker", secret) as taker:
         bots = start_bots("--connect", a.address, "--name", "ann", "--count", "2", "--behavior", "shopper",
                           "--room", "create", "--duration", "600")
         wait_for(lambda: re.search(r"level_start level=1 room=", a.text()), 30, "level 1")
@@ -279,6 +307,8 @@ def test_faults():
         filler = start_bots("--connect", full.address, "--name", "cat", "--room", "create", "--duration", "600")
         wait_for(lambda: re.search(r"room_open room=\d+ code=", full.text()), 20, "the full peer's room")
         cases = [
+            # First: the peer takes the room and holds it for 10 s while the others run.
+            ("a peer whose answer is lost", answer_cutter(taker.handover), "closed the connection before answering"),
             ("an absent peer", f"127.0.0.1:{free_port()}", "cannot reach the peer"),
             ("another secret", stranger.handover, "another fleet secret"),
             ("the room's own server", a.handover, f"room {code} is open here already"),
@@ -299,6 +329,16 @@ def test_faults():
         check(re.search(r"handover_denied from=127\.0\.0\.1:\d+ reason=not authenticated", stranger.text()),
               "the stranger did not log the unauthenticated request")
         check(died.is_set(), "the dying peer never took the request")
+        # The peer whose answer was lost took the room, held it unconfirmed and forgets it: no
+        # second copy lives on there, and its journal goes (no restart brings it back).
+        check(re.search(rf"room_adopted code={code}", taker.text()), "the taker never took the room")
+        check(re.search(r"handover_unconfirmed from=127\.0\.0\.1:\d+ rooms=1 reason=the sender closed", taker.text()),
+              "the taker did not log the room it holds unconfirmed")
+        wait_for(lambda: re.search(rf"adopt_forgotten room=\d+ code={code}", taker.text()), 30,
+                 f"the taker to forget room {code}")
+        check(code not in rooms_of(taker), f"the taker still runs room {code}")
+        wait_for(lambda: not os.path.exists(os.path.join(work, "taker", "journal", code)), 10,
+                 f"the taker's journal of room {code} to go")
         check(rooms_of(stranger) == {} and list(rooms_of(full)) != [code], "a refusing peer took the room")
         # Another version: the peer says so, authentically, and takes nothing.
         other_version = request_of_another_version(full.handover, channel_key(secret))

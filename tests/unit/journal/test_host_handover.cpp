@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include "../../support/host_rig.hpp"
@@ -161,4 +162,73 @@ TEST_CASE("Host hand-over: rooms exported together are each frozen or refused on
   CHECK(a.host->room_by_code(two)->match().tick == tick_two);
   std::error_code ec;
   fs::remove_all(ra, ec);
+}
+
+namespace {
+
+// Ticks `rig` until its closed rooms' journal writers have stopped (real threads), for at
+// most two seconds of wall time.
+void until_journals_closed(HandoverRig& rig) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (rig.host->closing_journals() != 0 && std::chrono::steady_clock::now() < until) rig.tick();
+}
+
+}  // namespace
+
+TEST_CASE("Host hand-over: an adopted room is held until confirmed, else forgotten", "[journal][handover]") {
+  const fs::path ra = fresh_dir("held-a"), rb = fresh_dir("held-b");
+  HandoverRig a(ra, 1, 4), b(rb, 2, 4);
+  std::vector<std::string> codes;
+  std::vector<protocol::ClientEndpoint*> players;
+  for (const char* name : {"ann", "bob", "cid"}) {
+    auto& c = a.join(name, "create");
+    REQUIRE(c.state() == ClientState::connected);
+    codes.push_back(c.welcome()->room);
+    players.push_back(&c);
+    c.send_command(protocol::CommandOp::ready, 0, a.now);
+  }
+  for (int i = 0; i < 50; ++i) a.tick();
+  const auto out = a.host->export_rooms(codes);
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(out[i]));
+    REQUIRE(b.host->adopt_room(codes[i], std::get<server::GameHost::RoomExport>(out[i]).files, b.now) == "");
+    CHECK(b.host->unconfirmed(codes[i]));
+    CHECK(fs::exists(rb / codes[i] / server::GameHost::kUnconfirmedMark));
+  }
+  const std::string& by_sender = codes[0];  // the confirmation came
+  const std::string& by_client = codes[1];  // its player came back to the peer
+  const std::string& lost = codes[2];       // neither: the sender kept it
+  // Held: nobody new is put in it, by quick play or by its code.
+  auto& dan = b.join("dan", "join", lost);
+  CHECK(dan.state() != ClientState::connected);
+  CHECK(b.host->room_by_code(lost)->match().players.size() == 1);
+
+  CHECK(b.host->confirm_adopted(by_sender, "sender"));
+  CHECK_FALSE(b.host->confirm_adopted(by_sender, "sender"));  // once
+  CHECK_FALSE(b.host->unconfirmed(by_sender));
+  CHECK_FALSE(fs::exists(rb / by_sender / server::GameHost::kUnconfirmedMark));
+  // The sender tells bob's room, and bob comes back to the peer with his token.
+  CHECK(a.host->room_moved(by_client, "10.0.0.9:7778", a.now) == 1);
+  auto& bob_there = b.join("bob", "", "", players[1]->welcome()->token);
+  REQUIRE(bob_there.state() == ClientState::connected);
+  CHECK(bob_there.welcome()->room == by_client);
+  CHECK_FALSE(b.host->unconfirmed(by_client));
+  CHECK(b.host->unconfirmed(lost));
+
+  // 10 s on: the room nobody confirmed is forgotten, with its journal; the others play on.
+  const auto at = b.host->room_by_code(lost)->match().tick;
+  for (std::uint64_t t = 0; t <= server::GameHost::kUnconfirmedMs / 10; ++t) b.tick();
+  CHECK(b.host->room_by_code(lost) == nullptr);
+  CHECK(b.host->rooms_forgotten() == 1);
+  CHECK(b.host->room_by_code(by_sender) != nullptr);
+  CHECK(b.host->room_by_code(by_client) != nullptr);
+  until_journals_closed(b);
+  CHECK_FALSE(fs::exists(rb / lost));
+  CHECK(fs::exists(rb / by_sender));
+  // The sender's copy of it plays on once kept.
+  a.host->room_kept(lost, "the peer's answer was lost");
+  for (int i = 0; i < 20; ++i) a.tick();
+  CHECK(a.host->room_by_code(lost)->match().tick > at);
+  std::error_code ec;
+  for (auto* r : {&ra, &rb}) fs::remove_all(*r, ec);
 }

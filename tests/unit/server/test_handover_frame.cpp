@@ -40,6 +40,7 @@ Bytes challenge_of(int from) {
 
 constexpr const char* kVectorKey = "cb2f5160fc1f7e05a55ef49d340b48da2e5a78099d53393351cd579dd42503d6";
 constexpr const char* kVectorMac = "6305a730cb5e2ed8ac3106c8415213b9a89518837158c79cb84f879c7693ae70";
+constexpr const char* kVectorConfirm = "274fe66cebdccd9f75d80169ac6b03ba7c8903190d761d041a6772d2501dee7e";
 
 }  // namespace
 
@@ -48,10 +49,13 @@ TEST_CASE("Hand-over frames: the test vector of PROTOCOL.md 14", "[server][hando
   const auto m = mac(key, kRequestLabel, challenge_of(0x20), R"({"fts_handover":1})");
   CHECK(hex(key) == kVectorKey);
   CHECK(hex(m) == kVectorMac);
+  const auto c = mac(key, kConfirmLabel, challenge_of(0x20), R"({"fts_handover_confirm":1,"rooms":["ABCDE"]})");
+  CHECK(hex(c) == kVectorConfirm);
   std::ifstream in(std::string(FTS_SOURCE_DIR) + "/protocol/PROTOCOL.md");
   const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(doc.find(std::string("key      ") + kVectorKey) != std::string::npos);
   CHECK(doc.find(std::string("request  ") + kVectorMac) != std::string::npos);
+  CHECK(doc.find(std::string("confirm  ") + kVectorConfirm) != std::string::npos);
 }
 
 TEST_CASE("Hand-over frames: a frame opens only under its key, label and challenge", "[server][handover]") {
