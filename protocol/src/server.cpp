@@ -177,10 +177,15 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
   return out;
 }
 
-void ServerEndpoint::connected_by_room(std::map<std::uint32_t, std::vector<std::uint32_t>>& out) const {
-  for (auto& [room, ids] : out) ids.clear();
-  for (const auto& [id, s] : sessions_)
-    if (s.connected) out[s.room].push_back(id);
+void ServerEndpoint::connected_by_room(std::map<std::uint32_t, RoomSessions>& out) {
+  serial_only("connected_by_room");
+  for (auto& [room, members] : out) members.sessions_.clear();
+  for (auto& [id, s] : sessions_)
+    if (s.connected) {
+      RoomSessions& members = out[s.room];
+      members.version_ = config_.version;
+      members.sessions_.push_back(&s);
+    }
   std::erase_if(out, [](const auto& kv) { return kv.second.empty(); });
 }
 
@@ -268,18 +273,17 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snap
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
   serial_only("send_snapshot");
-  send_snapshot(player_id, quantized, now_ms, lane_);
-}
-
-void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms,
-                                   SendLane& lane) {
   auto it = sessions_.find(player_id);
   if (it == sessions_.end() || !it->second.connected) return;
-  Session& s = it->second;
+  seal_snapshot(it->second, config_.version, quantized, now_ms, lane_);
+}
+
+void seal_snapshot(ServerSession& s, std::uint16_t version, const SharedSnapshot& quantized, std::uint64_t now_ms,
+                   SendLane& lane) {
   // Each part straight from the sender's buffers into the sealed datagram: no message
   // list, no copy of the part.
   for (const SnapshotMsg& part : s.snapshots.encode(quantized, s.encoding)) {
-    const Header h = session_header(s, now_ms);
+    const Header h = s.next_header(version, now_ms);
     s.last_send_ms = now_ms;
     lane.payload.clear();
     append_snapshot_payload(s.encoding, part, lane.payload);

@@ -1,5 +1,6 @@
 // ServerEndpoint's deferred receiving (issue 29): screened at once, queued, opened one
-// session per job on the host's threads, applied in arrival order (server.hpp).
+// session per job on the host's threads (an InboxJob: server_jobs.hpp), applied in
+// arrival order (server.hpp).
 #include "fts/protocol/server.hpp"
 
 namespace fts::protocol {
@@ -16,7 +17,7 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   if (!s) return;
   if (inbox_used_ >= kMaxInbox) return rejects_.add(Reject::rate_limited);
   if (inbox_used_ == inbox_.size()) inbox_.emplace_back();
-  Queued& q = inbox_[inbox_used_];
+  InboxDatagram& q = inbox_[inbox_used_];
   q.player_id = s->player_id;
   q.session_id = s->session_id;
   q.now_ms = now_ms;
@@ -30,20 +31,37 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   inbox_groups_[g->second].push_back(inbox_used_++);
 }
 
-void ServerEndpoint::open_inbox(std::size_t i, std::vector<std::uint8_t>& plain) {
-  for (const std::size_t at : inbox_groups_[i]) {
-    Queued& q = inbox_[at];
-    // Only the session's own seal changes: another session's open may run beside this one.
-    auto it = sessions_.find(q.player_id);
-    if (it == sessions_.end() || it->second.session_id != q.session_id) continue;  // gone: applied as such
-    q.opened.emplace(open_sealed(it->second.seal, q.bytes, config_.version, plain));
+void InboxJob::open(std::vector<std::uint8_t>& scratch) {
+  if (!seal_) return;  // the session is gone: its datagrams are applied as such
+  for (InboxDatagram* d : datagrams_)
+    if (d->session_id == session_id_) d->opened.emplace(open_sealed(*seal_, d->bytes, version_, scratch));
+}
+
+std::vector<InboxJob>& ServerEndpoint::inbox_jobs() {
+  serial_only("inbox_jobs");
+  // Made now that no datagram is queued any more (inbox_ keeps its places until applied).
+  inbox_jobs_.resize(inbox_groups_used_);
+  for (std::size_t i = 0; i < inbox_groups_used_; ++i) {
+    InboxJob& job = inbox_jobs_[i];
+    job.datagrams_.clear();
+    job.seal_ = nullptr;
+    job.version_ = config_.version;
+    for (const std::size_t at : inbox_groups_[i]) job.datagrams_.push_back(&inbox_[at]);
+    if (job.datagrams_.empty()) continue;
+    // The player's session now: only its datagrams are opened (an older session's, before
+    // a hello replaced it, are applied as gone), and only its seal changes.
+    auto it = sessions_.find(job.datagrams_.front()->player_id);
+    if (it == sessions_.end()) continue;
+    job.seal_ = &it->second.seal;
+    job.session_id_ = it->second.session_id;
   }
+  return inbox_jobs_;
 }
 
 void ServerEndpoint::apply_inbox() {
   serial_only("apply_inbox");
   for (std::size_t at = 0; at < inbox_used_; ++at) {
-    Queued& q = inbox_[at];
+    InboxDatagram& q = inbox_[at];
     // An earlier datagram may have ended the session (bye, overflow) or a hello replaced it.
     Session* s = live_session(q.player_id, q.session_id);
     if (!s || !q.opened) {

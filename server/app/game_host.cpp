@@ -326,9 +326,9 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   // The datagrams received since the last tick: opened on the pool, applied in order.
   {
+    auto& jobs = endpoint_.inbox_jobs();  // each a session's seal and datagrams, no endpoint
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
-    pool_.run(endpoint_.inbox_sessions(),
-              [&](std::size_t i, std::size_t slot) { endpoint_.open_inbox(i, open_scratch_[slot]); });
+    pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].open(open_scratch_[slot]); });
   }
   endpoint_.apply_inbox();
   answer_profiles(now_ms);  // before update(): the results go out in this tick's packets
@@ -345,15 +345,12 @@ void GameHost::tick(std::uint64_t now_ms) {
   for (Room* r : order_) r->publish(endpoint_, now_ms);
   if (lanes_.size() < order_.size()) lanes_.resize(order_.size());
   endpoint_.connected_by_room(connected_);  // one pass over the sessions, not one per room
-  static const std::vector<std::uint32_t> kNobody;
-  auto members = [&](std::uint32_t id) -> const std::vector<std::uint32_t>& {
-    auto it = connected_.find(id);
-    return it == connected_.end() ? kNobody : it->second;
-  };
   {
+    // Each room's job: its room, its connected sessions and its lane; no endpoint.
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
     pool_.run(order_.size(), [&](std::size_t i, std::size_t) {
-      order_[i]->send_snapshots(endpoint_, members(order_[i]->id()), now_ms, lanes_[i]);
+      auto it = connected_.find(order_[i]->id());
+      if (it != connected_.end()) order_[i]->send_snapshots(it->second, now_ms, lanes_[i]);
     });
   }
   for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
@@ -364,7 +361,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
     if (r->frozen) continue;  // being handed over: the peer's answer decides
-    const bool connected = !members(id).empty();
+    const bool connected = connected_.count(id) != 0;  // (rooms nobody is connected to are not in it)
     if (!draining_ && (r->last_occupied_ms == 0 || connected)) {
       r->last_occupied_ms = now_ms;
     } else if (!connected) {

@@ -9,15 +9,16 @@
 // What the threads share, and how: the endpoint (sessions, queues, limits), the room
 // table, codes, chat and the console are touched only by the caller's thread, except in
 // the parallel phases of a tick, which change one session's or one room's state per job
-// while the caller's thread waits and nothing adds or removes a session:
+// while the caller's thread waits and nothing adds or removes a session. No job is
+// handed the endpoint, only what it may change (protocol/server_jobs.hpp):
 //   0. receive() makes the cheap checks at once and queues a session's datagram;
-//   1. parallel, one job per session: its queued datagrams opened (replay window, tag,
-//      payload); then, serial, applied in arrival order, endpoint timers, connection
+//   1. parallel, one job per session (an InboxJob: its seal and its datagrams): its
+//      queued datagrams opened (replay window, tag, payload); then, serial, applied in arrival order, endpoint timers, connection
 //      events, inputs and commands handed to their rooms;
 //   2. parallel, one job per room: Room::step (the match, its record and journal queue);
 //   3. serial, room order: results answered, events logged, the room's tick published;
-//   4. parallel, one job per room: Room::send_snapshots seals the room's snapshots into
-//      its own lane (its own sessions only);
+//   4. parallel, one job per room: Room::send_snapshots seals the room's snapshot for
+//      its RoomSessions (its connected sessions only) into its own lane;
 //   5. serial: the lanes queued in room order.
 // The pool's join is the only synchronisation on the tick path (no lock per room or per
 // datagram), and everything leaves in the same order for any thread count.
@@ -241,7 +242,7 @@ class GameHost {
   std::vector<std::vector<std::uint8_t>> open_scratch_;
   std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_
-  std::map<std::uint32_t, std::vector<std::uint32_t>> connected_;  // this tick's, by room
+  std::map<std::uint32_t, protocol::RoomSessions> connected_;  // this tick's, by room
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,

@@ -278,15 +278,14 @@ void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
 }
 
-void Room::send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<std::uint32_t>& members,
-                          std::uint64_t now_ms, protocol::SendLane& lane) {
+void Room::send_snapshots(protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane) {
   // Rooms take turns (room 1 at multiples of ticks_per_snapshot_, room 2 a tick later...):
   // a host's snapshot work spreads over every tick instead of piling up on one in five.
   const auto turn = static_cast<std::int64_t>(id_ - 1);
   if ((stepper_.match().tick + turn) % ticks_per_snapshot_ != 0 || members.empty()) return;
   // Quantized once per tick; each client gets only its delta against that.
   const auto snap = std::make_shared<const protocol::Snapshot>(protocol::quantize(stepper_.snapshot()));
-  for (auto id : members) endpoint.send_snapshot(id, snap, now_ms, lane);
+  members.send_snapshot(snap, now_ms, lane);
 }
 
 void Room::start_sync() {

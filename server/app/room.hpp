@@ -69,13 +69,12 @@ class Room {
   // touches only this room (its match, record and journal queue) and may run on any
   // thread while other rooms step; publish() answers the step's commands, logs its
   // events and tells the endpoint the tick, on the thread that owns the endpoint, in
-  // room order; send_snapshots() seals this room's snapshots into `lane` (it changes
-  // only this room's sessions: `members`, its connected players) and may run beside other
-  // rooms' again.
+  // room order; send_snapshots() seals this room's snapshot for `members` (its connected
+  // sessions, handed over by the endpoint: protocol/server_jobs.hpp) into `lane`, and may
+  // run beside other rooms' again: it is given no endpoint.
   void step(std::uint64_t now_ms);
   void publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  void send_snapshots(protocol::ServerEndpoint& endpoint, const std::vector<std::uint32_t>& members,
-                      std::uint64_t now_ms, protocol::SendLane& lane);
+  void send_snapshots(protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane);
   void flush();
   // Ends the record with the hash of the state now (the room closes).
   void seal();

@@ -26,6 +26,7 @@
 #include "fts/protocol/limits.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
+#include "fts/protocol/server_jobs.hpp"
 #include "fts/protocol/server_session.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
@@ -168,16 +169,6 @@ struct RestoredSession {
   bool foreign = false;
 };
 
-// A room's own queue of sealed snapshots (issue 29): rooms on several threads each seal
-// into their own lane (its scratch, its queue, the buffers it reuses), and the thread
-// that owns the endpoint adopts the lanes in room order, so the datagrams leave in the
-// same order whatever the thread count.
-struct SendLane {
-  std::vector<Outgoing> out;
-  std::vector<Outgoing> spare;  // buffers of datagrams sent before, reused
-  std::vector<std::uint8_t> payload;
-};
-
 struct PlayerInput {
   std::uint32_t player_id = 0;
   std::uint32_t room = 0;
@@ -214,15 +205,14 @@ class ServerEndpoint {
   // ---- Receiving on several threads (issue 29). receive_later() makes receive()'s cheap
   // checks at once (the sender's rate, the header, the version, the session and its
   // address; a handshake datagram is handled at once) and queues the rest of a session's
-  // datagram. open_inbox(i, scratch) opens (replay window, tag, payload) the queued
-  // datagrams of the i-th session with any, in arrival order, into `scratch` (the calling
-  // thread's own buffer, kept by the caller): calls for different i may run at once on
-  // different threads while nothing else calls the endpoint. apply_inbox() then applies
-  // every opened datagram in arrival order, as receive() would have, and empties the
-  // queue. At most max_inbox datagrams wait; beyond, they are dropped (rate_limited).
+  // datagram. inbox_jobs() hands out one InboxJob for each session with queued datagrams
+  // (server_jobs.hpp: its seal and its datagrams, nothing else), to open on the pool while
+  // nothing calls the endpoint. apply_inbox() then applies every opened datagram in
+  // arrival order, as receive() would have, and empties the queue. At most kMaxInbox
+  // datagrams wait; beyond, they are dropped (rate_limited).
   void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+  std::vector<InboxJob>& inbox_jobs();
   std::size_t inbox_sessions() const { return inbox_groups_used_; }
-  void open_inbox(std::size_t i, std::vector<std::uint8_t>& scratch);
   void apply_inbox();
   static constexpr std::size_t kMaxInbox = 65536;
   // Timers: heartbeats, result resends, time-outs, reconnect windows.
@@ -232,12 +222,9 @@ class ServerEndpoint {
   void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
   // The same for a snapshot quantized once per tick for every client (quantize()).
   void send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms);
-  // The same into `lane`. Changes only that player's session: calls for players of
-  // different rooms may run at once on different threads, while nothing else calls the
-  // endpoint (no session comes or goes meanwhile).
-  void send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane);
-  // Queues the lane's datagrams after those queued already; the lane keeps buffers of
-  // sent datagrams for its next ones.
+  // (A room's snapshot job on the pool sends through its RoomSessions: connected_by_room.)
+  // Queues a lane's datagrams after those queued already; the lane keeps buffers of sent
+  // datagrams for its next ones.
   void adopt(SendLane& lane);
   // Answers a command (reliably): applied (ResultCode::ok, `ok: true`) or refused with
   // that code; message for a person. Queued: the next update() sends the session's due
@@ -337,9 +324,10 @@ class ServerEndpoint {
   std::vector<std::uint32_t> connected_players() const;
   // Rooms: connected sessions of a room (players and spectators), seats taken (players
   // not quit, connected or held for a reconnect), connected spectators, every session.
-  // Every room's connected players in one pass (player id order within a room): `out`
-  // is cleared and refilled, keeping its vectors' capacity.
-  void connected_by_room(std::map<std::uint32_t, std::vector<std::uint32_t>>& out) const;
+  // Every room's connected sessions in one pass (player id order within a room), each
+  // room's handed to its snapshot job (server_jobs.hpp): `out` is cleared and refilled,
+  // keeping its vectors' capacity.
+  void connected_by_room(std::map<std::uint32_t, RoomSessions>& out);
   std::vector<std::uint32_t> connected_in_room(std::uint32_t room) const;
   std::size_t seats_in_room(std::uint32_t room) const;
   std::size_t spectators_in_room(std::uint32_t room) const;
@@ -351,9 +339,9 @@ class ServerEndpoint {
   // Time the server itself stood still (gaps over stall_threshold_ms), in total.
   std::uint64_t stalled_ms() const { return stalled_ms_; }
 
-  // ---- Phases (issue 39). While a pool's jobs run on the endpoint, the only calls
-  // allowed are the jobs' own (open_inbox, the lane's send_snapshot) and const reads;
-  // every other mutator checks that no parallel phase is on. The host holds a
+  // ---- Phases (issue 39). While a pool's jobs run, they touch only what they were
+  // handed (server_jobs.hpp) and the endpoint takes const reads only; every mutator
+  // checks that no parallel phase is on. The host holds a
   // ParallelPhase for each pool run. Checked where FTS_PHASE_CHECKS is defined (the
   // sanitized and ThreadSanitizer builds: kPhaseChecks): a call out of phase throws
   // std::logic_error naming it (a pool rethrows it on its caller).
@@ -428,17 +416,12 @@ class ServerEndpoint {
   // beyond, freed) and the scratch of the payload being sealed.
   static constexpr std::size_t kSpareDatagrams = 4096;
   SendLane lane_;
-  struct Queued {  // a datagram waiting in the inbox
-    std::uint32_t player_id = 0, session_id = 0;
-    std::uint64_t now_ms = 0;
-    std::vector<std::uint8_t> bytes;  // kept for the next datagram's copy
-    std::optional<Decoded<Datagram>> opened;
-  };
-  std::vector<Queued> inbox_;          // the first inbox_used_ are this tick's
+  std::vector<InboxDatagram> inbox_;   // the first inbox_used_ are this tick's
   std::size_t inbox_used_ = 0;
   std::vector<std::vector<std::size_t>> inbox_groups_;  // per session: its datagrams' places
   std::size_t inbox_groups_used_ = 0;
   std::map<std::uint32_t, std::size_t> inbox_group_of_;  // player id -> group
+  std::vector<InboxJob> inbox_jobs_;  // inbox_jobs(): the groups handed out
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;

@@ -5,10 +5,10 @@
 //             version, the session its id names and the address it must come from; a
 //             handshake datagram goes to handle_hello (server_handshake.cpp) instead;
 //   opened    open_sealed with the session's `seal` (its keys and replay window): at once
-//             in receive(), or per session on a worker in open_inbox (server_inbox.cpp);
+//             in receive(), or per session on a worker in an InboxJob (server_jobs.hpp);
 //   applied   ServerEndpoint::handle_opened, then handle_session (server.cpp): acks,
 //             inputs, commands exactly once, chat, bye;
-//   answered  send_packet / send_snapshot (server.cpp), each datagram stamped by
+//   answered  send_packet / seal_snapshot (server.cpp), each datagram stamped by
 //             next_header and sealed by seal_into below.
 #pragma once
 

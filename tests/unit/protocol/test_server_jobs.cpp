@@ -1,0 +1,146 @@
+// What a pool's job is handed (issue 39, server_jobs.hpp): an InboxJob opens one
+// session's queued datagrams with that session's seal, whatever order the jobs run in;
+// a session replaced since its datagrams came has them counted as gone; RoomSessions
+// hands a room's snapshot job its connected sessions and nothing else.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "harness.hpp"
+
+using namespace fts::protocol;
+using namespace fts::protocol::test;
+
+namespace {
+
+// Players taken into rooms 1 and 2 in turn (1, 2, 1, ...).
+struct TwoRooms {
+  ServerConfig config = test_server_config();
+  std::unique_ptr<ServerEndpoint> server;
+  std::vector<std::unique_ptr<ClientEndpoint>> clients;
+  std::vector<Address> addresses;
+  std::uint64_t now = 100;
+  std::uint32_t admitted = 0;
+
+  TwoRooms() {
+    config.admit = [this](const JoinAsk&) {
+      Admission a;
+      a.room = 1 + (admitted++ % 2);
+      return a;
+    };
+    server = std::make_unique<ServerEndpoint>(config);
+  }
+  ClientEndpoint& add(const std::string& name) {
+    ClientConfig c;
+    c.name = name;
+    clients.push_back(std::make_unique<ClientEndpoint>(c));
+    addresses.push_back("10.0.0." + std::to_string(clients.size()) + ":5000");
+    clients.back()->connect(now);
+    return *clients.back();
+  }
+  // Client datagrams to the server: at once (handshake), or queued for the inbox.
+  void step(bool queue) {
+    now += 5;
+    for (std::size_t i = 0; i < clients.size(); ++i) {
+      clients[i]->update(now);
+      for (auto& d : clients[i]->take_datagrams()) {
+        if (queue) server->receive_later(addresses[i], d, now);
+        else server->receive(addresses[i], d, now);
+      }
+    }
+    for (auto& out : server->take_datagrams())
+      for (std::size_t i = 0; i < clients.size(); ++i)
+        if (addresses[i] == out.to) clients[i]->receive(out.bytes, now);
+    server->update(now);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Server jobs: each inbox job opens its own session's datagrams, in any order", "[protocol][threads]") {
+  TwoRooms t;
+  auto& ann = t.add("ann");
+  auto& bob = t.add("bob");
+  for (int i = 0; i < 200 && !(ann.state() == ClientState::connected && bob.state() == ClientState::connected); ++i)
+    t.step(false);
+  REQUIRE(ann.state() == ClientState::connected);
+  REQUIRE(bob.state() == ClientState::connected);
+  t.server->take_events();
+  t.server->take_inputs();
+
+  // Three inputs each, queued; the jobs run last first; every input comes out once, in order.
+  for (int i = 0; i < 3; ++i) {
+    ann.send_input({1, 0, 0, false}, t.now);
+    bob.send_input({0, 1, 0, false}, t.now);
+    t.now += 1;
+    for (std::size_t c = 0; c < 2; ++c) {
+      t.clients[c]->update(t.now);
+      for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
+    }
+  }
+  auto& jobs = t.server->inbox_jobs();
+  REQUIRE(jobs.size() == 2);
+  std::vector<std::uint8_t> scratch;
+  for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) it->open(scratch);
+  t.server->apply_inbox();
+  const auto inputs = t.server->take_inputs();
+  std::map<std::uint32_t, std::vector<std::uint32_t>> seqs;
+  for (const auto& in : inputs) seqs[in.player_id].push_back(in.frame.seq);
+  REQUIRE(seqs.size() == 2);
+  for (const auto& [player, s] : seqs) {
+    CHECK(s.size() == 3);
+    CHECK(std::is_sorted(s.begin(), s.end()));
+  }
+  CHECK(t.server->rejects()[Reject::unknown_session] == 0);
+
+  // A job that is not run leaves its datagrams unopened: applied as gone, nobody else's.
+  ann.send_input({1, 0, 0, false}, t.now);
+  bob.send_input({0, 1, 0, false}, t.now);
+  for (std::size_t c = 0; c < 2; ++c) {
+    t.clients[c]->update(t.now);
+    for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
+  }
+  auto& again = t.server->inbox_jobs();
+  REQUIRE(again.size() == 2);
+  again[1].open(scratch);
+  t.server->apply_inbox();
+  CHECK(t.server->take_inputs().size() == 1);
+  CHECK(t.server->rejects()[Reject::unknown_session] >= 1);
+}
+
+TEST_CASE("Server jobs: a room's snapshot job holds its room's connected sessions only", "[protocol][threads]") {
+  TwoRooms t;
+  auto& ann = t.add("ann");
+  auto& bob = t.add("bob");
+  auto& cid = t.add("cid");
+  for (int i = 0; i < 200 && !std::all_of(t.clients.begin(), t.clients.end(), [](const auto& c) {
+                                return c->state() == ClientState::connected;
+                              });
+       ++i)
+    t.step(false);
+  for (auto* c : {&ann, &bob, &cid}) REQUIRE(c->state() == ClientState::connected);
+
+  std::map<std::uint32_t, RoomSessions> rooms;
+  t.server->connected_by_room(rooms);
+  REQUIRE(rooms.size() == 2);
+  std::size_t in_rooms = 0;
+  for (const auto& [room, members] : rooms) in_rooms += members.size();
+  CHECK(in_rooms == 3);
+  // Admitted in turn: ann and cid in room 1, bob in room 2.
+  const auto room_of = [&](const ClientEndpoint& c) { return t.server->session_info(c.welcome()->player_id)->room; };
+  CHECK(room_of(ann) == 1);
+  CHECK(room_of(cid) == 1);
+  CHECK(rooms.at(1).size() == 2);
+  CHECK(rooms.at(2).size() == 1);
+
+  // One room's snapshot goes to its own sessions, into its lane; the other room's get none.
+  const std::uint32_t bob_room = room_of(bob);
+  SendLane lane;
+  const auto snap = std::make_shared<const Snapshot>(quantize(Snapshot{}));
+  rooms.at(bob_room).send_snapshot(snap, t.now, lane);
+  REQUIRE(lane.out.size() == rooms.at(bob_room).size());
+  for (const auto& o : lane.out) CHECK(o.to == t.addresses[1]);
+  CHECK(t.server->take_datagrams().empty());  // nothing of the lane until adopted
+  t.server->adopt(lane);
+  CHECK(t.server->take_datagrams().size() == 1);
+}
