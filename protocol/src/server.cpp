@@ -27,8 +27,7 @@ AddressLimits::Rates address_rates(const ServerConfig& c) {
 
 ServerEndpoint::ServerEndpoint(ServerConfig config)
     : config_(std::move(config)),
-      kx_(kx_keypair_from_seed(derive_kx_seed(config_.key))),
-      kx_hex_(public_key_hex(kx_.public_key)),
+      handshake_(config_.key, config_.cookie_lifetime_ms),
       sessions_(config_.first_player_id),
       limits_(address_rates(config_)) {
   if (!config_.admit) throw std::invalid_argument("ServerConfig::admit is required: the host picks a new player's room");

@@ -40,13 +40,13 @@ Reject decode_error(const std::vector<std::uint8_t>& bytes) {
 }
 
 // A server with one connected client, and a way to check that nothing changed.
-struct Connected {
+struct ConnectedPeer {
   Harness h;
   Peer* peer = nullptr;
   std::uint32_t session = 0;
   std::vector<std::uint8_t> valid;  // a valid datagram of the client, not yet delivered
 
-  Connected() {
+  ConnectedPeer() {
     peer = &h.add_client(ClientConfig{});
     peer->client.connect(h.now);
     REQUIRE(h.run_until([&] { return peer->client.state() == ClientState::connected; }, 1000));
@@ -139,7 +139,7 @@ TEST_CASE("decoder rejections", "[protocol][reject]") {
 }
 
 TEST_CASE("server rejections change nothing", "[protocol][reject]") {
-  Connected c;
+  ConnectedPeer c;
   const std::string from = c.peer->address;
 
   SECTION("decoder failures are counted") {
@@ -259,7 +259,7 @@ TEST_CASE("before the handshake no reply is larger than its request", "[protocol
 }
 
 TEST_CASE("client rejections", "[protocol][reject]") {
-  Connected c;
+  ConnectedPeer c;
   ClientEndpoint& client = c.peer->client;
   SECTION("a datagram for another session") {
     Header h;

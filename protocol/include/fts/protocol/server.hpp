@@ -16,11 +16,13 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
 #include "fts/protocol/codes.hpp"
+#include "fts/protocol/handshake.hpp"
 #include "fts/protocol/cookie.hpp"
 #include "fts/protocol/identity.hpp"
 #include "fts/protocol/limits.hpp"
@@ -386,7 +388,11 @@ class ServerEndpoint {
   void send_welcome(Session& s, bool reconnected, std::size_t request_bytes, std::uint64_t now_ms);
   void start_session(Session& s, const Address& from, Encoding encoding, const Hello& hello,
                      const SessionKeys& keys, std::uint64_t now_ms);
-  void refuse_full(const Address& to, Encoding encoding, std::size_t request_bytes);
+  // After the handshake's proofs: a player taken back, or a new one admitted; or why not.
+  std::variant<Session*, HelloAnswer> take_back(Session* back, const Address& from, Encoding enc, const Hello& hello,
+                                                const ProvenHello& proven, std::uint64_t now_ms);
+  std::variant<Session*, HelloAnswer> admit_new(const Address& from, Encoding enc, const Hello& hello,
+                                                const ProvenHello& proven, std::uint64_t now_ms);
   std::size_t sessions_from(std::string_view host, bool spectators) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
@@ -399,8 +405,7 @@ class ServerEndpoint {
   void emit(const Address& to, std::vector<std::uint8_t> bytes);
 
   ServerConfig config_;
-  KxKeyPair kx_;        // derived from config_.key: its public half goes in challenges
-  std::string kx_hex_;  // that public key in hex
+  Handshake handshake_;  // what a hello must prove (handshake.hpp)
   std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
   SessionTable sessions_;  // by player id, address and session id; the player ids (server_session.hpp)
   AddressLimits limits_;  // the per-host limits: the one part the sessions of a host share

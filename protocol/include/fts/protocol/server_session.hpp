@@ -3,7 +3,8 @@
 // from a client goes through four places, each findable by name:
 //   screened  ServerEndpoint::screen (server.cpp): the sender's rate, the header, the
 //             version, the session its id names and the address it must come from; a
-//             handshake datagram goes to handle_hello (server_handshake.cpp) instead;
+//             handshake datagram goes to handle_hello (server_handshake.cpp) instead,
+//             whose Handshake (handshake.hpp) checks what the hello proves;
 //   opened    open_sealed with the session's `seal` (its keys and replay window): at once
 //             in receive(), or per session on a worker in an InboxJob (server_jobs.hpp);
 //   applied   ServerEndpoint::handle_opened, then handle_session (server.cpp): acks,
