@@ -115,7 +115,11 @@ class Game {
                                     last_rx_ms_ = now_ms();
                                     conn_.endpoint().receive(bytes, last_rx_ms_);
                                   });
-    if (f.moved) note("Room moved to another server: playing on.");
+    if (f.moved) {
+      note("Room moved to another server: playing on.");
+      view_.notice = "Room moved to another server: playing on";
+      view_.notice_ms = now_ms();
+    }
     if (!f.error.empty() && !f.opened) throw std::runtime_error(f.error);
     if (!f.error.empty()) note("Not followed: " + sanitize(f.error, 80) + ".");
   }

@@ -352,6 +352,8 @@ std::string footer_text(const Snapshot& s, const ViewState& view, int cols) {
     return "Say: " + draft + keys;
   }
   if (!view.replay_footer.empty()) return view.replay_footer;
+  if (!view.notice.empty() && view.now_ms >= view.notice_ms && view.now_ms < view.notice_ms + kNoticeShowMs)
+    return fit_footer(view.notice, cols);
   // The footer in words, then in short, each with the runs of spaces squeezed: the first
   // that fits. What the state adds (mouse steering, out of lives) stays in every form.
   std::vector<std::string> forms;

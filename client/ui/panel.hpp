@@ -23,6 +23,9 @@ inline constexpr int kMinCols = 60;
 inline constexpr int kMinRows = 20;
 // Log lines kept by the client and shown at most.
 inline constexpr std::size_t kLogKeep = 32;
+// A notice (ViewState::notice) stays this long in the footer: long enough to read, even
+// when a busy level's events push its log line off at once.
+inline constexpr std::uint64_t kNoticeShowMs = 3000;
 inline constexpr int kLogShown = 5;
 // A host announcement keeps its place among the shown lines this long, however many
 // lines come after it (a level's end brings a burst of them).

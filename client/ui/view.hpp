@@ -48,6 +48,10 @@ struct ViewState {
   std::uint64_t now_ms = 0;       // for the ages of the log lines
   std::string shop_result;   // the outcome of the last purchase (already sanitised)
   std::uint64_t shop_result_ms = 0;  // when it came (shown kShopResultShowMs, ui/render.hpp)
+  // A moment's word in the footer ("Room moved to another server"), whatever the log
+  // shows meanwhile: shown kNoticeShowMs (ui/panel.hpp) from notice_ms, in place of the keys.
+  std::string notice;
+  std::uint64_t notice_ms = 0;
   bool color = true;
   bool fine = false;  // the field in braille dots (ui/fine_field.hpp), with colour only
   sim::ShopTerms shop_terms;  // the server's, from its welcome

@@ -272,6 +272,16 @@ TEST_CASE("watching: Tab cycles the players and the footer says so", "[client][w
   view.chat_open = true;
   view.chat_draft = "gg";
   CHECK(footer_text(s, view, 120) == "Say: gg_   Enter: send   Esc: cancel");
+  // A notice takes the footer for kNoticeShowMs, then the keys come back.
+  view.chat_open = false;
+  view.notice = "Room moved to another server: playing on";
+  view.notice_ms = 10'000;
+  view.now_ms = 10'000;
+  CHECK(footer_text(s, view, 80) == view.notice);
+  view.now_ms = 10'000 + kNoticeShowMs - 1;
+  CHECK(footer_text(s, view, 80) == view.notice);
+  view.now_ms = 10'000 + kNoticeShowMs;
+  CHECK(footer_text(s, view, 120).rfind("Watching dmitri", 0) == 0);
 }
 
 TEST_CASE("Codes: the client's text for a result code is the table's sentence where it has one",
