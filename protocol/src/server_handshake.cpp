@@ -164,6 +164,7 @@ std::variant<ServerEndpoint::Session*, HelloAnswer> ServerEndpoint::take_back(Se
                                                                               const ProvenHello& proven,
                                                                               std::uint64_t now_ms) {
   const std::string& token = proven.token;
+  const bool by_token = !back;
   if (!back) {
     // A restored session knows only its token's verifier (compared once per hello).
     const std::string verifier = token_verifier(token);
@@ -178,9 +179,13 @@ std::variant<ServerEndpoint::Session*, HelloAnswer> ServerEndpoint::take_back(Se
       return HelloAnswer{Reject::bad_token,
                          make_error(ErrorCode::bad_token, "unknown or expired session token; connect again without one")};
     back = &it->second;
-    back->token = token;
   }
   Session& s = *back;
+  // A player who quit gave its seat up: it comes back only to a free one.
+  if (s.quit && !s.spectator && seats_in_room(s.room) >= config_.max_players)
+    return HelloAnswer{Reject::join_refused,
+                       make_error(ErrorCode::room_full, "room " + s.room_code + " has no free seat; try again later")};
+  if (by_token) s.token = token;  // (a restored session knew only its verifier)
   if (s.identity.empty()) s.identity = proven.identity;  // a guest's player proven now
   if (s.token.empty()) {
     // Taken back by its identity after a restart (--resume): the journal kept only the
@@ -188,10 +193,6 @@ std::variant<ServerEndpoint::Session*, HelloAnswer> ServerEndpoint::take_back(Se
     s.token = derive_token(config_.key, sessions_made_ + 1);
     s.verifier = token_verifier(s.token);
   }
-  // A player who quit gave its seat up: it comes back only to a free one.
-  if (s.quit && !s.spectator && seats_in_room(s.room) >= config_.max_players)
-    return HelloAnswer{Reject::join_refused,
-                       make_error(ErrorCode::room_full, "room " + s.room_code + " has no free seat; try again later")};
   // The token from another address takes the session over; the old address is told.
   if (s.connected && s.address != from)
     send_packet(s, {make_error(ErrorCode::taken_over, "another connection took this player over with its token")}, false, now_ms);

@@ -79,8 +79,9 @@ protocol::Admission GameHost::admit(const protocol::JoinAsk& ask) {
     const Room* r = room_by_code(*code);
     if (!r) return refusal(protocol::ErrorCode::no_such_room, "there is no room " + *code + " on this server");
     // Adopted and not yet confirmed by its server (GameHost::confirm_adopted): it may stay there.
+    // (Not no_such_room: the code is right, and must not count as a guess.)
     if (r->unconfirmed_until_ms != 0)
-      return refusal(protocol::ErrorCode::no_such_room, "room " + *code + " is still moving here; try again in a moment");
+      return refusal(protocol::ErrorCode::room_full, "room " + *code + " is still moving here; try again in a moment");
     if (how == "join") {
       if (endpoint_.seats_in_room(r->id()) >= options_.max_players)
         return refusal(protocol::ErrorCode::room_full, "room " + *code + " has all " + std::to_string(options_.max_players) +

@@ -239,7 +239,8 @@ void GameHost::dispatch(std::uint64_t now_ms) {
     if (e.kind == K::released) members_.erase(e.player_id);
     if (auto it = rooms_.find(e.room); it != rooms_.end()) {
       // A player of an adopted room came back: the sender told it where, so it had confirmed.
-      if (e.kind == K::reconnected && !e.spectator && it->second->unconfirmed_until_ms != 0)
+      // (With its token only: a player taken back by its identity may have come by quick play.)
+      if (e.kind == K::reconnected && e.reason == "token" && !e.spectator && it->second->unconfirmed_until_ms != 0)
         confirm_adopted(it->second->code(), "client");
       it->second->on_event(e, endpoint_);
     }
@@ -360,7 +361,9 @@ void GameHost::tick(std::uint64_t now_ms) {
   std::vector<std::uint32_t> idle;
   const std::uint64_t idle_ms = draining_ ? 0 : options_.room_idle_ms;
   for (auto& [id, r] : rooms_) {
-    if (r->frozen) continue;  // being handed over: the peer's answer decides
+    // Being handed over (the peer's answer decides), or adopted and not yet confirmed
+    // (forget_unconfirmed decides: its match may go on at the sender, so no results here).
+    if (r->frozen || r->unconfirmed_until_ms != 0) continue;
     const bool connected = connected_.count(id) != 0;  // (rooms nobody is connected to are not in it)
     if (!draining_ && (r->last_occupied_ms == 0 || connected)) {
       r->last_occupied_ms = now_ms;

@@ -28,6 +28,8 @@ std::vector<std::variant<GameHost::RoomExport, std::string>> GameHost::export_ro
     Room* r = it == rooms_.end() ? nullptr : it->second.get();
     if (!r) out[i] = "no room " + codes[i] + " on this server";
     else if (r->frozen) out[i] = "room " + r->code() + " is being handed over already";
+    else if (r->unconfirmed_until_ms != 0)
+      out[i] = "room " + r->code() + " is still arriving here (its server has not confirmed it)";
     else if (!journal_base_ || !r->journal()) out[i] = "room " + r->code() + " keeps no journal (--journal-dir)";
     else if (std::find(rooms.begin(), rooms.end(), r) != rooms.end()) out[i] = "room " + r->code() + " named twice";
     else rooms[i] = r, r->start_sync();
@@ -179,7 +181,7 @@ void GameHost::forget_unconfirmed(std::uint64_t now_ms) {
   for (auto it = rooms_.begin(); it != rooms_.end();) {
     const auto next = std::next(it);
     Room& r = *it->second;
-    if (r.unconfirmed_until_ms != 0 && now_ms >= r.unconfirmed_until_ms) {
+    if (r.unconfirmed_until_ms != 0 && !r.frozen && now_ms >= r.unconfirmed_until_ms) {
       log_record(spdlog::level::warn, "adopt_forgotten",
                  {{"room", r.id()}, {"code", r.code()}, {"tick", r.match().tick},
                   {"reason", "neither the sender's confirmation nor a client of the room came: the sender kept it"}});

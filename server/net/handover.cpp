@@ -95,6 +95,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     nlohmann::json incoming;                                      // the request's rooms
     nlohmann::ordered_json adopted = nlohmann::ordered_json::array();  // an answer for each so far
     std::vector<std::string> taken;  // rooms answered ok: held here until the sender confirms them
+    bool confirming = false;         // reading the confirmation: the first deadline is spent
     std::chrono::steady_clock::time_point adopt_until;
 
     Inbound(std::shared_ptr<Impl> o, tcp::socket s)
@@ -108,8 +109,10 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       hello.assign(kMagic.begin(), kMagic.end());
       hello.insert(hello.end(), challenge.begin(), challenge.end());
       deadline.expires_after(kDeadline);
+      // (Its handler may be queued already when the confirmation's wait re-arms the timer:
+      // then it does nothing; the confirmation has its own deadline.)
       deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
-        if (!e) self->socket.close();
+        if (!e && !self->confirming) self->socket.close();
       });
       asio::async_write(socket, asio::buffer(hello), [self = shared_from_this()](auto e, std::size_t) {
         if (!e) self->read_length();
@@ -190,7 +193,10 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
         log_record(spdlog::level::warn, "handover_denied", {{"from", from}, {"reason", j.value("error", std::string())}});
       reply = frame(owner->key, kReplyLabel, challenge, j.dump());
       asio::async_write(socket, asio::buffer(reply), [self = shared_from_this()](auto e, std::size_t) {
-        if (!e && !self->taken.empty()) return self->read_confirm();
+        if (!self->taken.empty()) {
+          if (!e) return self->read_confirm();
+          return self->unconfirmed("the answer could not be written: " + e.message());
+        }
         self->close();
       });
     }
@@ -198,6 +204,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     // confirmed stay held (GameHost::confirm_adopted): a client of one that arrives
     // confirms it, else it is forgotten (the sender kept it: a copy must not live on here).
     void read_confirm() {
+      confirming = true;
       deadline.expires_after(kDeadline);
       deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
         if (!e) self->socket.close();
@@ -270,6 +277,10 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
     std::array<std::uint8_t, 4> length{};
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
     bool finished = false;
+    // The confirmation is being written: no room may be kept from now on (it may reach
+    // the peer whatever happens next), so the first deadline's handler, if it was queued
+    // already when the reply came, does nothing.
+    bool confirming = false;
 
     Outbound(std::shared_ptr<Impl> o, std::string p, EachDone e)
         : owner(std::move(o)), peer(std::move(p)), each(std::move(e)), resolver(owner->io), socket(owner->io),
@@ -288,7 +299,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       request.assign(json.begin(), json.end());  // framed once the challenge is known
       deadline.expires_after(kDeadline);
       deadline.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
-        if (!e) self->fail("no answer from the peer " + self->peer + " in 4 s");
+        if (!e && !self->confirming) self->fail("no answer from the peer " + self->peer + " in 4 s");
       });
       resolver.async_resolve(hp.host, hp.port, [self = shared_from_this()](auto e, tcp::resolver::results_type r) {
         if (e) return self->fail("cannot resolve the peer " + self->peer + ": " + e.message());
@@ -322,6 +333,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       });
     }
     void on_reply() {
+      if (finished) return;  // the deadline came first: every room was kept
       const auto opened = open_body(owner->key, kReplyLabel, challenge, body);
       if (!opened) return fail("the peer " + peer + "'s answer is not authentic: it holds another fleet secret");
       std::string why;
@@ -348,6 +360,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
         taken.push_back(room.code);
       }
       if (taken.empty()) return finish();
+      confirming = true;
       // Step 4: confirm the rooms taken, and only once the confirmation is written tell
       // their clients. From here the deadline only closes the socket (the write then
       // fails and the rooms stay): a confirmation may reach the peer whatever happens
@@ -359,6 +372,7 @@ struct HandoverChannel::Impl : std::enable_shared_from_this<HandoverChannel::Imp
       const nlohmann::json confirm = {{"fts_handover_confirm", kFormat}, {"rooms", std::move(taken)}};
       request = frame(owner->key, kConfirmLabel, challenge, confirm.dump());
       asio::async_write(socket, asio::buffer(request), [self = shared_from_this(), address, ms](auto e, std::size_t) {
+        // Not written whole: the peer cannot have read it, and forgets the rooms it holds.
         if (e) return self->fail("the confirmation to the peer " + self->peer + " failed: " + e.message());
         for (auto& room : self->rooms) {
           if (room.finished) continue;

@@ -202,6 +202,8 @@ TEST_CASE("Host hand-over: an adopted room is held until confirmed, else forgott
   auto& dan = b.join("dan", "join", lost);
   CHECK(dan.state() != ClientState::connected);
   CHECK(b.host->room_by_code(lost)->match().players.size() == 1);
+  // Nor is it handed on: the copy may be the sender's to keep.
+  CHECK(std::get<std::string>(b.host->export_rooms({lost})[0]).find("still arriving here") != std::string::npos);
 
   CHECK(b.host->confirm_adopted(by_sender, "sender"));
   CHECK_FALSE(b.host->confirm_adopted(by_sender, "sender"));  // once
