@@ -108,13 +108,12 @@ Metrics::Metrics(const std::string& address) : registry_(std::make_shared<promet
                        .Register(reg)
                        .Add({}, prometheus::Histogram::BucketBoundaries{0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005,
                                                                          0.01, 0.025, 0.05, 0.1});
-  counters_ = std::make_unique<std::array<Cumulative, kCounterRows>>();
   const auto rows = counter_table();
-  if (rows.size() != counters_->size()) throw std::logic_error("Metrics: counter_table() and kCounterRows differ");
+  counters_.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     auto& family = prometheus::BuildCounter().Name(rows[i].name).Help(rows[i].help).Register(reg);
-    (*counters_)[i].counter = &family.Add(rows[i].labels);
-    (*counters_)[i].value = rows[i].value;
+    counters_[i].counter = &family.Add(rows[i].labels);
+    counters_[i].value = rows[i].value;
   }
   exposer_->RegisterCollectable(registry_);
 }
@@ -131,7 +130,7 @@ void Metrics::update(const MetricsSample& s) {
   profiles_queued_->Set(static_cast<double>(s.profiles_queued));
   profiles_pending_->Set(static_cast<double>(s.profiles_pending));
   profiles_db_up_->Set(s.profiles ? (s.profiles_db_up ? 1 : 0) : -1);
-  for (auto& c : *counters_) {
+  for (auto& c : counters_) {
     const std::uint64_t v = c.value(s);
     if (v > c.seen) c.counter->Increment(static_cast<double>(v - c.seen));
     c.seen = v;

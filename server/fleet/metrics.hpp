@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <prometheus/counter.h>
 #include <prometheus/exposer.h>
@@ -68,10 +69,8 @@ class Metrics {
   prometheus::Gauge* profiles_db_up_ = nullptr;
   prometheus::Histogram* tick_seconds_ = nullptr;
   prometheus::Histogram* journal_sync_seconds_ = nullptr;
-  // The rows of counter_table() (metrics.cpp): 9 of their own, one per Counter or List of
-  // the fleet and one per drop reason.
-  static constexpr std::size_t kCounterRows = 15 + kFleetNameCount + protocol::kRejectCount;
-  std::unique_ptr<std::array<Cumulative, kCounterRows>> counters_;
+  // One for each row of counter_table() (metrics.cpp), however many it has.
+  std::vector<Cumulative> counters_;
 };
 
 }  // namespace fts::server
