@@ -72,6 +72,9 @@ std::size_t GameHost::room_moved(const std::string& code, const std::string& add
   if (it == rooms_.end()) return 0;
   Room& r = *it->second;
   const std::uint32_t id = r.id();
+  if (journal_base_) {  // first: from here a restart must not bring the room back (JournalRoot)
+    std::ofstream mark(journal_base_->dir / code / kMovedMark, std::ios::trunc);
+  }
   // The match goes on at the peer, and its results are made there: none here (no
   // close_careers), and the journal's directory goes (the peer keeps its own).
   const std::size_t told = endpoint_.move_room(id, address, code, now_ms);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <thread>
 
+#include "app/game_host.hpp"
 #include "app/log.hpp"
 #include "app/room_codes.hpp"
 #include "fts/room/match_config_json.hpp"
@@ -33,7 +34,15 @@ JournalRoot::JournalRoot(fs::path dir) : dir_(std::move(dir)) {
   }
   for (const auto& e : fs::directory_iterator(dir_, ec)) {
     const std::string name = e.path().filename().string();
-    if (e.is_directory() && name.ends_with(".closed")) fs::remove_all(e.path(), ec);
+    if (!e.is_directory()) continue;
+    if (name.ends_with(".closed")) {
+      fs::remove_all(e.path(), ec);
+    } else if (std::error_code mec; fs::exists(e.path() / GameHost::kMovedMark, mec)) {
+      // Handed over and confirmed: the room plays at the peer; resumed here it would play twice.
+      log_record(spdlog::level::info, "resume_skipped",
+                 {{"code", name}, {"reason", "the room was handed over to a peer: its journal goes"}});
+      fs::remove_all(e.path(), ec);
+    }
   }
 }
 

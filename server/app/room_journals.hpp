@@ -21,7 +21,9 @@ namespace fts::server {
 class JournalRoot {
  public:
   // Makes the directory if missing, takes the lock and removes leftovers of finished
-  // journals (<code>.closed). error() says why not (nothing else done then).
+  // journals (<code>.closed) and of rooms handed over to a peer (a directory holding
+  // GameHost::kMovedMark: the server stopped before its writer removed it). error() says
+  // why not (nothing else done then).
   explicit JournalRoot(std::filesystem::path dir);
   ~JournalRoot();
   JournalRoot(const JournalRoot&) = delete;

@@ -155,11 +155,14 @@ TEST_CASE("Journal root: one server at a time - only room codes are rooms - fini
   fs::create_directories(root / "ABCDE");
   fs::create_directories(root / "main");
   fs::create_directories(root / "BCDEF.closed");
+  fs::create_directories(root / "CDEFG");  // handed over to a peer before the server stopped
+  std::ofstream(root / "CDEFG" / server::GameHost::kMovedMark).put('\n');
   {
     server::JournalRoot first(root);
     REQUIRE(first.error().empty());
     CHECK(first.room_codes() == std::vector<std::string>{"ABCDE"});
     CHECK_FALSE(fs::exists(root / "BCDEF.closed"));
+    CHECK_FALSE(fs::exists(root / "CDEFG"));
     server::JournalRoot second(root);
     CHECK_THAT(second.error(), Catch::Contains("in use by another server"));
   }
