@@ -3,8 +3,9 @@
 # as a person would: a new player joins a bot room that is at level 5 or later, steers
 # with keys and the mouse, chats, buys in the shop, goes idle, comes back, and reaches
 # the next level with coins of their own.
-#  1. A real fts-server and three private rooms of two shopper bots each; the first
-#     room whose server log says level 5 (or later) has started is the one joined.
+#  1. A real fts-server (nine lives a player: see the config) and three private rooms of
+#     two shopper bots each; the first room whose server log says level 5 (or later) has
+#     started is the one joined.
 #  2. fts-client --join CODE --name newbie: the HUD shows the late joiner's coins (the
 #     median of the room's players' value: Coins > 0) and "Protected" once its ball is on
 #     the platform (a newcomer during a level is protected).
@@ -58,8 +59,11 @@ wait_log() {
   done
 }
 
+# Nine lives, not the rules' three: on a loaded machine (the test command compiles beside
+# it) the newbie lost all three to the room's heavy bots before any shop twice in 2026-12-07's
+# cold runs, and an out player never sees the shop this test buys in.
 cat >"$WORK/config.json" <<'JSON'
-{"enemies_cap": 1, "lobby_timeout_s": 4, "shop_timeout_s": 24, "spawn_protection_s": 12}
+{"enemies_cap": 1, "lobby_timeout_s": 4, "shop_timeout_s": 24, "spawn_protection_s": 12, "player_lives": 9}
 JSON
 start_server "$SERVER" --time-scale 4 --idle-timeout-ms 5000 --max-per-address 16 --config "$WORK/config.json"
 
@@ -249,6 +253,7 @@ if ((!bought)); then
   next_move=0
   until in_shop; do
     ((SECONDS < deadline)) || fail "the level was not complete within 60 s"
+    [[ "$(lives)" == 0 ]] && fail "newbie lost every life before a shop (out: no shop to buy in)"
     if ((SECONDS >= next_move)); then
       tm send-keys -t newbie -l $'\x1b'"[<35;$(point_far);${mid_row}M"
       next_move=$((SECONDS + 1))
