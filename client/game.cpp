@@ -115,11 +115,7 @@ class Game {
                                     last_rx_ms_ = now_ms();
                                     conn_.endpoint().receive(bytes, last_rx_ms_);
                                   });
-    if (f.moved) {
-      note("Room moved to another server: playing on.");
-      view_.notice = "Room moved to another server: playing on";
-      view_.notice_ms = now_ms();
-    }
+    if (f.moved) notice("Room moved to another server: playing on.");
     if (!f.error.empty() && !f.opened) throw std::runtime_error(f.error);
     if (!f.error.empty()) note("Not followed: " + sanitize(f.error, 80) + ".");
   }
@@ -419,6 +415,8 @@ class Game {
   void ask_board(std::uint64_t now) { board_.ask(conn_.endpoint(), now); }
 
   void note(std::string line) { push_log(LogLine{std::move(line), now_ms()}); }
+  // A line of the log that also holds the footer for a moment (ViewState::notice).
+  void notice(std::string line) { view_.notice = line; view_.notice_ms = now_ms(); note(std::move(line)); }
 
   void push_log(LogLine line) {
     view_.messages.push_back(std::move(line));
