@@ -121,9 +121,8 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
   fs::create_directories(incoming, ec);
   // The segments, and the mark of a room held until the sender confirms it (resume_room
   // holds a room whose directory has it: a restart in between holds it again).
-  auto with_mark = files;
-  with_mark.emplace_back(kUnconfirmedMark, "");
-  for (const auto& [name, text] : with_mark) {
+  std::ofstream(incoming / kUnconfirmedMark, std::ios::trunc);
+  for (const auto& [name, text] : files) {
     std::ofstream out(incoming / name, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.close();
