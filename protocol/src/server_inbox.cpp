@@ -23,12 +23,13 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   q.now_ms = now_ms;
   q.bytes.assign(bytes.begin(), bytes.end());
   q.opened.reset();
-  auto [g, fresh] = inbox_group_of_.try_emplace(s->player_id, inbox_groups_used_);
+  auto [j, fresh] = inbox_job_of_.try_emplace(s->player_id, inbox_jobs_used_);
   if (fresh) {
-    if (inbox_groups_used_ == inbox_groups_.size()) inbox_groups_.emplace_back();
-    inbox_groups_[inbox_groups_used_++].clear();
+    if (inbox_jobs_used_ == inbox_jobs_.size()) inbox_jobs_.emplace_back();
+    inbox_jobs_[inbox_jobs_used_++].datagrams_.clear();
   }
-  inbox_groups_[g->second].push_back(inbox_used_++);
+  inbox_jobs_[j->second].datagrams_.push_back(&q);
+  ++inbox_used_;
 }
 
 void InboxJob::open(std::vector<std::uint8_t>& scratch) {
@@ -37,17 +38,12 @@ void InboxJob::open(std::vector<std::uint8_t>& scratch) {
     if (d->session_id == session_id_) d->opened.emplace(open_sealed(*seal_, d->bytes, version_, scratch));
 }
 
-std::vector<InboxJob>& ServerEndpoint::inbox_jobs() {
+std::span<InboxJob> ServerEndpoint::inbox_jobs() {
   serial_only("inbox_jobs");
-  // Made now that no datagram is queued any more (inbox_ keeps its places until applied).
-  inbox_jobs_.resize(inbox_groups_used_);
-  for (std::size_t i = 0; i < inbox_groups_used_; ++i) {
+  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
     InboxJob& job = inbox_jobs_[i];
-    job.datagrams_.clear();
     job.seal_ = nullptr;
     job.version_ = config_.version;
-    for (const std::size_t at : inbox_groups_[i]) job.datagrams_.push_back(&inbox_[at]);
-    if (job.datagrams_.empty()) continue;
     // The player's session now: only its datagrams are opened (an older session's, before
     // a hello replaced it, are applied as gone), and only its seal changes.
     auto it = sessions_.find(job.datagrams_.front()->player_id);
@@ -55,7 +51,7 @@ std::vector<InboxJob>& ServerEndpoint::inbox_jobs() {
     job.seal_ = &it->second.seal;
     job.session_id_ = it->second.session_id;
   }
-  return inbox_jobs_;
+  return {inbox_jobs_.data(), inbox_jobs_used_};
 }
 
 void ServerEndpoint::apply_inbox() {
@@ -72,8 +68,8 @@ void ServerEndpoint::apply_inbox() {
     q.opened.reset();
   }
   inbox_used_ = 0;
-  inbox_groups_used_ = 0;
-  inbox_group_of_.clear();
+  inbox_jobs_used_ = 0;
+  inbox_job_of_.clear();
 }
 
 }  // namespace fts::protocol

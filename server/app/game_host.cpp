@@ -327,7 +327,7 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   // The datagrams received since the last tick: opened on the pool, applied in order.
   {
-    auto& jobs = endpoint_.inbox_jobs();  // each a session's seal and datagrams, no endpoint
+    const auto jobs = endpoint_.inbox_jobs();  // each a session's seal and datagrams, no endpoint
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
     pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].open(open_scratch_[slot]); });
   }

@@ -78,7 +78,7 @@ TEST_CASE("Server jobs: each inbox job opens its own session's datagrams, in any
       for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
     }
   }
-  auto& jobs = t.server->inbox_jobs();
+  const auto jobs = t.server->inbox_jobs();
   REQUIRE(jobs.size() == 2);
   std::vector<std::uint8_t> scratch;
   for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) it->open(scratch);
@@ -100,7 +100,7 @@ TEST_CASE("Server jobs: each inbox job opens its own session's datagrams, in any
     t.clients[c]->update(t.now);
     for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
   }
-  auto& again = t.server->inbox_jobs();
+  const auto again = t.server->inbox_jobs();
   REQUIRE(again.size() == 2);
   again[1].open(scratch);
   t.server->apply_inbox();

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <set>
@@ -213,8 +214,8 @@ class ServerEndpoint {
   // arrival order, as receive() would have, and empties the queue. At most kMaxInbox
   // datagrams wait; beyond, they are dropped (rate_limited).
   void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
-  std::vector<InboxJob>& inbox_jobs();
-  std::size_t inbox_sessions() const { return inbox_groups_used_; }
+  std::span<InboxJob> inbox_jobs();
+  std::size_t inbox_sessions() const { return inbox_jobs_used_; }
   void apply_inbox();
   static constexpr std::size_t kMaxInbox = 65536;
   // Timers: heartbeats, result resends, time-outs, reconnect windows.
@@ -421,12 +422,13 @@ class ServerEndpoint {
   // beyond, freed) and the scratch of the payload being sealed.
   static constexpr std::size_t kSpareDatagrams = 4096;
   SendLane lane_;
-  std::vector<InboxDatagram> inbox_;   // the first inbox_used_ are this tick's
+  // The first inbox_used_ are this tick's (a deque: a job holds its datagrams' addresses
+  // while more are queued).
+  std::deque<InboxDatagram> inbox_;
   std::size_t inbox_used_ = 0;
-  std::vector<std::vector<std::size_t>> inbox_groups_;  // per session: its datagrams' places
-  std::size_t inbox_groups_used_ = 0;
-  std::map<std::uint32_t, std::size_t> inbox_group_of_;  // player id -> group
-  std::vector<InboxJob> inbox_jobs_;  // inbox_jobs(): the groups handed out
+  std::vector<InboxJob> inbox_jobs_;  // the first inbox_jobs_used_: one per session with datagrams
+  std::size_t inbox_jobs_used_ = 0;
+  std::map<std::uint32_t, std::size_t> inbox_job_of_;  // player id -> its job
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;
