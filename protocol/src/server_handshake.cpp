@@ -198,8 +198,8 @@ std::variant<ServerEndpoint::Session*, HelloAnswer> ServerEndpoint::take_back(Se
     send_packet(s, {make_error(ErrorCode::taken_over, "another connection took this player over with its token")}, false, now_ms);
   start_session(s, from, enc, hello, proven.keys, now_ms);
   s.welcomed_as_reconnect = true;
-  events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, token.empty() ? "identity" : "token", false,
-                     s.room, s.spectator, s.identity});
+  const char* how = token.empty() ? ServerEvent::kByIdentity : ServerEvent::kByToken;
+  events_.push_back({ServerEvent::Kind::reconnected, s.player_id, s.name, how, false, s.room, s.spectator, s.identity});
   return &s;
 }
 

@@ -240,7 +240,7 @@ void GameHost::dispatch(std::uint64_t now_ms) {
     if (auto it = rooms_.find(e.room); it != rooms_.end()) {
       // A player of an adopted room came back: the sender told it where, so it had confirmed.
       // (With its token only: a player taken back by its identity may have come by quick play.)
-      if (e.kind == K::reconnected && e.reason == "token" && !e.spectator && it->second->unconfirmed_until_ms != 0)
+      if (e.kind == K::reconnected && e.reason == protocol::ServerEvent::kByToken && !e.spectator && it->second->unconfirmed_until_ms != 0)
         confirm_adopted(it->second->code(), "client");
       it->second->on_event(e, endpoint_);
     }

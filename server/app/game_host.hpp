@@ -136,9 +136,9 @@ class GameHost {
   // the file kUnconfirmedMark, so that a server restarted with --resume holds it again.
   static constexpr std::uint64_t kUnconfirmedMs = 10'000;
   static constexpr const char* kUnconfirmedMark = "unconfirmed";
-  // The sender's side: room_moved marks the room's journal directory so before anything
-  // else (its writer removes the directory later, on its own thread), so that a server
-  // stopped in between does not resume a room that now plays at the peer (JournalRoot).
+  // The sender's side: room_moved first marks the room's journal directory with this file
+  // (its writer removes the directory later, on its own thread), so that a server stopped
+  // in between does not resume a room that now plays at the peer (JournalRoot removes it).
   static constexpr const char* kMovedMark = "moved";
   // `by`: "sender" or "client" (logged). False when no such room is held unconfirmed.
   bool confirm_adopted(const std::string& code, const char* by);

@@ -150,8 +150,11 @@ struct ServerEvent {
   std::string name;
   // For the host's log: the name of the ErrorCode the session was sent when one ended it
   // (kick, idle: to_string of codes.hpp's row, never spelled here), else how the link
-  // ended ("timeout", the bye's reason, "replaced", "restart", "match over", ...).
+  // ended ("timeout", the bye's reason, "replaced", "restart", "match over", ...); for a
+  // reconnect, how the player was taken back: kByToken or kByIdentity.
   std::string reason;
+  static constexpr const char* kByToken = "token";
+  static constexpr const char* kByIdentity = "identity";
   bool quit = false;  // disconnected by the client's bye: its seat is free (PROTOCOL.md 5.4)
   std::uint32_t room = 0;
   bool spectator = false;
