@@ -63,7 +63,10 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
                              std::uint64_t now_ms) {
   serial_only("receive");
   Session* s = screen(from, bytes, now_ms);
-  if (s) handle_opened(*s, open_sealed(s->seal, bytes, config_.version, plain_), now_ms);
+  if (!s) return;
+  applied_.clear();
+  s->apply(open_sealed(s->seal, bytes, config_.version, plain_), now_ms, config_, applied_, rejects_);
+  settle(s->player_id, s->session_id, applied_, now_ms);
 }
 
 ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<const std::uint8_t> bytes,
@@ -130,15 +133,6 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
   return nullptr;
 }
 
-void ServerEndpoint::handle_opened(Session& s, const Decoded<Datagram>& d, std::uint64_t now_ms) {
-  if (!d) return rejects_.add(d.error());
-  if (!s.datagrams.take(now_ms)) {
-    ++s.rate_limited;
-    return rejects_.add(Reject::rate_limited);
-  }
-  handle_session(s, *d, now_ms);
-}
-
 // A spectator holds no seat (PROTOCOL.md 5.6): it counts against its own cap per host.
 std::size_t ServerEndpoint::sessions_from(std::string_view host, bool spectators) const {
   return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
@@ -176,79 +170,19 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
   return out;
 }
 
-void ServerEndpoint::connected_by_room(std::map<std::uint32_t, RoomSessions>& out) {
+const std::map<std::uint32_t, RoomSessions>& ServerEndpoint::connected_by_room() {
   serial_only("connected_by_room");
-  for (auto& [room, members] : out) members.sessions_.clear();
+  if (by_room_generation_ == sessions_.generation()) return by_room_;
+  by_room_generation_ = sessions_.generation();
+  for (auto& [room, members] : by_room_) members.sessions_.clear();
   for (auto& [id, s] : sessions_)
     if (s.connected) {
-      RoomSessions& members = out[s.room];
+      RoomSessions& members = by_room_[s.room];
       members.version_ = config_.version;
       members.sessions_.push_back(&s);
     }
-  std::erase_if(out, [](const auto& kv) { return kv.second.empty(); });
-}
-
-void ServerEndpoint::handle_session(Session& s, const Datagram& d, std::uint64_t now_ms) {
-  // Validate every message before any state changes.
-  for (const auto& m : d.messages) {
-    if (!std::holds_alternative<Input>(m) && !std::holds_alternative<Command>(m) &&
-        !std::holds_alternative<Ping>(m) && !std::holds_alternative<Bye>(m))
-      return rejects_.add(Reject::unexpected);
-  }
-  std::vector<std::uint16_t> acked;
-  if (!s.acks.on_receive(d.header, now_ms, acked)) return rejects_.add(Reject::stale);
-  s.last_receive_ms = now_ms;
-  for (auto seq : acked) {
-    s.results.on_acked(seq);
-    s.chats.on_acked(seq);
-  }
-  for (const auto& m : d.messages) {
-    if (const auto* in = std::get_if<Input>(&m)) {
-      s.snapshots.on_ack(in->snapshot_ack);
-      if (s.spectator) continue;  // a spectator's input is its heartbeat and acks, nothing more
-      std::vector<InputFrame> frames = in->frames;
-      std::sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
-      for (const auto& f : frames) {
-        if (f.seq <= s.last_input_seq) continue;
-        // A frame far ahead of the last one applied is not from an honest client (one
-        // frame per tick): ignored, so it cannot make the real frames look old.
-        if (f.seq - s.last_input_seq > config_.max_input_lead) {
-          rejects_.add(Reject::out_of_range);
-          continue;
-        }
-        s.last_input_seq = f.seq;
-        inputs_.push_back({s.player_id, s.room, f});
-        if (f.move_x != 0 || f.move_y != 0 || f.fire) {
-          s.last_active_ms = now_ms;
-          s.played = true;
-        }
-      }
-    } else if (const auto* c = std::get_if<Command>(&m)) {
-      // rid 0 names no place in the reliable order: that message alone is dropped.
-      if (c->rid == 0) {
-        rejects_.add(Reject::out_of_range);
-        continue;
-      }
-      if (auto why = s.commands.accept(*c)) rejects_.add(*why);
-      for (auto& cmd : s.commands.take()) {
-        ++s.unanswered;
-        s.last_active_ms = now_ms;
-        s.played = true;
-        // A field that did not read: answered here, never applied (PROTOCOL.md 4.6).
-        if (!cmd.fault.empty()) answer_fault(s, cmd, now_ms);
-        else commands_.push_back({s.player_id, s.room, cmd});
-      }
-      if (s.commands.buffered() + s.unanswered > config_.max_pending_commands)
-        return overflow(s, "commands", now_ms);
-    } else if (const auto* bye = std::get_if<Bye>(&m)) {
-      // A player who quits gives its seat up at once; its progress stays for the window.
-      s.quit = true;
-      drop_connection(s, bye->reason.empty() ? "bye" : bye->reason, now_ms);
-      // A health check leaves no player behind: its slot is free at once.
-      if (bye->reason == kProbeByeReason) release(s.player_id, kProbeByeReason);
-      return;
-    }
-  }
+  std::erase_if(by_room_, [](const auto& kv) { return kv.second.empty(); });
+  return by_room_;
 }
 
 void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool with_results,
@@ -307,14 +241,9 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
   serial_only("send_result");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
-  Session& s = it->second;
-  message.resize(std::min<std::size_t>(message.size(), kMaxTextBytes));
-  for (char& c : message)
-    if (c < 0x20 || c > 0x7E) c = '?';
-  if (s.unanswered > 0) --s.unanswered;
-  s.results.push(Result{0, command_rid, code == ResultCode::ok, std::string(to_string(code)), std::move(message)});
   // Sent by the next update(), batched with the session's other due results.
-  if (s.results.pending() > config_.max_pending_results) overflow(s, "results", now_ms);
+  if (!it->second.answer(command_rid, code, std::move(message), config_.max_pending_results))
+    overflow(it->second, "results", now_ms);
 }
 
 bool ServerEndpoint::send_board(std::uint32_t player_id, const Leaderboard& board, std::uint64_t now_ms) {
@@ -323,18 +252,6 @@ bool ServerEndpoint::send_board(std::uint32_t player_id, const Leaderboard& boar
   if (it == sessions_.end() || !it->second.connected) return false;
   send_packet(it->second, {board}, false, now_ms);
   return true;
-}
-
-void ServerEndpoint::answer_fault(Session& s, const Command& c, std::uint64_t now_ms) {
-  rejects_.add(Reject::bad_field);
-  // op and item have their own codes (the same as an unknown op or item); any other
-  // field is "field".
-  const ResultCode code = c.fault == "op" ? ResultCode::op : c.fault == "item" ? ResultCode::item : ResultCode::field;
-  const std::string why = c.fault == "op"     ? "op must be text: buy, ready, again, chat, rooms, top or forget"
-                          : c.fault == "item" ? "item must be one printable character: m s a r l x b"
-                          : c.fault == "text" ? "text must be text of at most 200 bytes"
-                                              : c.fault + " is not valid";
-  send_result(s.player_id, c.rid, code, "command not applied: " + why, now_ms);
 }
 
 void ServerEndpoint::update(std::uint64_t now_ms) {

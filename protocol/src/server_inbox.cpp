@@ -1,6 +1,6 @@
-// ServerEndpoint's deferred receiving (issue 29): screened at once, queued, opened one
-// session per job on the host's threads (an InboxJob: server_jobs.hpp), applied in
-// arrival order (server.hpp).
+// ServerEndpoint's deferred receiving (issues 29, 39): screened at once, queued, opened and
+// applied one session per job on the host's threads (an InboxJob: server_jobs.hpp), then
+// what they left for everyone settled in arrival order (settle).
 #include "fts/protocol/server.hpp"
 
 namespace fts::protocol {
@@ -22,7 +22,7 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   q.session_id = s->session_id;
   q.now_ms = now_ms;
   q.bytes.assign(bytes.begin(), bytes.end());
-  q.opened.reset();
+  q.applied.clear();
   auto [j, fresh] = inbox_job_of_.try_emplace(s->player_id, inbox_jobs_used_);
   if (fresh) {
     if (inbox_jobs_used_ == inbox_jobs_.size()) inbox_jobs_.emplace_back();
@@ -32,44 +32,60 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   ++inbox_used_;
 }
 
-void InboxJob::open(std::vector<std::uint8_t>& scratch) {
-  if (!seal_) return;  // the session is gone: its datagrams are applied as such
-  for (InboxDatagram* d : datagrams_)
-    if (d->session_id == session_id_) d->opened.emplace(open_sealed(*seal_, d->bytes, version_, scratch));
+void InboxJob::run(std::vector<std::uint8_t>& scratch) {
+  bool ended = false;
+  for (InboxDatagram* d : datagrams_) {
+    d->applied.clear();
+    if (!session_ || ended || d->session_id != session_->session_id) {
+      rejects_.add(Reject::unknown_session);
+      continue;
+    }
+    session_->apply(open_sealed(session_->seal, d->bytes, config_->version, scratch), d->now_ms, *config_, d->applied,
+                    rejects_);
+    ended = d->applied.end != Applied::End::none;
+  }
 }
 
 std::span<InboxJob> ServerEndpoint::inbox_jobs() {
   serial_only("inbox_jobs");
   for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
     InboxJob& job = inbox_jobs_[i];
-    job.seal_ = nullptr;
-    job.version_ = config_.version;
-    // The player's session now: only its datagrams are opened (an older session's, before
-    // a hello replaced it, are applied as gone), and only its seal changes.
-    auto it = sessions_.find(job.datagrams_.front()->player_id);
-    if (it == sessions_.end()) continue;
-    job.seal_ = &it->second.seal;
-    job.session_id_ = it->second.session_id;
+    job.config_ = &config_;
+    job.rejects_ = {};
+    // The session its last datagram came for, if still connected under that id (a hashed
+    // lookup): datagrams of an older one, before a hello replaced it, are counted as gone;
+    // so are all, when a hello replaced it after the last.
+    ServerSession* s = sessions_.with_session_id(job.datagrams_.back()->session_id);
+    job.session_ = s && s->player_id == job.datagrams_.back()->player_id ? s : nullptr;
   }
   return {inbox_jobs_.data(), inbox_jobs_used_};
 }
 
 void ServerEndpoint::apply_inbox() {
   serial_only("apply_inbox");
+  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) rejects_.add(inbox_jobs_[i].rejects_);
   for (std::size_t at = 0; at < inbox_used_; ++at) {
     InboxDatagram& q = inbox_[at];
-    // An earlier datagram may have ended the session (bye, overflow) or a hello replaced it.
-    Session* s = live_session(q.player_id, q.session_id);
-    if (!s || !q.opened) {
-      rejects_.add(Reject::unknown_session);
-      continue;
-    }
-    handle_opened(*s, *q.opened, q.now_ms);
-    q.opened.reset();
+    settle(q.player_id, q.session_id, q.applied, q.now_ms);
   }
   inbox_used_ = 0;
   inbox_jobs_used_ = 0;
   inbox_job_of_.clear();
+}
+
+void ServerEndpoint::settle(std::uint32_t player_id, std::uint32_t session_id, Applied& applied,
+                            std::uint64_t now_ms) {
+  inputs_.insert(inputs_.end(), applied.inputs.begin(), applied.inputs.end());
+  for (auto& c : applied.commands) commands_.push_back(std::move(c));
+  if (applied.end == Applied::End::none) return;
+  Session* s = live_session(player_id, session_id);
+  if (!s) return;
+  if (applied.end == Applied::End::overflow) return overflow(*s, applied.why, now_ms);
+  // A player who quits gives its seat up at once; its progress stays for the window.
+  s->quit = true;
+  drop_connection(*s, applied.why.empty() ? "bye" : applied.why, now_ms);
+  // A health check leaves no player behind: its slot is free at once.
+  if (applied.why == kProbeByeReason) release(player_id, kProbeByeReason);
 }
 
 }  // namespace fts::protocol

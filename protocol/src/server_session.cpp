@@ -1,9 +1,110 @@
-// One client's session on the server (server_session.hpp): its datagrams' headers and seals.
+// One client's session on the server (server_session.hpp): what its datagrams do to it,
+// their headers and seals.
 #include "fts/protocol/server_session.hpp"
 
+#include <algorithm>
+
 #include "fts/protocol/constants.hpp"
+#include "fts/protocol/server.hpp"
 
 namespace fts::protocol {
+
+namespace {
+
+// Why a command whose field did not read is not applied (PROTOCOL.md 4.6): op and item have
+// their own codes (the same as an unknown op or item); any other field is "field".
+std::pair<ResultCode, std::string> fault_answer(const std::string& fault) {
+  const ResultCode code = fault == "op" ? ResultCode::op : fault == "item" ? ResultCode::item : ResultCode::field;
+  const std::string why = fault == "op"     ? "op must be text: buy, ready, again, chat, rooms, top or forget"
+                          : fault == "item" ? "item must be one printable character: m s a r l x b"
+                          : fault == "text" ? "text must be text of at most 200 bytes"
+                                            : fault + " is not valid";
+  return {code, "command not applied: " + why};
+}
+
+}  // namespace
+
+void ServerSession::apply(const Decoded<Datagram>& opened, std::uint64_t now_ms, const ServerConfig& config,
+                          Applied& out, RejectCounters& rejects) {
+  if (!opened) return rejects.add(opened.error());
+  if (!datagrams.take(now_ms)) {
+    ++rate_limited;
+    return rejects.add(Reject::rate_limited);
+  }
+  const Datagram& d = *opened;
+  // Validate every message before any state changes.
+  for (const auto& m : d.messages) {
+    if (!std::holds_alternative<Input>(m) && !std::holds_alternative<Command>(m) &&
+        !std::holds_alternative<Ping>(m) && !std::holds_alternative<Bye>(m))
+      return rejects.add(Reject::unexpected);
+  }
+  std::vector<std::uint16_t> acked;
+  if (!acks.on_receive(d.header, now_ms, acked)) return rejects.add(Reject::stale);
+  last_receive_ms = now_ms;
+  for (auto seq : acked) {
+    results.on_acked(seq);
+    chats.on_acked(seq);
+  }
+  auto end = [&](Applied::End how, std::string why) {
+    out.end = how;
+    out.why = std::move(why);
+  };
+  for (const auto& m : d.messages) {
+    if (const auto* in = std::get_if<Input>(&m)) {
+      snapshots.on_ack(in->snapshot_ack);
+      if (spectator) continue;  // a spectator's input is its heartbeat and acks, nothing more
+      std::vector<InputFrame> frames = in->frames;
+      std::sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.seq < b.seq; });
+      for (const auto& f : frames) {
+        if (f.seq <= last_input_seq) continue;
+        // A frame far ahead of the last one applied is not from an honest client (one
+        // frame per tick): ignored, so it cannot make the real frames look old.
+        if (f.seq - last_input_seq > config.max_input_lead) {
+          rejects.add(Reject::out_of_range);
+          continue;
+        }
+        last_input_seq = f.seq;
+        out.inputs.push_back({player_id, room, f});
+        if (f.move_x != 0 || f.move_y != 0 || f.fire) {
+          last_active_ms = now_ms;
+          played = true;
+        }
+      }
+    } else if (const auto* c = std::get_if<Command>(&m)) {
+      // rid 0 names no place in the reliable order: that message alone is dropped.
+      if (c->rid == 0) {
+        rejects.add(Reject::out_of_range);
+        continue;
+      }
+      if (auto why = commands.accept(*c)) rejects.add(*why);
+      for (auto& cmd : commands.take()) {
+        ++unanswered;
+        last_active_ms = now_ms;
+        played = true;
+        if (cmd.fault.empty()) {
+          out.commands.push_back({player_id, room, cmd});
+          continue;
+        }
+        // A field that did not read: answered here, never applied (PROTOCOL.md 4.6).
+        rejects.add(Reject::bad_field);
+        auto [code, text] = fault_answer(cmd.fault);
+        if (!answer(cmd.rid, code, std::move(text), config.max_pending_results)) return end(Applied::End::overflow, "results");
+      }
+      if (commands.buffered() + unanswered > config.max_pending_commands) return end(Applied::End::overflow, "commands");
+    } else if (const auto* bye = std::get_if<Bye>(&m)) {
+      return end(Applied::End::bye, bye->reason);
+    }
+  }
+}
+
+bool ServerSession::answer(std::uint32_t rid, ResultCode code, std::string message, std::size_t max_pending) {
+  message.resize(std::min<std::size_t>(message.size(), kMaxTextBytes));
+  for (char& c : message)
+    if (c < 0x20 || c > 0x7E) c = '?';
+  if (unanswered > 0) --unanswered;
+  results.push(Result{0, rid, code == ResultCode::ok, std::string(to_string(code)), std::move(message)});
+  return results.pending() <= max_pending;
+}
 
 Header ServerSession::next_header(std::uint16_t version, std::uint64_t now_ms) {
   Header h;
@@ -34,24 +135,26 @@ void ServerSession::seal_into(const Header& h, const std::vector<std::uint8_t>& 
 
 ServerSession* SessionTable::at_address(const Address& address) {
   const auto it = by_address_.find(address);
-  return it == by_address_.end() ? nullptr : &by_id_.at(it->second);
+  return it == by_address_.end() ? nullptr : it->second;
 }
 
 ServerSession* SessionTable::with_session_id(std::uint32_t id) {
   const auto it = by_session_id_.find(id);
-  return it == by_session_id_.end() ? nullptr : &by_id_.at(it->second);
+  return it == by_session_id_.end() ? nullptr : it->second;
 }
 
-void SessionTable::index(const ServerSession& s) {
-  by_session_id_[s.session_id] = s.player_id;
-  by_address_[s.address] = s.player_id;
+void SessionTable::index(ServerSession& s) {
+  ++generation_;
+  by_session_id_[s.session_id] = &s;
+  by_address_[s.address] = &s;
 }
 
 void SessionTable::unindex(const ServerSession& s) {
+  ++generation_;
   // Only the session's own entries: another session may hold the address by now.
-  if (auto it = by_session_id_.find(s.session_id); it != by_session_id_.end() && it->second == s.player_id)
+  if (auto it = by_session_id_.find(s.session_id); it != by_session_id_.end() && it->second == &s)
     by_session_id_.erase(it);
-  if (auto it = by_address_.find(s.address); it != by_address_.end() && it->second == s.player_id)
+  if (auto it = by_address_.find(s.address); it != by_address_.end() && it->second == &s)
     by_address_.erase(it);
 }
 

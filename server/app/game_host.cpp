@@ -313,23 +313,24 @@ void GameHost::tick(std::uint64_t now_ms) {
     stalled_logged_ms_ = stalled;
   }
   // Nobody idles while the players of their room cannot act: lobby, shop, game over; nor
-  // does a player out of lives, who watches. While a match runs (playing, shop) a player
-  // who leaves it is kept for its return until it ends (ServerEndpoint::set_keeps_departed);
-  // once nobody plays it any more (everyone left in it has quit), the reconnect window
-  // frees them as before, so that the match can end for those who watch.
+  // does a player out of lives, who watches (the room's job says so: Room::send_snapshots).
+  // While a match runs (playing, shop) a player who leaves it is kept for its return until
+  // it ends (ServerEndpoint::set_keeps_departed); once nobody plays it any more (everyone
+  // left in it has quit), the reconnect window frees them as before, so that the match can
+  // end for those who watch.
   for (const auto& [id, r] : rooms_) {
     const sim::MatchState& m = r->match();
     const bool played_on = std::any_of(m.players.begin(), m.players.end(),
                                        [](const sim::Player& p) { return p.in_match() && !p.parked; });
     endpoint_.set_idle_paused(id, m.phase != sim::Phase::playing);
     endpoint_.set_keeps_departed(id, (m.phase == sim::Phase::playing || m.phase == sim::Phase::shop) && played_on);
-    for (const sim::Player& p : m.players) endpoint_.set_watching(p.id.value, !p.in_match());
   }
-  // The datagrams received since the last tick: opened on the pool, applied in order.
+  // The datagrams received since the last tick: opened and applied to their sessions on
+  // the pool, what they left for everyone settled in arrival order.
   {
-    const auto jobs = endpoint_.inbox_jobs();  // each a session's seal and datagrams, no endpoint
+    const auto jobs = endpoint_.inbox_jobs();  // each a session and its datagrams, no endpoint
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
-    pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].open(open_scratch_[slot]); });
+    pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].run(open_scratch_[slot]); });
   }
   endpoint_.apply_inbox();
   answer_profiles(now_ms);  // before update(): the results go out in this tick's packets
@@ -345,13 +346,13 @@ void GameHost::tick(std::uint64_t now_ms) {
   }
   for (Room* r : order_) r->publish(endpoint_, now_ms);
   if (lanes_.size() < order_.size()) lanes_.resize(order_.size());
-  endpoint_.connected_by_room(connected_);  // one pass over the sessions, not one per room
+  const auto& connected = endpoint_.connected_by_room();  // made again only when sessions changed
   {
     // Each room's job: its room, its connected sessions and its lane; no endpoint.
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
     pool_.run(order_.size(), [&](std::size_t i, std::size_t) {
-      auto it = connected_.find(order_[i]->id());
-      if (it != connected_.end()) order_[i]->send_snapshots(it->second, now_ms, lanes_[i]);
+      auto it = connected.find(order_[i]->id());
+      if (it != connected.end()) order_[i]->send_snapshots(it->second, now_ms, lanes_[i]);
     });
   }
   for (std::size_t i = 0; i < order_.size(); ++i) endpoint_.adopt(lanes_[i]);
@@ -364,10 +365,10 @@ void GameHost::tick(std::uint64_t now_ms) {
     // Being handed over (the peer's answer decides), or adopted and not yet confirmed
     // (forget_unconfirmed decides: its match may go on at the sender, so no results here).
     if (r->frozen || r->unconfirmed_until_ms != 0) continue;
-    const bool connected = connected_.count(id) != 0;  // (rooms nobody is connected to are not in it)
-    if (!draining_ && (r->last_occupied_ms == 0 || connected)) {
+    const bool occupied = connected.count(id) != 0;  // (rooms nobody is connected to are not in it)
+    if (!draining_ && (r->last_occupied_ms == 0 || occupied)) {
       r->last_occupied_ms = now_ms;
-    } else if (!connected) {
+    } else if (!occupied) {
       const bool empty = endpoint_.holding_in_room(id) == 0;
       if (now_ms - r->last_occupied_ms >= (empty ? std::min(idle_ms, kEmptyRoomMs) : idle_ms)) idle.push_back(id);
     }

@@ -246,7 +246,6 @@ class GameHost {
   std::vector<std::vector<std::uint8_t>> open_scratch_;
   std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_
-  std::map<std::uint32_t, protocol::RoomSessions> connected_;  // this tick's, by room
 };
 
 protocol::ServerConfig make_endpoint_config(const Options& options, const sim::MatchConfig& config,

@@ -278,7 +278,8 @@ void Room::publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms) {
   endpoint.set_server_tick(id_, static_cast<std::uint32_t>(stepper_.match().tick));
 }
 
-void Room::send_snapshots(protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane) {
+void Room::send_snapshots(const protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane) {
+  for (const sim::Player& p : stepper_.match().players) members.set_watching(p.id.value, !p.in_match());
   // Rooms take turns (room 1 at multiples of ticks_per_snapshot_, room 2 a tick later...):
   // a host's snapshot work spreads over every tick instead of piling up on one in five.
   const auto turn = static_cast<std::int64_t>(id_ - 1);

@@ -69,12 +69,13 @@ class Room {
   // touches only this room (its match, record and journal queue) and may run on any
   // thread while other rooms step; publish() answers the step's commands, logs its
   // events and tells the endpoint the tick, on the thread that owns the endpoint, in
-  // room order; send_snapshots() seals this room's snapshot for `members` (its connected
-  // sessions, handed over by the endpoint: protocol/server_jobs.hpp) into `lane`, and may
-  // run beside other rooms' again: it is given no endpoint.
+  // room order; send_snapshots() marks who of `members` (its connected sessions, handed
+  // over by the endpoint: protocol/server_jobs.hpp) watches, out of lives, and seals this
+  // room's snapshot for them into `lane`; it may run beside other rooms' again: it is
+  // given no endpoint.
   void step(std::uint64_t now_ms);
   void publish(protocol::ServerEndpoint& endpoint, std::uint64_t now_ms);
-  void send_snapshots(protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane);
+  void send_snapshots(const protocol::RoomSessions& members, std::uint64_t now_ms, protocol::SendLane& lane);
   void flush();
   // Ends the record with the hash of the state now (the room closes).
   void seal();

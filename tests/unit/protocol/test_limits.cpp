@@ -118,6 +118,26 @@ TEST_CASE("Limits: unacknowledged results past the cap drop the session", "[prot
   CHECK(errors[0].code == "overflow");
 }
 
+TEST_CASE("Limits: commands answered as faulty past the results cap drop the session once", "[protocol][limits]") {
+  // Each command's text is over 200 bytes: answered at once (bad_field), never applied; the
+  // answers are never acknowledged. The 11th overflows the results in the middle of a
+  // datagram: the session is dropped there and nothing after it touches the session.
+  ServerConfig config = test_server_config();
+  config.max_pending_results = 10;
+  Flooder f(config);
+  f.h.server.take_datagrams();
+  for (std::uint32_t rid = 1; rid <= 15; rid += 3) {
+    std::vector<Message> batch;
+    for (std::uint32_t i = rid; i < rid + 3; ++i) batch.push_back(Command{i, CommandOp::chat, 0, std::string(201, 'x'), {}});
+    f.raw(batch);
+  }
+  CHECK(f.h.server.rejects()[Reject::bad_field] == 11);
+  CHECK(f.h.server.rejects()[Reject::overflow] == 1);
+  CHECK(f.h.server.take_commands().empty());
+  CHECK(f.h.server.connected_players().empty());
+  CHECK(f.released_for("overflow"));
+}
+
 TEST_CASE("Limits: acknowledged results never reach the cap", "[protocol][limits]") {
   ServerConfig config = test_server_config();
   config.max_pending_results = 8;  // the client acknowledges every 100 ms at least

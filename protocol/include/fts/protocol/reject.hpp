@@ -79,6 +79,9 @@ struct RejectCounters {
   std::array<std::uint64_t, kRejectCount> counts{};
 
   void add(Reject reason) { ++counts[static_cast<std::size_t>(reason)]; }
+  void add(const RejectCounters& more) {
+    for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += more.counts[i];
+  }
   std::uint64_t operator[](Reject reason) const { return counts[static_cast<std::size_t>(reason)]; }
   std::uint64_t total() const {
     std::uint64_t sum = 0;

@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <variant>
 #include <vector>
 
@@ -175,18 +176,6 @@ struct RestoredSession {
   bool foreign = false;
 };
 
-struct PlayerInput {
-  std::uint32_t player_id = 0;
-  std::uint32_t room = 0;
-  InputFrame frame;  // each (player, seq) delivered at most once, ascending seq
-};
-
-struct PlayerCommand {
-  std::uint32_t player_id = 0;
-  std::uint32_t room = 0;
-  Command command;  // each exactly once, in rid order
-};
-
 struct SessionInfo {
   std::uint32_t player_id = 0;
   std::string name;
@@ -279,12 +268,6 @@ class ServerEndpoint {
     serial_only("set_idle_paused");
     if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
   }
-  // A player out of lives who watches its room's match (the host says so, each tick) is
-  // never dropped for idling: it has nothing to press (issue 37).
-  void set_watching(std::uint32_t player_id, bool watching) {
-    serial_only("set_watching");
-    if (auto it = sessions_.find(player_id); it != sessions_.end()) it->second.watching = watching;
-  }
   // While the room's match runs (the host's playing and shop phases) a player who left
   // it stays the same player when it comes back, whatever the reconnect window: at the
   // window's end its session is kept, as after a quit (no seat, progress kept, its token
@@ -330,10 +313,10 @@ class ServerEndpoint {
   std::vector<std::uint32_t> connected_players() const;
   // Rooms: connected sessions of a room (players and spectators), seats taken (players
   // not quit, connected or held for a reconnect), connected spectators, every session.
-  // Every room's connected sessions in one pass (player id order within a room), each
-  // room's handed to its snapshot job (server_jobs.hpp): `out` is cleared and refilled,
-  // keeping its vectors' capacity.
-  void connected_by_room(std::map<std::uint32_t, RoomSessions>& out);
+  // Every room's connected sessions (player id order within a room), each room's handed
+  // to its snapshot job (server_jobs.hpp). Made again only when a session came, went or
+  // was connected or dropped since the last call (SessionTable::generation): valid until then.
+  const std::map<std::uint32_t, RoomSessions>& connected_by_room();
   std::vector<std::uint32_t> connected_in_room(std::uint32_t room) const;
   std::size_t seats_in_room(std::uint32_t room) const;
   std::size_t spectators_in_room(std::uint32_t room) const;
@@ -376,15 +359,15 @@ class ServerEndpoint {
   using Session = ServerSession;  // server_session.hpp: one client's session
 
   void overflow(Session& s, const std::string& what, std::uint64_t now_ms);
-  void answer_fault(Session& s, const Command& c, std::uint64_t now_ms);
   void handle_hello(const Address& from, const Header& header, const Hello& hello,
                     std::size_t request_bytes, std::uint64_t now_ms);
-  void handle_session(Session& s, const Datagram& d, std::uint64_t now_ms);
   // receive()'s checks before the crypto: the session a sealed datagram is for, or
   // nullptr when the datagram was dealt with (dropped and counted, or a handshake).
   Session* screen(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
-  // An opened datagram of `s`: the session's rate, then its messages.
-  void handle_opened(Session& s, const Decoded<Datagram>& d, std::uint64_t now_ms);
+  // What applying a datagram of session `session_id` left for everyone (its inputs and
+  // commands queued for the game; the session ended by a bye or an overflow), taken in
+  // arrival order. The shared half of applying a datagram; ServerSession::apply did the rest.
+  void settle(std::uint32_t player_id, std::uint32_t session_id, Applied& applied, std::uint64_t now_ms);
   // The session `player_id` if it is still the connected session `session_id`.
   Session* live_session(std::uint32_t player_id, std::uint32_t session_id);
   void reply_unconnected(const Address& to, Encoding encoding, std::uint32_t session,
@@ -411,6 +394,7 @@ class ServerEndpoint {
   ServerConfig config_;
   Handshake handshake_;  // what a hello must prove (handshake.hpp)
   std::vector<std::uint8_t> plain_;  // scratch: the payload of the datagram being opened
+  Applied applied_;  // scratch: what receive() applied
   SessionTable sessions_;  // by player id, address and session id; the player ids (server_session.hpp)
   AddressLimits limits_;  // the per-host limits: the one part the sessions of a host share
   std::uint64_t last_forget_ms_ = 0;
@@ -431,7 +415,9 @@ class ServerEndpoint {
   std::size_t inbox_used_ = 0;
   std::vector<InboxJob> inbox_jobs_;  // the first inbox_jobs_used_: one per session with datagrams
   std::size_t inbox_jobs_used_ = 0;
-  std::map<std::uint32_t, std::size_t> inbox_job_of_;  // player id -> its job
+  std::unordered_map<std::uint32_t, std::size_t> inbox_job_of_;  // player id -> its job
+  std::map<std::uint32_t, RoomSessions> by_room_;  // connected_by_room(), as of by_room_generation_
+  std::uint64_t by_room_generation_ = ~std::uint64_t{0};
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;

@@ -2,12 +2,11 @@
 // open, or one room's connected sessions to send a snapshot to, and the lane it seals
 // into; never the endpoint. Two jobs hold disjoint sessions, so the types, not a comment,
 // keep them apart. The endpoint makes them in its serial part (ServerEndpoint::inbox_jobs,
-// connected_by_room); they stay valid until the endpoint is next called (no session comes
-// or goes while the jobs run).
+// connected_by_room); an InboxJob stays valid until the endpoint is next called, a
+// RoomSessions until a session comes, goes, connects or drops (none does while jobs run).
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "fts/protocol/codec.hpp"
@@ -34,23 +33,24 @@ struct InboxDatagram {
   std::uint32_t player_id = 0, session_id = 0;
   std::uint64_t now_ms = 0;
   std::vector<std::uint8_t> bytes;  // kept for the next datagram's copy
-  std::optional<Decoded<Datagram>> opened;
+  Applied applied;  // what applying it left for the endpoint (its vectors kept, like bytes)
 };
 
-// One session's datagrams of this tick, to open (replay window, tag, payload) with its
-// seal. A session gone since they came has no seal: its datagrams stay unopened and are
-// counted as such when applied (unknown_session).
+// One session's datagrams of this tick, to open (replay window, tag, payload) and apply
+// (ServerSession::apply) on a worker, in arrival order. Touches that session, its
+// datagrams and its own reject counts; the endpoint settles what they left, serially.
+// Datagrams of a session gone or replaced since they came, or after one that ended it,
+// are counted unknown_session.
 class InboxJob {
  public:
-  // In arrival order; `scratch` is the calling thread's buffer (the pool keeps one per
-  // thread).
-  void open(std::vector<std::uint8_t>& scratch);
+  // `scratch` is the calling thread's buffer (the pool keeps one per thread).
+  void run(std::vector<std::uint8_t>& scratch);
 
  private:
   friend class ServerEndpoint;
-  SealedChannel* seal_ = nullptr;
-  std::uint32_t session_id_ = 0;  // the session's now: datagrams of an older one stay unopened
-  std::uint16_t version_ = 0;
+  ServerSession* session_ = nullptr;  // nullptr: gone
+  const ServerConfig* config_ = nullptr;
+  RejectCounters rejects_;
   std::vector<InboxDatagram*> datagrams_;
 };
 
@@ -66,8 +66,14 @@ class RoomSessions {
   bool empty() const { return sessions_.empty(); }
   std::size_t size() const { return sessions_.size(); }
   // The snapshot to each of them, sealed into `lane`.
-  void send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) {
+  void send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const {
     for (ServerSession* s : sessions_) seal_snapshot(*s, version_, quantized, now_ms, lane);
+  }
+  // A player out of lives who watches its room's match (the room's job says so, each
+  // tick) is never dropped for idling: it has nothing to press (issue 37).
+  void set_watching(std::uint32_t player_id, bool watching) const {
+    for (ServerSession* s : sessions_)
+      if (s->player_id == player_id) s->watching = watching;
   }
 
  private:

@@ -7,8 +7,10 @@
 //             whose Handshake (handshake.hpp) checks what the hello proves;
 //   opened    open_sealed with the session's `seal` (its keys and replay window): at once
 //             in receive(), or per session on a worker in an InboxJob (server_jobs.hpp);
-//   applied   ServerEndpoint::handle_opened, then handle_session (server.cpp): acks,
-//             inputs, commands exactly once, chat, bye;
+//   applied   ServerSession::apply (server_session.cpp), on the session's own: its rate,
+//             acks, inputs, commands exactly once, bye; what it leaves for everyone
+//             (an Applied) is settled by ServerEndpoint::settle (server_inbox.cpp), in
+//             arrival order;
 //   answered  send_packet / seal_snapshot (server.cpp), each datagram stamped by
 //             next_header and sealed by seal_into below.
 #pragma once
@@ -16,13 +18,16 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
 #include "fts/protocol/ack.hpp"
 #include "fts/protocol/codec.hpp"
+#include "fts/protocol/codes.hpp"
 #include "fts/protocol/header.hpp"
 #include "fts/protocol/limits.hpp"
+#include "fts/protocol/reject.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
@@ -36,6 +41,39 @@ using Address = std::string;
 struct Outgoing {
   Address to;
   std::vector<std::uint8_t> bytes;
+};
+
+struct ServerConfig;
+
+// What the game takes from the sessions (ServerEndpoint::take_inputs, take_commands).
+struct PlayerInput {
+  std::uint32_t player_id = 0;
+  std::uint32_t room = 0;
+  InputFrame frame;  // each (player, seq) delivered at most once, ascending seq
+};
+
+struct PlayerCommand {
+  std::uint32_t player_id = 0;
+  std::uint32_t room = 0;
+  Command command;  // each exactly once, in rid order
+};
+
+// What applying one datagram to its session leaves for the endpoint, which shares it with
+// every other session: the game's inputs and commands, and whether the datagram ended the
+// session. Filled by ServerSession::apply (on any thread: it touches that session only),
+// settled by the endpoint in its serial part, in the datagrams' arrival order.
+struct Applied {
+  enum class End : std::uint8_t { none, bye, overflow };
+  std::vector<PlayerInput> inputs;
+  std::vector<PlayerCommand> commands;
+  End end = End::none;
+  std::string why;  // a bye's reason; an overflow's queue ("commands", "results")
+  void clear() {
+    inputs.clear();
+    commands.clear();
+    end = End::none;
+    why.clear();
+  }
 };
 
 struct ServerSession {
@@ -69,8 +107,20 @@ struct ServerSession {
   std::uint32_t room = 0;
   std::string room_code;
   bool spectator = false;  // no seat; inputs dropped; never idle
-  bool watching = false;   // out of lives (set_watching): never idle
+  bool watching = false;   // out of lives (RoomSessions::set_watching): never idle
   bool kept = false;       // past its reconnect window, kept while its room's match runs
+
+  // Applies an opened datagram of this session (`opened` its decoding or why it did not
+  // decode): its rate, acks, inputs (ahead of the last applied, by at most
+  // config.max_input_lead) and commands, each exactly once; a command whose field did not
+  // read is answered here. Touches this session, `out` and `rejects` only: sessions on
+  // different threads apply at once. After a bye or an overflow (out.end) the session takes
+  // nothing more; the endpoint ends it.
+  void apply(const Decoded<Datagram>& opened, std::uint64_t now_ms, const ServerConfig& config, Applied& out,
+             RejectCounters& rejects);
+  // Queues the result of command `rid` (its text cut to printable ASCII and kMaxTextBytes);
+  // false when the results waiting for the client's acks are over `max_pending` (an overflow).
+  bool answer(std::uint32_t rid, ResultCode code, std::string message, std::size_t max_pending);
 
   // The header of this session's next datagram: its encoding and id, its acks stamped
   // (the sequence counts on).
@@ -102,12 +152,18 @@ class SessionTable {
   Map::const_iterator find(std::uint32_t player_id) const { return by_id_.find(player_id); }
   ServerSession& at(std::uint32_t player_id) { return by_id_.at(player_id); }
   // A new session (or the one there is) with this player id, not indexed yet.
-  ServerSession& operator[](std::uint32_t player_id) { return by_id_[player_id]; }
+  ServerSession& operator[](std::uint32_t player_id) {
+    ++generation_;
+    return by_id_[player_id];
+  }
   // Removes the session, and its entries in the indexes.
   void erase(Map::iterator it) {
     unindex(it->second);
     by_id_.erase(it);
   }
+  // Moves on whenever a session is made, indexed, unindexed or erased: the set of connected
+  // sessions (and where they live) is the same as long as it does not.
+  std::uint64_t generation() const { return generation_; }
 
   // The connected session at `address`, or with session id `id` (nullptr: none).
   ServerSession* at_address(const Address& address);
@@ -115,7 +171,7 @@ class SessionTable {
   bool session_id_taken(std::uint32_t id) const { return by_session_id_.count(id) != 0; }
   // The session's address and session id are its own in the indexes from now on; unindex
   // takes them out (the session stays, disconnected or gone).
-  void index(const ServerSession& s);
+  void index(ServerSession& s);
   void unindex(const ServerSession& s);
 
   // Player ids (ServerEndpoint::reserve_player_ids and take_player_id say why): the next
@@ -131,8 +187,11 @@ class SessionTable {
 
  private:
   Map by_id_;
-  std::map<Address, std::uint32_t> by_address_;
-  std::map<std::uint32_t, std::uint32_t> by_session_id_;
+  // Hashed, to the session in by_id_ (a map's nodes stay put): screen() looks every
+  // datagram up by its session id, in the serial part of a tick.
+  std::unordered_map<Address, ServerSession*> by_address_;
+  std::unordered_map<std::uint32_t, ServerSession*> by_session_id_;
+  std::uint64_t generation_ = 0;
   std::uint32_t next_player_id_ = 1;
   std::set<std::uint32_t> taken_player_ids_;  // ids above next_player_id_ taken by rooms from elsewhere
 };
