@@ -107,7 +107,7 @@ def main():
     import harness
     import sealed
     from harness import Failure, Server, check, wait_for
-    from test_abuse import Script, answers
+    from scripted import Script, answers
     harness.SERVER = os.path.abspath(sys.argv[1])
     client = os.path.abspath(sys.argv[2])
     started = time.monotonic()

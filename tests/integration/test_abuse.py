@@ -21,85 +21,14 @@ codes:        the codes and drop reasons PROTOCOL.md's tables give, on the wire 
               truncated (it was forged), a full server server_full (never "full").
 room_flood:   one host makes a private room and leaves it every 0.2 s; another host's quick
               play and create are each welcomed within a second throughout (issue 36).
-Scripted sessions speak PROTOCOL.md directly (JSON encoding, sealed with PyNaCl as in
-sealed.py) from Python sockets."""
-import json, os, socket, struct, sys, time
+Scripted sessions (scripted.py) speak PROTOCOL.md directly (JSON encoding, sealed with
+PyNaCl as in sealed.py) from Python sockets."""
+import json, os, sys, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import Failure, Server, check, main, records, run_bots, start_bots, finish_bots, wait_for  # noqa: E402
+from harness import Failure, Server, check, main, records, start_bots, finish_bots, wait_for  # noqa: E402
 import sealed  # noqa: E402
-
-FLOOD_HOST = "127.0.0.2"  # another host than the real bots (127.0.0.1)
-
-
-class Script:
-    """One handshake from its own port (sealed.Handshake, PROTOCOL.md 5 and 5.7); resends
-    its hello every 250 ms like a client. Once welcomed, `session` seals what it sends."""
-
-    def __init__(self, port, nonce, bind=FLOOD_HOST, **hello):
-        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        self.sock.bind((bind, 0))
-        self.sock.setblocking(False)
-        self.server = ("127.0.0.1", port)
-        self.hs = sealed.Handshake(f"script{nonce % 100}", nonce, **hello)
-        self.last_hello = 0.0
-
-    @property
-    def session(self):
-        return self.hs.session
-
-    @property
-    def error(self):
-        return self.hs.error
-
-    def done(self):
-        return self.session is not None or self.error is not None
-
-    def pump(self):
-        while True:
-            try:
-                data = self.sock.recv(2048)
-            except BlockingIOError:
-                break
-            if self.hs.receive(data):
-                self.last_hello = 0.0
-        if not self.done() and time.monotonic() - self.last_hello >= 0.25:
-            self.sock.sendto(self.hs.hello(), self.server)
-            self.last_hello = time.monotonic()
-
-    def received(self):
-        """The messages of every sealed datagram waiting (those that open)."""
-        out = []
-        while True:
-            try:
-                data = self.sock.recv(2048)
-            except BlockingIOError:
-                return out
-            out.extend(self.session.open(data) or [])
-
-
-def handshake_all(scripts, timeout_s):
-    def all_done():
-        for s in scripts:
-            s.pump()
-        return all(s.done() for s in scripts)
-    wait_for(all_done, timeout_s, "every scripted handshake to end")
-
-
-def rss_kb(pid):
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return 0
-
-
-def sanitized(pid):
-    """AddressSanitizer's quarantine and shadow memory grow with any allocation, so an
-    RSS bound only means something for an unsanitized server."""
-    with open(f"/proc/{pid}/maps") as f:
-        return "libasan" in f.read()
-
+from scripted import FLOOD_HOST, Script, answers, handshake_all, rss_kb, sanitized  # noqa: E402
 
 def test_address_full():
     with Server("--max-per-address", "4") as srv:
@@ -224,26 +153,6 @@ def test_forged():
                  5, "the result of the script's own sealed command")
         print(f"own command answered: {answered[0]}")
         check(answered[0]["rid"] == 1, f"result: {answered[0]}")
-
-
-def answers(script, want, timeout_s, chats=None):
-    """Pumps the script's session (heartbeats carry its acks) until results for every
-    rid in `want` arrived; returns {cmd rid: result}. Chat lines go to `chats`."""
-    got = {}
-    last = [0.0]
-
-    def done():
-        for m in script.received():
-            if m.get("t") == "result":
-                got.setdefault(m["cmd"], m)
-            elif m.get("t") == "chat" and chats is not None and m["rid"] not in [c["rid"] for c in chats]:
-                chats.append(m)
-        if time.monotonic() - last[0] > 0.05:
-            script.sock.sendto(script.session.datagram([{"t": "input", "ack": 0, "f": []}]), script.server)
-            last[0] = time.monotonic()
-        return all(r in got for r in want)
-    wait_for(done, timeout_s, f"results for commands {sorted(set(want) - set(got))}")
-    return got
 
 
 def bad_field_cases():
