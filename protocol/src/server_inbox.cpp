@@ -63,7 +63,10 @@ std::span<InboxJob> ServerEndpoint::inbox_jobs() {
 
 void ServerEndpoint::apply_inbox() {
   serial_only("apply_inbox");
-  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) rejects_.add(inbox_jobs_[i].rejects_);
+  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
+    rejects_.add(inbox_jobs_[i].rejects_);
+    inbox_jobs_[i].rejects_ = {};  // counted once, whatever calls come next
+  }
   for (std::size_t at = 0; at < inbox_used_; ++at) {
     InboxDatagram& q = inbox_[at];
     settle(q.player_id, q.session_id, q.applied, q.now_ms);

@@ -201,10 +201,11 @@ class ServerEndpoint {
   // checks at once (the sender's rate, the header, the version, the session and its
   // address; a handshake datagram is handled at once) and queues the rest of a session's
   // datagram. inbox_jobs() hands out one InboxJob for each session with queued datagrams
-  // (server_jobs.hpp: its seal and its datagrams, nothing else), to open on the pool while
-  // nothing calls the endpoint. apply_inbox() then applies every opened datagram in
-  // arrival order, as receive() would have, and empties the queue. At most kMaxInbox
-  // datagrams wait; beyond, they are dropped (rate_limited).
+  // (server_jobs.hpp: the session and its datagrams, nothing else), to open and apply on
+  // the pool while nothing calls the endpoint. apply_inbox() then settles what they left
+  // (inputs, commands, ended sessions) in arrival order, as receive() would have, and
+  // empties the queue. At most kMaxInbox datagrams wait; beyond, they are dropped
+  // (rate_limited).
   void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
   std::span<InboxJob> inbox_jobs();
   std::size_t inbox_sessions() const { return inbox_jobs_used_; }

@@ -141,6 +141,11 @@ class SessionTable {
   using Map = std::map<std::uint32_t, ServerSession>;
 
   explicit SessionTable(std::uint32_t first_player_id = 1) : next_player_id_(first_player_id == 0 ? 1 : first_player_id) {}
+  // Not copied: the indexes point into this table's sessions (a move keeps them in place).
+  SessionTable(const SessionTable&) = delete;
+  SessionTable& operator=(const SessionTable&) = delete;
+  SessionTable(SessionTable&&) = default;
+  SessionTable& operator=(SessionTable&&) = default;
 
   Map::iterator begin() { return by_id_.begin(); }
   Map::iterator end() { return by_id_.end(); }
