@@ -15,7 +15,7 @@ usage: FTS_BIN_DIR=build python3 tests/bench/server_load.py [--rooms 1] [--bots 
 import argparse, json, os, sys, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
-from harness import Server, finish_bots, start_bots  # noqa: E402
+from harness import Server, finish_bots, rss_kib, start_bots  # noqa: E402
 
 
 def cpu_s(pid):
@@ -23,15 +23,6 @@ def cpu_s(pid):
     with open(f"/proc/{pid}/stat") as f:
         fields = f.read().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def rss_kib(pid):
-    """The resident set of a process now, KiB (/proc/PID/status VmRSS)."""
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return 0
 
 
 def main():

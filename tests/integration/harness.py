@@ -92,6 +92,15 @@ def records(srv, event):
     return out
 
 
+def rss_kib(pid):
+    """The resident set of a process now, KiB (/proc/PID/status VmRSS)."""
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    return 0
+
+
 def start_bots(*args):
     """Starts fts-bot with a report file; returns (process, report path)."""
     fd, report = tempfile.mkstemp(prefix="fts-bot-", suffix=".json")

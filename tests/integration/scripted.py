@@ -64,14 +64,6 @@ def handshake_all(scripts, timeout_s):
     wait_for(all_done, timeout_s, "every scripted handshake to end")
 
 
-def rss_kb(pid):
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return 0
-
-
 def sanitized(pid):
     """AddressSanitizer's quarantine and shadow memory grow with any allocation, so an
     RSS bound only means something for an unsanitized server."""

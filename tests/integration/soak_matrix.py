@@ -18,7 +18,7 @@ usage: FTS_BIN_DIR=build python3 tests/integration/soak_matrix.py [CELL ...|all]
 import argparse, csv, json, os, re, select, shutil, signal, statistics, subprocess, sys, tempfile, time
 from datetime import datetime
 
-from harness import BIN, HERE, Failure, Server, check, finish_bots, start_bots, wait_for
+from harness import BIN, HERE, Failure, Server, check, finish_bots, rss_kib, start_bots, wait_for
 
 ROOMS, BOTS = 8, 8
 PLAYERS = ROOMS * BOTS
@@ -50,14 +50,6 @@ COLUMNS = ["cell", "impairment", "build", "bots", "minutes", "sessions_dropped",
            "rss_end_kib", "rss_max_kib", "tick_p50_us", "tick_p99_us", "tick_max_us", "skipped_ticks", "relay_in",
            "relay_out", "relay_lost", "relay_dup", "relay_reordered", "lost_share", "dup_share", "reorder_share",
            "snapshots_lost", "relay_cpu_s", "server_cpu_s", "result"]
-
-
-def rss_kib(pid):
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return 0
 
 
 def cpu_s(pid):

@@ -26,9 +26,9 @@ PyNaCl as in sealed.py) from Python sockets."""
 import json, os, sys, time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import Failure, Server, check, main, records, start_bots, finish_bots, wait_for  # noqa: E402
+from harness import Failure, Server, check, main, records, rss_kib, start_bots, finish_bots, wait_for  # noqa: E402
 import sealed  # noqa: E402
-from scripted import FLOOD_HOST, Script, answers, handshake_all, rss_kb, sanitized  # noqa: E402
+from scripted import FLOOD_HOST, Script, answers, handshake_all, sanitized  # noqa: E402
 
 def test_address_full():
     with Server("--max-per-address", "4") as srv:
@@ -69,7 +69,7 @@ def test_command_flood():
         script = Script(srv.port, 0xf100d)
         handshake_all([script], 10)
         check(script.session is not None, f"the flooder was refused: {script.error}")
-        rss_before = rss_kb(srv.proc.pid)
+        rss_before = rss_kib(srv.proc.pid)
         rid = 0
         sent = 0
         dropped_with = None
@@ -87,7 +87,7 @@ def test_command_flood():
                     dropped_with = m["code"]
             time.sleep(1 / 150)
         elapsed = time.monotonic() - start
-        rss_after = rss_kb(srv.proc.pid)
+        rss_after = rss_kib(srv.proc.pid)
         print(f"flood: {sent} datagrams ({rid} commands) in {elapsed:.2f} s, dropped with {dropped_with}; "
               f"server RSS {rss_before} -> {rss_after} kB")
         check(dropped_with == "overflow", f"the flooder was not dropped with overflow ({dropped_with})")
@@ -333,7 +333,7 @@ def test_soak_flood():
         script = Script(srv.port, nonce)
         handshake_all([script], 10)
         time.sleep(1)  # the server's steady state: the real bot plays, a room is open
-        rss_before = rss_kb(srv.proc.pid)
+        rss_before = rss_kib(srv.proc.pid)
         sent = rid = 0
         errors = {}
         fresh = None  # the next session, shaking hands while the flood goes on
@@ -366,7 +366,7 @@ def test_soak_flood():
                 time.sleep(delay)
         sessions = sum(errors.values())
         elapsed = time.monotonic() - start
-        rss_after = rss_kb(srv.proc.pid)
+        rss_after = rss_kib(srv.proc.pid)
         wait_for(lambda: len(stats_lines(srv)) >= 3, 5, "stats lines")
         skipped = stats_lines(srv)[-1].get("ticks_skipped_total")
         drops = drops_logged(srv)
