@@ -34,8 +34,7 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
 
 void InboxJob::run(std::vector<std::uint8_t>& scratch) {
   bool ended = false;
-  for (InboxDatagram* d : datagrams_) {
-    d->applied.clear();
+  for (InboxDatagram* d : datagrams_) {  // (each Applied cleared when queued: receive_later)
     if (!session_ || ended || d->session_id != session_->session_id) {
       rejects_.add(Reject::unknown_session);
       continue;
@@ -50,8 +49,7 @@ std::span<InboxJob> ServerEndpoint::inbox_jobs() {
   serial_only("inbox_jobs");
   for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
     InboxJob& job = inbox_jobs_[i];
-    job.config_ = &config_;
-    job.rejects_ = {};
+    job.config_ = &config_;  // (its rejects_ are zero: apply_inbox took them last time)
     // The session its last datagram came for, if still connected under that id (a hashed
     // lookup): datagrams of an older one, before a hello replaced it, are counted as gone;
     // so are all, when a hello replaced it after the last.

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <thread>
 
-#include "app/game_host.hpp"
 #include "app/log.hpp"
 #include "app/room_codes.hpp"
 #include "fts/room/match_config_json.hpp"
