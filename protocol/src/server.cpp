@@ -38,8 +38,6 @@ void ServerEndpoint::emit(const Address& to, std::vector<std::uint8_t> bytes) {
   lane_.out.push_back({to, std::move(bytes)});
 }
 
-void ServerEndpoint::emit_sealed(Session& s, const Header& h) { s.seal_into(h, lane_.payload, lane_.out, lane_.spare); }
-
 Header ServerEndpoint::session_header(Session& s, std::uint64_t now_ms) { return s.next_header(config_.version, now_ms); }
 
 // The server's own stall (a hitch, a debugger, swap) is not the clients' silence: a gap
@@ -172,31 +170,44 @@ std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room)
 
 const std::map<std::uint32_t, RoomSessions>& ServerEndpoint::connected_by_room() {
   serial_only("connected_by_room");
-  if (by_room_generation_ == sessions_.generation()) return by_room_;
+  refresh_rooms();
+  return by_room_;
+}
+
+void ServerEndpoint::refresh_rooms() {
+  if (by_room_generation_ == sessions_.generation()) return;
   by_room_generation_ = sessions_.generation();
   for (auto& [room, members] : by_room_) members.sessions_.clear();
-  for (auto& [id, s] : sessions_)
-    if (s.connected) {
-      RoomSessions& members = by_room_[s.room];
-      members.version_ = config_.version;
-      members.sessions_.push_back(&s);
+  held_.clear();
+  for (auto& [id, s] : sessions_) {
+    if (!s.connected) {
+      held_.push_back(&s);
+      continue;
     }
+    RoomSessions& members = by_room_[s.room];
+    members.version_ = config_.version;
+    members.sessions_.push_back(&s);
+  }
   std::erase_if(by_room_, [](const auto& kv) { return kv.second.empty(); });
-  return by_room_;
 }
 
 void ServerEndpoint::send_packet(Session& s, std::vector<Message> messages, bool with_results,
                                  std::uint64_t now_ms) {
-  const Header h = session_header(s, now_ms);
+  seal_packet(s, config_.version, std::move(messages), with_results, config_.resend_ms, now_ms, lane_);
+}
+
+void seal_packet(ServerSession& s, std::uint16_t version, std::vector<Message> messages, bool with_results,
+                 std::uint64_t resend_ms, std::uint64_t now_ms, SendLane& lane) {
+  const Header h = s.next_header(version, now_ms);
   s.last_send_ms = now_ms;
   if (with_results) {
-    for (auto& r : s.results.collect(h.sequence, now_ms, config_.resend_ms, 3)) messages.push_back(std::move(r));
-    for (auto& c : s.chats.collect(h.sequence, now_ms, config_.resend_ms, 2)) messages.push_back(std::move(c));
+    for (auto& r : s.results.collect(h.sequence, now_ms, resend_ms, 3)) messages.push_back(std::move(r));
+    for (auto& c : s.chats.collect(h.sequence, now_ms, resend_ms, 2)) messages.push_back(std::move(c));
   }
   if (messages.empty()) messages.push_back(Ping{});
-  lane_.payload.clear();
-  append_payload(h.encoding, messages, lane_.payload);
-  emit_sealed(s, h);
+  lane.payload.clear();
+  append_payload(h.encoding, messages, lane.payload);
+  s.seal_into(h, lane.payload, lane.out, lane.spare);
 }
 
 void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms) {
@@ -252,76 +263,6 @@ bool ServerEndpoint::send_board(std::uint32_t player_id, const Leaderboard& boar
   if (it == sessions_.end() || !it->second.connected) return false;
   send_packet(it->second, {board}, false, now_ms);
   return true;
-}
-
-void ServerEndpoint::update(std::uint64_t now_ms) {
-  serial_only("update");
-  observe_time(now_ms);
-  if (now_ms >= last_forget_ms_ + 1000) {
-    limits_.forget_quiet(now_ms);
-    last_forget_ms_ = now_ms;
-  }
-  std::vector<std::uint32_t> expired;
-  std::vector<std::uint32_t> idle;
-  std::vector<std::uint32_t> never_played;
-  std::vector<std::uint32_t> keep;
-  std::map<std::uint32_t, std::size_t> kept_in_room;
-  for (auto& [id, s] : sessions_) {
-    if (s.kept) ++kept_in_room[s.room];
-    if (s.spectator || s.watching || idle_paused_rooms_.count(s.room)) s.last_active_ms = now_ms;
-    if (s.connected && now_ms - s.last_receive_ms >= config_.timeout_ms) {
-      drop_connection(s, "timeout", now_ms);
-      // A session that never played (a probe whose bye was lost, a script that only
-      // shook hands) holds no slot: it is freed at its time-out.
-      if (!s.played) {
-        never_played.push_back(id);
-        continue;
-      }
-    }
-    if (s.connected && config_.idle_timeout_ms != 0 && now_ms - s.last_active_ms >= config_.idle_timeout_ms) {
-      idle.push_back(id);
-      continue;
-    }
-    if (!s.connected) {
-      if (now_ms - s.disconnected_ms < config_.reconnect_window_ms || (s.kept && keeping_rooms_.count(s.room))) continue;
-      if (!s.kept && s.played && !s.spectator && keeping_rooms_.count(s.room)) keep.push_back(id);
-      else expired.push_back(id);
-      continue;
-    }
-    if (s.results.due(now_ms, config_.resend_ms) || s.chats.due(now_ms, config_.resend_ms) ||
-        now_ms - s.last_send_ms >= config_.heartbeat_ms)
-      send_packet(s, {}, true, now_ms);
-  }
-  // A departed player of a running match stays that player (set_keeps_departed): past
-  // the window it gives its seat up as after a quit, its progress kept for the match.
-  for (auto id : keep) {
-    Session& s = sessions_.at(id);
-    if (kept_in_room[s.room] >= kMaxKeptPerRoom) {
-      expired.push_back(id);
-      continue;
-    }
-    ++kept_in_room[s.room];
-    s.kept = true;
-    // Its seat is free; the match parks its ball (a quit, again for one that quit already:
-    // parking is idempotent), and the host logs it as kept.
-    s.quit = true;
-    events_.push_back({ServerEvent::Kind::disconnected, s.player_id, s.name, "kept", true, s.room, s.spectator, s.identity});
-  }
-  for (auto id : expired) release(id, sessions_.at(id).kept ? "match over" : "reconnect window over");
-  for (auto id : never_played) release(id, "timeout");
-  // An idle player gives its seat up as if it had quit: what it earned is kept for the
-  // reconnect window, and while its room's match runs until it ends (its token takes it
-  // back while a seat is free).
-  for (auto id : idle) {
-    rejects_.add(Reject::idle);
-    Session& s = sessions_.at(id);
-    send_packet(s,
-                {make_error(ErrorCode::idle, "no input for " + std::to_string(config_.idle_timeout_ms / 1000) +
-                                             " s: your seat is freed; your progress is kept until the match ends")},
-                false, now_ms);
-    s.quit = true;
-    drop_connection(s, std::string(to_string(ErrorCode::idle)), now_ms);  // the error it was sent
-  }
 }
 
 std::vector<Outgoing> ServerEndpoint::take_datagrams() {

@@ -26,7 +26,7 @@ void ServerEndpoint::send_welcome(Session& s, bool reconnected, std::size_t requ
   Welcome w = config_.settings;
   w.player_id = s.player_id;
   w.token = s.token;
-  if (auto it = room_ticks_.find(s.room); it != room_ticks_.end()) w.server_tick = it->second;
+  if (auto it = rooms_.find(s.room); it != rooms_.end()) w.server_tick = it->second.tick;
   w.room = s.room_code;
   w.spectator = s.spectator;
   w.reconnected = reconnected;
@@ -237,7 +237,7 @@ std::variant<ServerEndpoint::Session*, HelloAnswer> ServerEndpoint::admit_new(co
     return HelloAnswer{unknown ? Reject::unknown_room : Reject::join_refused,
                        make_error(admission.error.value_or(ErrorCode::refused), admission.message.substr(0, kMaxTextBytes))};
   }
-  room_ticks_[admission.room] = admission.server_tick;
+  rooms_[admission.room].tick = admission.server_tick;
   reserve_player_ids(player_id);
   Session& s = sessions_[player_id];
   s.player_id = player_id;

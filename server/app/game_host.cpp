@@ -333,8 +333,14 @@ void GameHost::tick(std::uint64_t now_ms) {
     pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].run(open_scratch_[slot]); });
   }
   endpoint_.apply_inbox();
-  answer_profiles(now_ms);  // before update(): the results go out in this tick's packets
-  endpoint_.update(now_ms);
+  answer_profiles(now_ms);  // before the timers: the results go out in this tick's packets
+  {
+    // The sessions' timers, a room's connected sessions per job; the ends settled in order.
+    const auto jobs = endpoint_.timer_jobs(now_ms);
+    const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
+    pool_.run(jobs.size(), [&](std::size_t i, std::size_t) { jobs[i].run(); });
+  }
+  endpoint_.settle_timers(now_ms);
   dispatch(now_ms);
   // The rooms on the pool (the phases: game_host.hpp).
   order_.clear();

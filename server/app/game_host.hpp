@@ -12,14 +12,18 @@
 // while the caller's thread waits and nothing adds or removes a session. No job is
 // handed the endpoint, only what it may change (protocol/server_jobs.hpp):
 //   0. receive() makes the cheap checks at once and queues a session's datagram;
-//   1. parallel, one job per session (an InboxJob: its seal and its datagrams): its
-//      queued datagrams opened (replay window, tag, payload); then, serial, applied in arrival order, endpoint timers, connection
-//      events, inputs and commands handed to their rooms;
-//   2. parallel, one job per room: Room::step (the match, its record and journal queue);
-//   3. serial, room order: results answered, events logged, the room's tick published;
-//   4. parallel, one job per room: Room::send_snapshots seals the room's snapshot for
+//   1. parallel, one job per session (an InboxJob: the session and its datagrams): its
+//      queued datagrams opened (replay window, tag, payload) and applied (acks, inputs,
+//      commands: ServerSession::apply); then, serial, what they left settled in arrival order;
+//   2. parallel, one job per room with connected sessions (a TimerJob: those sessions and
+//      a lane): heartbeats and resends sealed, silent and idle sessions listed; then,
+//      serial, those ended, reconnect windows, connection events, inputs and commands
+//      handed to their rooms;
+//   3. parallel, one job per room: Room::step (the match, its record and journal queue);
+//   4. serial, room order: results answered, events logged, the room's tick published;
+//   5. parallel, one job per room: Room::send_snapshots seals the room's snapshot for
 //      its RoomSessions (its connected sessions only) into its own lane;
-//   5. serial: the lanes queued in room order.
+//   6. serial: the lanes queued in room order.
 // The pool's join is the only synchronisation on the tick path (no lock per room or per
 // datagram), and everything leaves in the same order for any thread count.
 #pragma once
@@ -244,7 +248,7 @@ class GameHost {
   // Each pool thread's scratch for opening the inbox (by slot: the pool owns the threads,
   // the host the buffers they reuse).
   std::vector<std::vector<std::uint8_t>> open_scratch_;
-  std::vector<Room*> order_;                // this tick's rooms in id order (phases 2-5)
+  std::vector<Room*> order_;                // this tick's rooms in id order (phases 3-6)
   std::vector<protocol::SendLane> lanes_;   // one per position in order_
 };
 

@@ -2,7 +2,8 @@
 // one session's queued datagrams with that session's seal, whatever order the jobs run in;
 // a session replaced since its datagrams came has them counted as gone; RoomSessions
 // hands a room's snapshot job its connected sessions and nothing else, made again when
-// one comes or goes.
+// one comes or goes; a room's TimerJob keeps its own sessions alive, and what the timer
+// jobs find is settled in room order whatever order they ran in.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -151,4 +152,62 @@ TEST_CASE("Server jobs: a room's snapshot job holds its room's connected session
   REQUIRE(after.size() == 2);
   CHECK(after.at(1).size() == 1);
   CHECK(after.at(2).size() == 1);
+}
+
+TEST_CASE("Server jobs: a room's timer job keeps its own sessions alive, the ends settled in room order",
+          "[protocol][threads]") {
+  TwoRooms t;
+  auto& ann = t.add("ann");
+  auto& bob = t.add("bob");
+  auto& cid = t.add("cid");
+  for (int i = 0; i < 200 && !std::all_of(t.clients.begin(), t.clients.end(), [](const auto& c) {
+                                return c->state() == ClientState::connected;
+                              });
+       ++i)
+    t.step(false);
+  for (auto* c : {&ann, &bob, &cid}) REQUIRE(c->state() == ClientState::connected);
+  for (auto* c : {&ann, &bob, &cid}) c->send_input({0, 1, 0, false}, t.now);  // each played: its seat is held
+  t.step(false);
+  t.server->take_events();
+  t.server->take_datagrams();
+
+  // A heartbeat later, only room 2's job runs: bob (room 2) gets one, ann and cid none.
+  t.now += t.config.heartbeat_ms;
+  auto jobs = t.server->timer_jobs(t.now);
+  REQUIRE(jobs.size() == 2);
+  jobs[1].run();
+  CHECK(t.server->take_datagrams().empty());  // in the job's lane until settled
+  t.server->settle_timers(t.now);
+  auto out = t.server->take_datagrams();
+  REQUIRE(out.size() == 1);
+  CHECK(out[0].to == t.addresses[1]);
+  CHECK(t.server->take_events().empty());
+
+  // Silent past the time-out (the server called every 100 ms: a longer gap would be its
+  // own stall): the jobs run last first, the time-outs come out in room order (ann and
+  // cid in room 1, then bob), each once.
+  const std::uint64_t quiet_from = t.now - t.config.heartbeat_ms;
+  while (t.now + 100 < quiet_from + t.config.timeout_ms) {
+    t.now += 100;
+    t.server->update(t.now);
+  }
+  REQUIRE(t.server->connected_players().size() == 3);
+  t.now = quiet_from + t.config.timeout_ms;
+  jobs = t.server->timer_jobs(t.now);
+  REQUIRE(jobs.size() == 2);
+  for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) it->run();
+  t.server->settle_timers(t.now);
+  const auto events = t.server->take_events();
+  std::vector<std::uint32_t> dropped;
+  for (const auto& e : events) {
+    CHECK(e.kind == ServerEvent::Kind::disconnected);
+    CHECK(e.reason == "timeout");
+    dropped.push_back(e.player_id);
+  }
+  const auto id = [](const ClientEndpoint& c) { return c.welcome()->player_id; };
+  CHECK(dropped == std::vector<std::uint32_t>{id(ann), id(cid), id(bob)});
+  CHECK(t.server->connected_players().empty());
+  CHECK(t.server->timer_jobs(t.now).empty());  // nobody connected: no job
+  t.server->settle_timers(t.now);
+  CHECK(t.server->sessions().size() == 3);  // their seats held for the reconnect window
 }

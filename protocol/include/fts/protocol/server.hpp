@@ -12,7 +12,6 @@
 #include <deque>
 #include <functional>
 #include <map>
-#include <set>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -211,8 +210,16 @@ class ServerEndpoint {
   std::size_t inbox_sessions() const { return inbox_jobs_used_; }
   void apply_inbox();
   static constexpr std::size_t kMaxInbox = 65536;
-  // Timers: heartbeats, result resends, time-outs, reconnect windows.
+  // Timers: heartbeats, result resends, time-outs, idle players, reconnect windows. The
+  // same in two halves for a pool (issue 39): timer_jobs() hands out a TimerJob for each
+  // room with connected sessions (server_jobs.hpp: those sessions and a lane, no
+  // endpoint), to run while nothing calls the endpoint; settle_timers() then queues their
+  // datagrams in room order, ends the sessions they found silent or idle, and runs the
+  // reconnect windows of the sessions not connected. update() is timer_jobs(), each run
+  // here, and settle_timers().
   void update(std::uint64_t now_ms);
+  std::span<TimerJob> timer_jobs(std::uint64_t now_ms);
+  void settle_timers(std::uint64_t now_ms);
 
   // Sends the snapshot to one connected player (delta against what it acknowledged).
   void send_snapshot(std::uint32_t player_id, const Snapshot& snapshot, std::uint64_t now_ms);
@@ -223,8 +230,8 @@ class ServerEndpoint {
   // datagrams for its next ones.
   void adopt(SendLane& lane);
   // Answers a command (reliably): applied (ResultCode::ok, `ok: true`) or refused with
-  // that code; message for a person. Queued: the next update() sends the session's due
-  // results together in one datagram.
+  // that code; message for a person. Queued: the timers' next run (update, timer_jobs)
+  // sends the session's due results together in one datagram.
   void send_result(std::uint32_t player_id, std::uint32_t command_rid, ResultCode code, std::string message,
                    std::uint64_t now_ms);
   // Sends a leaderboard (PROTOCOL.md 4.7c) to a connected player, in a datagram of its
@@ -263,34 +270,43 @@ class ServerEndpoint {
   // room is released (reason "moved"). Returns how many were told.
   std::size_t move_room(std::uint32_t room, const std::string& address, const std::string& room_code,
                         std::uint64_t now_ms);
-  // While a room is paused (the host's lobby, shop and game-over phases) none of its
-  // sessions idles: their idle clocks restart when the pause ends.
+  // Rooms are tags the host gives (Admission::room): of each, the endpoint knows what the
+  // host tells it, its terms, and forgets them when the room closes (forget_room).
+  struct RoomTerms {
+    // While a room is paused (the host's lobby, shop and game-over phases) none of its
+    // sessions idles: their idle clocks restart when the pause ends.
+    bool idle_paused = false;
+    // While the room's match runs (the host's playing and shop phases) a player who left
+    // it stays the same player when it comes back, whatever the reconnect window: at the
+    // window's end its session is kept, as after a quit (no seat, progress kept, its token
+    // takes it back while a seat is free), until the match ends (issue 37). At most
+    // kMaxKeptPerRoom a room; over it, the window's end releases as before.
+    bool keeps_departed = false;
+    // The tick reported in welcomes (of a reconnect: the admission gives a new player's).
+    std::uint32_t tick = 0;
+  };
+  static constexpr std::size_t kMaxKeptPerRoom = 32;  // four times a room's 8 seats
   void set_idle_paused(std::uint32_t room, bool paused) {
     serial_only("set_idle_paused");
-    if (paused) idle_paused_rooms_.insert(room); else idle_paused_rooms_.erase(room);
+    rooms_[room].idle_paused = paused;
   }
-  // While the room's match runs (the host's playing and shop phases) a player who left
-  // it stays the same player when it comes back, whatever the reconnect window: at the
-  // window's end its session is kept, as after a quit (no seat, progress kept, its token
-  // takes it back while a seat is free), until the match ends (issue 37). At most
-  // kMaxKeptPerRoom a room; over it, the window's end releases as before.
-  static constexpr std::size_t kMaxKeptPerRoom = 32;  // four times a room's 8 seats
   void set_keeps_departed(std::uint32_t room, bool keep) {
     serial_only("set_keeps_departed");
-    if (keep) keeping_rooms_.insert(room); else keeping_rooms_.erase(room);
+    rooms_[room].keeps_departed = keep;
   }
-  // The tick reported in welcomes (of a reconnect: the admission gives a new player's).
-  void set_server_tick(std::uint32_t tick) { set_server_tick(0, tick); }
   void set_server_tick(std::uint32_t room, std::uint32_t tick) {
     serial_only("set_server_tick");
-    room_ticks_[room] = tick;
+    rooms_[room].tick = tick;
   }
-  // A closed room's entries are forgotten.
   void forget_room(std::uint32_t room) {
     serial_only("forget_room");
-    idle_paused_rooms_.erase(room);
-    keeping_rooms_.erase(room);
-    room_ticks_.erase(room);
+    rooms_.erase(room);
+  }
+  // A room's terms (a room never told of: the defaults).
+  const RoomTerms& terms(std::uint32_t room) const {
+    static const RoomTerms kUntold;
+    auto it = rooms_.find(room);
+    return it == rooms_.end() ? kUntold : it->second;
   }
 
   std::vector<Outgoing> take_datagrams();
@@ -384,10 +400,10 @@ class ServerEndpoint {
   std::size_t sessions_from(std::string_view host, bool spectators) const;
   void observe_time(std::uint64_t now_ms);
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
+  // by_room_ and held_ made again if a session came, went, connected or dropped since.
+  void refresh_rooms();
   // A session's next header (its sequence and acks stamped).
   Header session_header(Session& s, std::uint64_t now_ms);
-  // Seals lane_.payload for `s` under `h` and queues it.
-  void emit_sealed(Session& s, const Header& h);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
   void release(std::uint32_t player_id, const std::string& reason);
   void emit(const Address& to, std::vector<std::uint8_t> bytes);
@@ -399,10 +415,8 @@ class ServerEndpoint {
   SessionTable sessions_;  // by player id, address and session id; the player ids (server_session.hpp)
   AddressLimits limits_;  // the per-host limits: the one part the sessions of a host share
   std::uint64_t last_forget_ms_ = 0;
-  std::set<std::uint32_t> idle_paused_rooms_;
-  std::set<std::uint32_t> keeping_rooms_;  // set_keeps_departed
+  std::unordered_map<std::uint32_t, RoomTerms> rooms_;  // each room's terms, as the host set them
   std::uint64_t sessions_made_ = 0;
-  std::map<std::uint32_t, std::uint32_t> room_ticks_;
   std::uint64_t last_call_ms_ = 0;
   std::uint64_t stalled_ms_ = 0;
   // The endpoint's own lane: the queue every datagram goes out by (rooms' lanes are
@@ -418,7 +432,10 @@ class ServerEndpoint {
   std::size_t inbox_jobs_used_ = 0;
   std::unordered_map<std::uint32_t, std::size_t> inbox_job_of_;  // player id -> its job
   std::map<std::uint32_t, RoomSessions> by_room_;  // connected_by_room(), as of by_room_generation_
+  std::vector<Session*> held_;  // the sessions not connected, as of by_room_generation_
   std::uint64_t by_room_generation_ = ~std::uint64_t{0};
+  std::vector<TimerJob> timer_jobs_;  // the first timer_jobs_used_: one per room in by_room_
+  std::size_t timer_jobs_used_ = 0;
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
   std::vector<PlayerCommand> commands_;

@@ -1,9 +1,10 @@
 // What a job on the host's worker pool is handed (issue 39): one session's datagrams to
-// open, or one room's connected sessions to send a snapshot to, and the lane it seals
-// into; never the endpoint. Two jobs hold disjoint sessions, so the types, not a comment,
+// open, or one room's connected sessions to send a snapshot to or to keep alive, and the
+// lane it seals into; never the endpoint. Two jobs hold disjoint sessions, so the types, not a comment,
 // keep them apart. The endpoint makes them in its serial part (ServerEndpoint::inbox_jobs,
-// connected_by_room); an InboxJob stays valid until the endpoint is next called, a
-// RoomSessions until a session comes, goes, connects or drops (none does while jobs run).
+// connected_by_room, timer_jobs); an InboxJob or a TimerJob stays valid until the endpoint
+// is next called, a RoomSessions until a session comes, goes, connects or drops (none does
+// while jobs run).
 #pragma once
 
 #include <cstdint>
@@ -59,8 +60,14 @@ class InboxJob {
 void seal_snapshot(ServerSession& s, std::uint16_t version, const SharedSnapshot& quantized, std::uint64_t now_ms,
                    SendLane& lane);
 
+// Seals a datagram of `messages` for `s` into `lane`; `with_results` adds the session's
+// results and chat lines that are due (never sent, or unacknowledged for resend_ms); a
+// Ping when there is nothing else (a heartbeat). Touches that session and the lane only.
+void seal_packet(ServerSession& s, std::uint16_t version, std::vector<Message> messages, bool with_results,
+                 std::uint64_t resend_ms, std::uint64_t now_ms, SendLane& lane);
+
 // A room's connected sessions (players and spectators, in player id order), for the
-// room's snapshot job.
+// room's snapshot job and its TimerJob.
 class RoomSessions {
  public:
   bool empty() const { return sessions_.empty(); }
@@ -78,8 +85,29 @@ class RoomSessions {
 
  private:
   friend class ServerEndpoint;
+  friend class TimerJob;
   std::vector<ServerSession*> sessions_;
   std::uint16_t version_ = 0;
+};
+
+// One room's connected sessions' timers (ServerEndpoint::timer_jobs): a heartbeat to each
+// session sent nothing for heartbeat_ms, its due results and chat lines resent, sealed into
+// the job's own lane; a session silent for timeout_ms, or a player without real input for
+// idle_timeout_ms (never a spectator or a watcher, nobody while the room is idle-paused),
+// listed for the endpoint, which ends them in its serial part (settle_timers). Touches the
+// room's sessions and its own lane and lists only.
+class TimerJob {
+ public:
+  void run();
+
+ private:
+  friend class ServerEndpoint;
+  const RoomSessions* members_ = nullptr;
+  const ServerConfig* config_ = nullptr;
+  std::uint64_t now_ms_ = 0;
+  bool idle_paused_ = false;
+  SendLane lane_;  // its buffers kept from tick to tick
+  std::vector<ServerSession*> timed_out_, idle_;
 };
 
 }  // namespace fts::protocol
