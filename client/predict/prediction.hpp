@@ -44,7 +44,8 @@ namespace fts::client {
 enum class RemotePlayers : std::uint8_t { held, coast, off };
 // The default (fts-client, and fts-bot's --predict-remote): coasting halved the contact
 // corrections' p99 against held in every cell measured (issue 37,
-// tests/bench/results/2026-12-05-contacts/exp-remote-modes): a player turns too often for a
+// tests/bench/results/2026-12-05-contacts/exp-remote-modes and run3-coast: 0.19-0.31 radii
+// at 150 ms with two remote players, held 0.42-0.56): a player turns too often for a
 // thrust held a round trip later to be right.
 inline constexpr RemotePlayers kDefaultRemotePlayers = RemotePlayers::coast;
 
