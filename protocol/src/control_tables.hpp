@@ -121,10 +121,12 @@ inline constexpr auto kErrorFields =
 // Command::fault, so that the command is consumed and answered instead of blocking the
 // reliable channel. Only the rid must read: without it there is nothing to answer. The
 // chat text takes any bytes (the server cleans it).
+// The ops by their names on the wire, in CommandOp's order; any other name reads as unknown.
+inline constexpr std::array<const char*, 8> kCommandOpNames{"buy",   "ready", "again", "unknown",
+                                                            "chat", "rooms", "top",   "forget"};
 inline constexpr auto kCommandFields = std::make_tuple(
     F<Command, std::uint32_t, U32>{"rid", &Command::rid, {0, kAnyU32}},
-    F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 8>>>{
-        "op", &Command::op, {{{"buy", "ready", "again", "unknown", "chat", "rooms", "top", "forget"}, CommandOp::unknown}}},
+    F<Command, CommandOp, Tolerant<OpenNamed<CommandOp, 8>>>{"op", &Command::op, {{kCommandOpNames, CommandOp::unknown}}},
     F<Command, char, Tolerant<Key>>{"item", &Command::item, {}, Presence::nonzero},
     F<Command, std::string, Tolerant<AnyText>>{"text", &Command::text, {{kMaxTextBytes}}, Presence::nonzero});
 

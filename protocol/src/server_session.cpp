@@ -4,21 +4,36 @@
 
 #include <algorithm>
 
+#include "control_tables.hpp"
 #include "fts/protocol/constants.hpp"
 #include "fts/protocol/server.hpp"
+#include "fts/sim/items.hpp"
 
 namespace fts::protocol {
 
 namespace {
 
 // Why a command whose field did not read is not applied (PROTOCOL.md 4.6): op and item have
-// their own codes (the same as an unknown op or item); any other field is "field".
+// their own codes (the same as an unknown op or item); any other field is "field". The ops
+// and shop keys it lists are the wire's (control_tables.hpp) and the shop's (sim::item_table).
 std::pair<ResultCode, std::string> fault_answer(const std::string& fault) {
   const ResultCode code = fault == "op" ? ResultCode::op : fault == "item" ? ResultCode::item : ResultCode::field;
-  const std::string why = fault == "op"     ? "op must be text: buy, ready, again, chat, rooms, top or forget"
-                          : fault == "item" ? "item must be one printable character: m s a r l x b"
-                          : fault == "text" ? "text must be text of at most 200 bytes"
-                                            : fault + " is not valid";
+  std::string why;
+  if (fault == "op") {
+    std::vector<std::string_view> ops;
+    for (const char* name : wire::kCommandOpNames)
+      if (name != std::string_view("unknown")) ops.push_back(name);
+    why = "op must be text: ";
+    for (std::size_t i = 0; i < ops.size(); ++i)
+      why.append(i == 0 ? "" : i + 1 == ops.size() ? " or " : ", ").append(ops[i]);
+  } else if (fault == "item") {
+    why = "item must be one printable character:";
+    for (const sim::ItemDef& item : sim::item_table()) why.append(" ").push_back(item.key);
+  } else if (fault == "text") {
+    why = "text must be text of at most " + std::to_string(kMaxTextBytes) + " bytes";
+  } else {
+    why = fault + " is not valid";
+  }
   return {code, "command not applied: " + why};
 }
 

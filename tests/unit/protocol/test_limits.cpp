@@ -2,6 +2,7 @@
 // next update, datagram rates per session and per host. Time is stepped by hand.
 #include <catch2/catch.hpp>
 
+#include "fts/sim/items.hpp"
 #include "harness.hpp"
 
 using namespace fts::protocol;
@@ -255,4 +256,35 @@ TEST_CASE("Limits: hosts tracked are bounded and quiet ones forgotten", "[protoc
   server.receive("10.0.0.3:1", junk, 2000);
   server.receive("10.0.0.3:1", junk, 2000);  // now tracked
   CHECK(server.rejects()[Reject::rate_limited] == 2);
+}
+
+TEST_CASE("Limits: a faulty command's answer names what the server takes", "[protocol][limits]") {
+  // A buy whose item is no printable character and a chat line over the cap: each is
+  // answered at once, and the answer lists the shop's keys (every item, nothing else) and
+  // the text's limit, as the tables that read them say.
+  Flooder f;
+  f.h.server.take_datagrams();
+  f.raw({Command{1, CommandOp::buy, '\x01', "", {}}, Command{2, CommandOp::chat, 0, std::string(kMaxTextBytes + 1, 'x'), {}}});
+  f.h.server.update(f.h.now);  // the answers go out with the timers
+  std::vector<Result> results;
+  for (const auto& o : f.h.server.take_datagrams()) {
+    auto d = peek(f.peer->client, o.bytes);
+    REQUIRE(d);
+    for (const auto& m : d->messages)
+      if (const auto* r = std::get_if<Result>(&m)) results.push_back(*r);
+  }
+  REQUIRE(results.size() == 2);
+  CHECK(results[0].code == "item");
+  const std::string listed = results[0].message.substr(results[0].message.rfind(':') + 1);
+  std::size_t keys = 0;
+  for (std::size_t i = 0; i < listed.size(); i += 2) {
+    CHECK(listed[i] == ' ');
+    REQUIRE(i + 1 < listed.size());
+    CHECK(fts::sim::item_by_key(listed[i + 1]).has_value());
+    ++keys;
+  }
+  CHECK(keys == fts::sim::kItemCount);
+  CHECK(results[1].code == "field");
+  CHECK_THAT(results[1].message, Catch::Contains("at most " + std::to_string(kMaxTextBytes) + " bytes"));
+  CHECK(f.h.server.take_commands().empty());
 }
