@@ -40,6 +40,12 @@ struct TwoRooms {
     clients.back()->connect(now);
     return *clients.back();
   }
+  // Steps until every client is connected (false: not within 200 steps).
+  bool connect_all() {
+    const auto connected = [](const auto& c) { return c->state() == ClientState::connected; };
+    for (int i = 0; i < 200 && !std::all_of(clients.begin(), clients.end(), connected); ++i) step(false);
+    return std::all_of(clients.begin(), clients.end(), connected);
+  }
   // Client datagrams to the server: at once (handshake), or queued for the inbox.
   void step(bool queue) {
     now += 5;
@@ -63,10 +69,7 @@ TEST_CASE("Server jobs: each inbox job opens its own session's datagrams, in any
   TwoRooms t;
   auto& ann = t.add("ann");
   auto& bob = t.add("bob");
-  for (int i = 0; i < 200 && !(ann.state() == ClientState::connected && bob.state() == ClientState::connected); ++i)
-    t.step(false);
-  REQUIRE(ann.state() == ClientState::connected);
-  REQUIRE(bob.state() == ClientState::connected);
+  REQUIRE(t.connect_all());
   t.server->take_events();
   t.server->take_inputs();
 
@@ -115,12 +118,7 @@ TEST_CASE("Server jobs: a room's snapshot job holds its room's connected session
   auto& ann = t.add("ann");
   auto& bob = t.add("bob");
   auto& cid = t.add("cid");
-  for (int i = 0; i < 200 && !std::all_of(t.clients.begin(), t.clients.end(), [](const auto& c) {
-                                return c->state() == ClientState::connected;
-                              });
-       ++i)
-    t.step(false);
-  for (auto* c : {&ann, &bob, &cid}) REQUIRE(c->state() == ClientState::connected);
+  REQUIRE(t.connect_all());
 
   const auto& rooms = t.server->connected_by_room();
   REQUIRE(rooms.size() == 2);
@@ -160,12 +158,7 @@ TEST_CASE("Server jobs: a room's timer job keeps its own sessions alive, the end
   auto& ann = t.add("ann");
   auto& bob = t.add("bob");
   auto& cid = t.add("cid");
-  for (int i = 0; i < 200 && !std::all_of(t.clients.begin(), t.clients.end(), [](const auto& c) {
-                                return c->state() == ClientState::connected;
-                              });
-       ++i)
-    t.step(false);
-  for (auto* c : {&ann, &bob, &cid}) REQUIRE(c->state() == ClientState::connected);
+  REQUIRE(t.connect_all());
   for (auto* c : {&ann, &bob, &cid}) c->send_input({0, 1, 0, false}, t.now);  // each played: its seat is held
   t.step(false);
   t.server->take_events();
