@@ -137,13 +137,10 @@ class GameHost {
   // One confirmed neither way within kUnconfirmedMs is forgotten: closed without a result,
   // its journal removed, because the sender kept it (its answer or the confirmation was
   // lost) and a second copy must not live on here. Meanwhile its journal's directory holds
-  // the file kUnconfirmedMark, so that a server restarted with --resume holds it again.
+  // the file JournalRoot::kUnconfirmedMark, so that a server restarted with --resume holds
+  // it again. The sender's side: room_moved first marks the room's journal directory with
+  // JournalRoot::kMovedMark (room_journals.hpp).
   static constexpr std::uint64_t kUnconfirmedMs = 10'000;
-  static constexpr const char* kUnconfirmedMark = "unconfirmed";
-  // The sender's side: room_moved first marks the room's journal directory with this file
-  // (its writer removes the directory later, on its own thread), so that a server stopped
-  // in between does not resume a room that now plays at the peer (JournalRoot removes it).
-  static constexpr const char* kMovedMark = "moved";
   // `by`: "sender" or "client" (logged). False when no such room is held unconfirmed.
   bool confirm_adopted(const std::string& code, const char* by);
   bool unconfirmed(const std::string& code) const;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/game_host.hpp"
+#include "app/room_journals.hpp"
 #include "fts/room/match_config_json.hpp"
 #include "fts/room/text.hpp"
 #include "store/journal.hpp"
@@ -73,7 +74,7 @@ std::size_t GameHost::room_moved(const std::string& code, const std::string& add
   Room& r = *it->second;
   const std::uint32_t id = r.id();
   if (journal_base_) {  // first: from here a restart must not bring the room back (JournalRoot)
-    std::ofstream mark(journal_base_->dir / code / kMovedMark, std::ios::trunc);
+    std::ofstream mark(journal_base_->dir / code / JournalRoot::kMovedMark, std::ios::trunc);
   }
   // The match goes on at the peer, and its results are made there: none here (no
   // close_careers), and the journal's directory goes (the peer keeps its own).
@@ -121,7 +122,7 @@ std::string GameHost::adopt_room(const std::string& code, const std::vector<std:
   fs::create_directories(incoming, ec);
   // The segments, and the mark of a room held until the sender confirms it (resume_room
   // holds a room whose directory has it: a restart in between holds it again).
-  std::ofstream(incoming / kUnconfirmedMark, std::ios::trunc);
+  std::ofstream(incoming / JournalRoot::kUnconfirmedMark, std::ios::trunc);
   for (const auto& [name, text] : files) {
     std::ofstream out(incoming / name, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
@@ -169,7 +170,7 @@ bool GameHost::confirm_adopted(const std::string& code, const char* by) {
   if (it == rooms_.end() || it->second->unconfirmed_until_ms == 0) return false;
   it->second->unconfirmed_until_ms = 0;
   std::error_code ec;
-  if (journal_base_) fs::remove(journal_base_->dir / code / kUnconfirmedMark, ec);
+  if (journal_base_) fs::remove(journal_base_->dir / code / JournalRoot::kUnconfirmedMark, ec);
   log_record(spdlog::level::info, "adopt_confirmed", {{"code", code}, {"by", by}});
   return true;
 }

@@ -4,6 +4,7 @@
 
 #include "app/game_host.hpp"
 #include "app/room_codes.hpp"
+#include "app/room_journals.hpp"
 #include "fts/room/snapshot_build.hpp"
 
 namespace fts::server {
@@ -92,7 +93,7 @@ bool GameHost::resume_room(const store::ResumedRoom& resumed, std::uint64_t now_
   start_journal(*r);  // a new segment after the old ones, with the sessions restored
   // Adopted from a peer and not confirmed yet (adopt_room): held until it is, or forgotten.
   std::error_code ec;
-  if (journal_base_ && std::filesystem::exists(journal_base_->dir / *code / kUnconfirmedMark, ec)) {
+  if (journal_base_ && std::filesystem::exists(journal_base_->dir / *code / JournalRoot::kUnconfirmedMark, ec)) {
     r->unconfirmed_until_ms = now_ms + kUnconfirmedMs;
     log_record(spdlog::level::info, "adopt_unconfirmed", {{"code", *code}, {"forgotten_in_ms", kUnconfirmedMs}});
   }

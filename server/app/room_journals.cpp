@@ -36,7 +36,7 @@ JournalRoot::JournalRoot(fs::path dir) : dir_(std::move(dir)) {
     if (!e.is_directory()) continue;
     if (name.ends_with(".closed")) {
       fs::remove_all(e.path(), ec);
-    } else if (std::error_code mec; fs::exists(e.path() / GameHost::kMovedMark, mec)) {
+    } else if (std::error_code mec; fs::exists(e.path() / kMovedMark, mec)) {
       // Handed over and confirmed: the room plays at the peer; resumed here it would play twice.
       log_record(spdlog::level::info, "resume_skipped",
                  {{"code", name}, {"reason", "the room was handed over to a peer: its journal goes"}});

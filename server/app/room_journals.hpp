@@ -22,8 +22,8 @@ class JournalRoot {
  public:
   // Makes the directory if missing, takes the lock and removes leftovers of finished
   // journals (<code>.closed) and of rooms handed over to a peer (a directory holding
-  // GameHost::kMovedMark: the server stopped before its writer removed it). error() says
-  // why not (nothing else done then).
+  // kMovedMark: the server stopped before its writer removed it). error() says why not
+  // (nothing else done then).
   explicit JournalRoot(std::filesystem::path dir);
   ~JournalRoot();
   JournalRoot(const JournalRoot&) = delete;
@@ -32,6 +32,15 @@ class JournalRoot {
   const std::filesystem::path& dir() const { return dir_; }
   // The room journals in it: subdirectories named as room codes, in code order.
   std::vector<std::string> room_codes() const;
+
+  // The marks a room's directory may hold (rooms that move, PROTOCOL.md 14). A room handed
+  // to a peer: GameHost::room_moved writes kMovedMark first (the journal's writer removes
+  // the directory later, on its own thread), so that a server stopped in between does not
+  // resume a room that now plays at the peer (this constructor removes it). A room adopted
+  // from a peer and not yet confirmed: kUnconfirmedMark, so that a server restarted with
+  // --resume holds it unconfirmed again (GameHost::kUnconfirmedMs).
+  static constexpr const char* kMovedMark = "moved";
+  static constexpr const char* kUnconfirmedMark = "unconfirmed";
 
  private:
   std::filesystem::path dir_;

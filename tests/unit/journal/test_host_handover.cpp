@@ -11,6 +11,7 @@
 
 #include "../../support/host_rig.hpp"
 #include "app/game_host.hpp"
+#include "app/room_journals.hpp"
 
 using namespace fts;
 namespace fs = std::filesystem;
@@ -193,7 +194,7 @@ TEST_CASE("Host hand-over: an adopted room is held until confirmed, else forgott
     REQUIRE(std::holds_alternative<server::GameHost::RoomExport>(out[i]));
     REQUIRE(b.host->adopt_room(codes[i], std::get<server::GameHost::RoomExport>(out[i]).files, b.now) == "");
     CHECK(b.host->unconfirmed(codes[i]));
-    CHECK(fs::exists(rb / codes[i] / server::GameHost::kUnconfirmedMark));
+    CHECK(fs::exists(rb / codes[i] / server::JournalRoot::kUnconfirmedMark));
   }
   const std::string& by_sender = codes[0];  // the confirmation came
   const std::string& by_client = codes[1];  // its player came back to the peer
@@ -208,7 +209,7 @@ TEST_CASE("Host hand-over: an adopted room is held until confirmed, else forgott
   CHECK(b.host->confirm_adopted(by_sender, "sender"));
   CHECK_FALSE(b.host->confirm_adopted(by_sender, "sender"));  // once
   CHECK_FALSE(b.host->unconfirmed(by_sender));
-  CHECK_FALSE(fs::exists(rb / by_sender / server::GameHost::kUnconfirmedMark));
+  CHECK_FALSE(fs::exists(rb / by_sender / server::JournalRoot::kUnconfirmedMark));
   // The sender tells bob's room, and bob comes back to the peer with his token.
   CHECK(a.host->room_moved(by_client, "10.0.0.9:7778", a.now) == 1);
   auto& bob_there = b.join("bob", "", "", players[1]->welcome()->token);

@@ -156,7 +156,7 @@ TEST_CASE("Journal root: one server at a time - only room codes are rooms - fini
   fs::create_directories(root / "main");
   fs::create_directories(root / "BCDEF.closed");
   fs::create_directories(root / "CDEFG");  // handed over to a peer before the server stopped
-  std::ofstream(root / "CDEFG" / server::GameHost::kMovedMark).put('\n');
+  std::ofstream(root / "CDEFG" / server::JournalRoot::kMovedMark).put('\n');
   {
     server::JournalRoot first(root);
     REQUIRE(first.error().empty());
