@@ -138,33 +138,39 @@ std::size_t ServerEndpoint::sessions_from(std::string_view host, bool spectators
   }));
 }
 
+const std::vector<const ServerSession*>& ServerEndpoint::members_of(std::uint32_t room) const {
+  if (members_generation_ != sessions_.generation()) {
+    members_generation_ = sessions_.generation();
+    for (auto& [r, members] : members_) members.clear();
+    for (const auto& [id, s] : sessions_) members_[s.room].push_back(&s);
+    std::erase_if(members_, [](const auto& kv) { return kv.second.empty(); });
+  }
+  static const std::vector<const ServerSession*> kNone;
+  const auto it = members_.find(room);
+  return it == members_.end() ? kNone : it->second;
+}
+
 std::size_t ServerEndpoint::seats_in_room(std::uint32_t room) const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-    return kv.second.room == room && !kv.second.quit && !kv.second.spectator;
-  }));
+  const auto& m = members_of(room);
+  return static_cast<std::size_t>(std::count_if(m.begin(), m.end(), [](const Session* s) { return !s->quit && !s->spectator; }));
 }
 
 std::size_t ServerEndpoint::spectators_in_room(std::uint32_t room) const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-    return kv.second.room == room && kv.second.spectator && kv.second.connected;
-  }));
+  const auto& m = members_of(room);
+  return static_cast<std::size_t>(std::count_if(m.begin(), m.end(), [](const Session* s) { return s->spectator && s->connected; }));
 }
 
 std::size_t ServerEndpoint::holding_in_room(std::uint32_t room) const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) {
-    return kv.second.room == room && (kv.second.connected || kv.second.played);
-  }));
+  const auto& m = members_of(room);
+  return static_cast<std::size_t>(std::count_if(m.begin(), m.end(), [](const Session* s) { return s->connected || s->played; }));
 }
 
-std::size_t ServerEndpoint::sessions_in_room(std::uint32_t room) const {
-  return static_cast<std::size_t>(
-      std::count_if(sessions_.begin(), sessions_.end(), [&](const auto& kv) { return kv.second.room == room; }));
-}
+std::size_t ServerEndpoint::sessions_in_room(std::uint32_t room) const { return members_of(room).size(); }
 
 std::vector<std::uint32_t> ServerEndpoint::connected_in_room(std::uint32_t room) const {
   std::vector<std::uint32_t> out;
-  for (const auto& [id, s] : sessions_)
-    if (s.connected && s.room == room) out.push_back(id);
+  for (const Session* s : members_of(room))
+    if (s->connected) out.push_back(s->player_id);
   return out;
 }
 
@@ -319,8 +325,7 @@ std::vector<SessionInfo> ServerEndpoint::sessions() const {
 
 std::vector<SessionInfo> ServerEndpoint::sessions_of_room(std::uint32_t room) const {
   std::vector<SessionInfo> out;
-  for (const auto& [id, s] : sessions_)
-    if (s.room == room) out.push_back(info_of(id, s));
+  for (const Session* s : members_of(room)) out.push_back(info_of(s->player_id, *s));
   return out;
 }
 

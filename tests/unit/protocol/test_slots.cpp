@@ -160,3 +160,31 @@ TEST_CASE("Slots: a session that never played holds no slot after its time-out",
     CHECK_FALSE(h.server.sessions()[0].connected);
   }
 }
+
+TEST_CASE("Slots: a room's counts follow its sessions as they come, quit and go", "[protocol][slots]") {
+  // The per-room counts read an index of each room's sessions made again when one comes
+  // or goes; a quit or a first input changes flags only, read live.
+  Harness h;
+  Peer& ann = h.add_client(named("ann"));
+  Peer& bob = h.add_client(named("bob"));
+  Peer& cid = h.add_client(named("cid"));
+  for (Peer* p : {&ann, &bob, &cid}) p->client.connect(h.now);
+  REQUIRE(h.run_until([&] { return connected(ann) && connected(bob) && connected(cid); }, 1000));
+  CHECK(h.server.seats_in_room(1) == 3);
+  CHECK(h.server.sessions_in_room(1) == 3);
+  CHECK(h.server.connected_in_room(1).size() == 3);
+  CHECK(h.server.holding_in_room(1) == 3);
+  CHECK(h.server.seats_in_room(2) == 0);
+  CHECK(h.server.sessions_of_room(2).empty());
+
+  ann.client.send_input({0, 1, 0, false}, h.now);  // ann plays, then both ann and bob quit
+  h.run_until([] { return false; }, h.now + 50);
+  ann.client.disconnect(h.now);
+  bob.client.disconnect(h.now);
+  h.run_until([] { return false; }, h.now + 50);
+  CHECK(h.server.seats_in_room(1) == 1);        // cid's: a quit frees the seat
+  CHECK(h.server.sessions_in_room(1) == 3);     // both kept for the reconnect window
+  CHECK(h.server.holding_in_room(1) == 2);      // cid connected, ann played; bob holds nothing
+  CHECK(h.server.connected_in_room(1) == std::vector<std::uint32_t>{cid.client.welcome()->player_id});
+  CHECK(h.server.sessions_of_room(1).size() == 3);
+}

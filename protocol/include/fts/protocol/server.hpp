@@ -402,6 +402,11 @@ class ServerEndpoint {
   void send_packet(Session& s, std::vector<Message> messages, bool with_results, std::uint64_t now_ms);
   // by_room_ and held_ made again if a session came, went, connected or dropped since.
   void refresh_rooms();
+  // Every session of a room (connected or not, in player id order): the per-room counts
+  // read their room's sessions, not the whole table (a quick-play hello asks for the seats
+  // of every open room). Made again on the first read after a session came, went,
+  // connected or dropped (a session's room never changes otherwise); flags are read live.
+  const std::vector<const Session*>& members_of(std::uint32_t room) const;
   // A session's next header (its sequence and acks stamped).
   Header session_header(Session& s, std::uint64_t now_ms);
   void drop_connection(Session& s, const std::string& reason, std::uint64_t now_ms);
@@ -435,6 +440,9 @@ class ServerEndpoint {
   std::vector<Session*> held_;  // the sessions not connected, as of by_room_generation_
   std::uint64_t by_room_generation_ = ~std::uint64_t{0};
   std::vector<TimerJob> timer_jobs_;  // the first timer_jobs_used_: one per room in by_room_
+  // members_of(), as of members_generation_ (a cache: const reads, on the endpoint's thread only).
+  mutable std::unordered_map<std::uint32_t, std::vector<const Session*>> members_;
+  mutable std::uint64_t members_generation_ = ~std::uint64_t{0};
   std::size_t timer_jobs_used_ = 0;
   std::vector<ServerEvent> events_;
   std::vector<PlayerInput> inputs_;
