@@ -139,6 +139,7 @@ std::size_t ServerEndpoint::sessions_from(std::string_view host, bool spectators
 }
 
 const std::vector<const ServerSession*>& ServerEndpoint::members_of(std::uint32_t room) const {
+  serial_only("members_of");  // a const read that fills a cache: never beside a pool's jobs
   if (members_generation_ != sessions_.generation()) {
     members_generation_ = sessions_.generation();
     for (auto& [r, members] : members_) members.clear();
@@ -258,7 +259,7 @@ void ServerEndpoint::send_result(std::uint32_t player_id, std::uint32_t command_
   serial_only("send_result");
   auto it = sessions_.find(player_id);
   if (it == sessions_.end()) return;
-  // Sent by the next update(), batched with the session's other due results.
+  // Sent by the timers' next run (update, timer_jobs), batched with the session's other due results.
   if (!it->second.answer(command_rid, code, std::move(message), config_.max_pending_results))
     overflow(it->second, "results", now_ms);
 }
@@ -300,7 +301,7 @@ bool ServerEndpoint::send_chat(std::uint32_t player_id, const Chat& chat, std::u
     ++chat_dropped_;
     return false;
   }
-  it->second.chats.push(chat);  // sent by the next update(), with the session's results
+  it->second.chats.push(chat);  // sent by the timers' next run, with the session's results
   return true;
 }
 

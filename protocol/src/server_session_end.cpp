@@ -55,7 +55,7 @@ bool ServerEndpoint::restore_session(const RestoredSession& r, std::uint64_t now
     return false;
   if (r.foreign) take_player_id(r.player_id);
   else reserve_player_ids(r.player_id);
-  Session& s = sessions_[r.player_id];
+  Session& s = sessions_[r.player_id];  // (the generation moves: members_of reads the room set below)
   s.player_id = r.player_id;
   s.name = r.name;
   s.verifier = r.token_verifier;

@@ -8,7 +8,7 @@
 
 namespace fts::protocol {
 
-void TimerJob::run() {  // (its lists emptied by settle_timers, which took them)
+void TimerJob::run() {  // (its lists emptied by timer_jobs, which handed it out)
   const ServerConfig& c = *config_;
   for (ServerSession* s : members_->sessions_) {
     if (s->spectator || s->watching || idle_paused_) s->last_active_ms = now_ms_;
@@ -48,6 +48,10 @@ std::span<TimerJob> ServerEndpoint::timer_jobs(std::uint64_t now_ms) {
     job.config_ = &config_;
     job.now_ms_ = now_ms;
     job.idle_paused_ = terms(room).idle_paused;
+    // Empty, unless a run was not settled (a job threw): what it found is stale then.
+    job.timed_out_.clear();
+    job.idle_.clear();
+    job.lane_.out.clear();
   }
   return {timer_jobs_.data(), timer_jobs_used_};
 }
@@ -66,8 +70,6 @@ void ServerEndpoint::settle_timers(std::uint64_t now_ms) {
       if (!s->played) never_played.push_back(s->player_id);
     }
     for (ServerSession* s : job.idle_) idle.push_back(s->player_id);
-    job.timed_out_.clear();
-    job.idle_.clear();
   }
   timer_jobs_used_ = 0;
 

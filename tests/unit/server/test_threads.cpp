@@ -131,6 +131,7 @@ TEST_CASE("Threads: while a pool runs on the endpoint, a serial call is refused 
       CHECK_THROWS_WITH(e.update(1000), Catch::Contains("ServerEndpoint::update"));
       CHECK_THROWS_WITH(e.timer_jobs(1000), Catch::Contains("timer_jobs"));
       CHECK_THROWS_WITH(e.settle_timers(1000), Catch::Contains("settle_timers"));
+      CHECK_THROWS_WITH(e.seats_in_room(1), Catch::Contains("members_of"));  // fills its index
       CHECK_THROWS_WITH(e.take_datagrams(), Catch::Contains("take_datagrams"));
       CHECK_THROWS_WITH(e.set_server_tick(1, 5), Catch::Contains("set_server_tick"));
     }

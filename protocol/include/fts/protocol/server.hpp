@@ -346,7 +346,8 @@ class ServerEndpoint {
   std::uint64_t stalled_ms() const { return stalled_ms_; }
 
   // ---- Phases (issue 39). While a pool's jobs run, they touch only what they were
-  // handed (server_jobs.hpp) and the endpoint takes const reads only; every mutator
+  // handed (server_jobs.hpp) and the endpoint takes const reads only (not the per-room
+  // counts, whose index is made on their first read); every mutator
   // checks that no parallel phase is on. The host holds a
   // ParallelPhase for each pool run. Checked where FTS_PHASE_CHECKS is defined (the
   // sanitized and ThreadSanitizer builds: kPhaseChecks): a call out of phase throws

@@ -2,9 +2,9 @@
 // open, or one room's connected sessions to send a snapshot to or to keep alive, and the
 // lane it seals into; never the endpoint. Two jobs hold disjoint sessions, so the types, not a comment,
 // keep them apart. The endpoint makes them in its serial part (ServerEndpoint::inbox_jobs,
-// connected_by_room, timer_jobs); an InboxJob or a TimerJob stays valid until the endpoint
-// is next called, a RoomSessions until a session comes, goes, connects or drops (none does
-// while jobs run).
+// connected_by_room, timer_jobs); an InboxJob stays valid until the endpoint is next
+// called, a TimerJob until settle_timers takes what it found, a RoomSessions until a
+// session comes, goes, connects or drops (none does while jobs run).
 #pragma once
 
 #include <cstdint>
