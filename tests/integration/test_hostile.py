@@ -23,7 +23,7 @@ import contextlib, json, os, re, select, socket, struct, sys, tempfile, time
 from concurrent.futures import ThreadPoolExecutor
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import Server, check, finish_bots, free_port, main, records, start_bots, wait_for  # noqa: E402
+from harness import Server, check, finish_bots, free_port, main, records, rss_kib, start_bots, wait_for  # noqa: E402
 from agones_sidecar import Sidecar  # noqa: E402
 
 
@@ -48,11 +48,6 @@ def host(*extra):
                  "--console-socket", sock, *extra)
     srv.metrics, srv.sock = metrics, sock
     return srv
-
-
-def rss_kib(srv):
-    with open(f"/proc/{srv.proc.pid}/status") as f:
-        return int(re.search(r"VmRSS:\s+(\d+)", f.read()).group(1))
 
 
 def send(s, data):
@@ -227,7 +222,7 @@ def test_console_garbage(srv, t):
 
 @hostile
 def test_console_idle(srv, t):
-    rss0, t0 = rss_kib(srv), time.monotonic()
+    rss0, t0 = rss_kib(srv.proc.pid), time.monotonic()
     partial, trickler = [connect_unix(srv.sock) for _ in range(3)], connect_unix(srv.sock)
     for s in partial:
         s.sendall(b'{"cmd":"sta')
@@ -248,7 +243,7 @@ def test_console_idle(srv, t):
         time.sleep(min(1.0, left))  # the trickle's pace, not a wait for a result
     ends = closed_at(held, t0, IDLE_S + 3)
     check(None not in ends and min(ends) >= IDLE_S - 0.5, f"closed at {ends}, want after {IDLE_S} s")
-    grew = rss_kib(srv) - rss0
+    grew = rss_kib(srv.proc.pid) - rss0
     check(grew < 32 << 10, f"the RSS grew by {grew} KiB")
     print(f"  answered in {took:.2f} s with 7 held; closed at {min(ends):.1f}-{max(ends):.1f} s; RSS +{grew} KiB")
 
@@ -431,7 +426,7 @@ def test_agones_slow():
 def test_agones_garbage():
     with sidecar_and_host() as (sc, srv, t):
         health_after(sc, 0, 3, 10, "first")
-        rss0, playing, spells = rss_kib(srv), bots(srv, "gb", 8), 0
+        rss0, playing, spells = rss_kib(srv.proc.pid), bots(srv, "gb", 8), 0
         for fault in ("error", "garbage", "lying", "huge", "bad_json", "wrong_types"):
             sc.set_fault(fault)
             n0 = sc.faulted_calls()
@@ -451,7 +446,7 @@ def test_agones_garbage():
         retries = records(srv, "agones_retry")
         check(len(retries) == spells, f"{len(retries)} agones_retry records for {spells} spells")
         check({r["state"] for r in records(srv, "agones_state")} == {"Ready"}, "a garbage state was taken")
-        grew = rss_kib(srv) - rss0
+        grew = rss_kib(srv.proc.pid) - rss0
         check(grew < 64 << 10, f"the RSS grew by {grew} KiB (a 1 TB answer is read 1 MiB at most)")
         bots_played(playing)
         print(f"  {spells} failing spells, {len(retries)} agones_retry records; RSS +{grew} KiB")
