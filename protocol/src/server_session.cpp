@@ -113,9 +113,7 @@ void ServerSession::apply(const Decoded<Datagram>& opened, std::uint64_t now_ms,
 }
 
 bool ServerSession::answer(std::uint32_t rid, ResultCode code, std::string message, std::size_t max_pending) {
-  message.resize(std::min<std::size_t>(message.size(), kMaxTextBytes));
-  for (char& c : message)
-    if (c < 0x20 || c > 0x7E) c = '?';
+  wire::Text{0, kMaxTextBytes}.clamp(message);  // as the result's msg field reads (control_tables.hpp)
   if (unanswered > 0) --unanswered;
   results.push(Result{0, rid, code == ResultCode::ok, std::string(to_string(code)), std::move(message)});
   return results.pending() <= max_pending;
