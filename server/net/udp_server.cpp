@@ -1,5 +1,6 @@
 #include "net/udp_server.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdlib>
@@ -245,14 +246,19 @@ class Loop {
 
   std::uint64_t now_ms() const { return static_cast<std::uint64_t>((now_ns() - epoch_ns_) / 1'000'000); }
 
+  // The socket is read when the loop wakes for a tick (and at least every kReadEveryNs
+  // when ticks are further apart: schedule_tick), not when a datagram comes: one wake-up
+  // per tick instead of one per arrival. A datagram waits for the tick at most, which is
+  // where its input is used anyway; a hello's answer waits that long too (10 ms at the
+  // default 100 Hz). Measured at 256 clients: ~15 % less CPU (BENCHMARKS.md, issue 39).
+  static constexpr std::int64_t kReadEveryNs = 10'000'000;
+
   void receive() {
-    // A burst of datagrams (one wake-up, recvmmsg) is handled, then the answers go out
-    // together (sendmmsg).
     socket_.start_receiving(
         [this](const udp::endpoint& from, std::span<const std::uint8_t> bytes) {
           host_.receive(io::to_text(from), bytes, now_ms());
         },
-        [this] { flush(); });
+        {}, UdpSocket::Wake::when_asked);
   }
 
   // Addresses travel as text through the sans-I/O layers and are parsed back here, so
@@ -266,12 +272,17 @@ class Loop {
   }
 
   void schedule_tick() {
-    const auto deadline = Clock::time_point(std::chrono::nanoseconds(clock_.next_deadline_ns()));
-    tick_timer_.expires_at(deadline);
+    const std::int64_t wake_ns = std::min(clock_.next_deadline_ns(), now_ns() + kReadEveryNs);
+    tick_timer_.expires_at(Clock::time_point(std::chrono::nanoseconds(wake_ns)));
     tick_timer_.async_wait([this](const boost::system::error_code& ec) {
       if (ec) return;
+      socket_.take_waiting();
       const std::uint64_t skipped_before = clock_.skipped();
       const std::uint32_t n = clock_.due(now_ns());
+      if (n == 0) {  // a read between ticks: its answers (a hello's) go now
+        flush();
+        return schedule_tick();
+      }
       for (std::uint32_t i = 0; i < n; ++i) {
         const auto start = Clock::now();
         host_.tick(now_ms());

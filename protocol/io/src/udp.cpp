@@ -7,9 +7,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <string_view>
+#include <utility>
 
 #ifdef __linux__
 #include <sys/socket.h>
+#include <unistd.h>
 #endif
 
 namespace fts::io {
@@ -66,6 +68,13 @@ boost::system::error_code UdpSocket::bind(const udp::endpoint& local) {
 }
 
 std::size_t UdpSocket::receive_buffer_bytes() const {
+#ifdef __linux__
+  if (polled_ >= 0) {
+    int size = 0;
+    socklen_t len = sizeof(size);
+    return ::getsockopt(polled_, SOL_SOCKET, SO_RCVBUF, &size, &len) == 0 ? static_cast<std::size_t>(size) : 0;
+  }
+#endif
   udp::socket::receive_buffer_size size;
   boost::system::error_code ec;
   socket_.get_option(size, ec);
@@ -81,27 +90,48 @@ boost::system::error_code UdpSocket::connect(const udp::endpoint& server, const 
   return ec;
 }
 
-void UdpSocket::start_receiving(Handler on_datagram, std::function<void()> on_burst_end) {
+void UdpSocket::start_receiving(Handler on_datagram, std::function<void()> on_burst_end, Wake wake) {
   on_datagram_ = std::move(on_datagram);
   on_burst_end_ = std::move(on_burst_end);
+#ifdef __linux__
+  // Out of the reactor: Asio registers a socket edge-triggered when it opens it, so even
+  // with no read waiting every arrival would wake the loop. release() deregisters it and
+  // hands over the descriptor (non-blocking; MSG_DONTWAIT is passed all the same).
+  if (wake == Wake::when_asked) {
+    if (polled_ < 0 && socket_.is_open()) {
+      boost::system::error_code ec;
+      polled_ = socket_.release(ec);
+      if (ec) polled_ = -1;
+    }
+    if (polled_ >= 0) return;
+  }
+#else
+  (void)wake;
+#endif
   receive_next(generation_);
 }
+
+std::size_t UdpSocket::take_waiting() { return polled_ >= 0 ? drain(generation_, kRoundsPerTake) : 0; }
 
 // One wake-up when the socket is readable; the datagrams are then taken without waiting.
 void UdpSocket::receive_next(std::uint64_t generation) {
   socket_.async_wait(udp::socket::wait_read, [this, generation](const boost::system::error_code& ec) {
     if (ec == asio::error::operation_aborted || generation != generation_) return;
-    if (!ec) drain(generation);
+    if (!ec) {
+      drain(generation, kRoundsPerWakeup);
+      if (generation == generation_ && on_burst_end_) on_burst_end_();
+    }
     if (generation == generation_ && socket_.is_open()) receive_next(generation);
   });
 }
 
 #ifdef __linux__
-void UdpSocket::drain(std::uint64_t generation) {
+std::size_t UdpSocket::drain(std::uint64_t generation, std::size_t rounds) {
+  std::size_t taken = 0;
   std::array<mmsghdr, kBatch> msgs{};
   std::array<iovec, kBatch> iov{};
   std::array<sockaddr_storage, kBatch> from{};
-  for (std::size_t round = 0; round < kRoundsPerWakeup; ++round) {
+  for (std::size_t round = 0; round < rounds; ++round) {
     for (std::size_t i = 0; i < kBatch; ++i) {
       iov[i] = {buffers_[i].data(), buffers_[i].size()};
       msgs[i] = {};
@@ -110,10 +140,11 @@ void UdpSocket::drain(std::uint64_t generation) {
       msgs[i].msg_hdr.msg_iov = &iov[i];
       msgs[i].msg_hdr.msg_iovlen = 1;
     }
-    const int n = ::recvmmsg(socket_.native_handle(), msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
+    const int n = ::recvmmsg(fd(), msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
     if (n <= 0) break;  // nothing more now (EAGAIN), or an ICMP error: skipped
     ++receive_calls_;
     datagrams_received_ += static_cast<std::uint64_t>(n);
+    taken += static_cast<std::size_t>(n);
     for (int i = 0; i < n; ++i) {
       udp::endpoint sender;
       const std::size_t len = std::min<std::size_t>(msgs[i].msg_hdr.msg_namelen, sender.capacity());
@@ -121,11 +152,11 @@ void UdpSocket::drain(std::uint64_t generation) {
       sender.resize(len);
       const std::size_t bytes = std::min<std::size_t>(msgs[i].msg_len, buffers_[i].size());
       if (on_datagram_) on_datagram_(sender, std::span<const std::uint8_t>(buffers_[i].data(), bytes));
-      if (generation != generation_) return;  // closed by the handler
+      if (generation != generation_) return taken;  // closed by the handler
     }
     if (static_cast<std::size_t>(n) < kBatch) break;
   }
-  if (on_burst_end_) on_burst_end_();
+  return taken;
 }
 
 std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
@@ -144,7 +175,7 @@ std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
       msgs[i].msg_hdr.msg_iov = &iov[i];
       msgs[i].msg_hdr.msg_iovlen = 1;
     }
-    const int sent = ::sendmmsg(socket_.native_handle(), msgs.data(), static_cast<unsigned>(n), MSG_DONTWAIT);
+    const int sent = ::sendmmsg(fd(), msgs.data(), static_cast<unsigned>(n), MSG_DONTWAIT);
     // sendmmsg stops at the first datagram that fails: that one is counted and skipped.
     const std::size_t ok = sent > 0 ? static_cast<std::size_t>(sent) : 0;
     done += ok;
@@ -157,18 +188,20 @@ std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
   return failed;
 }
 #else
-void UdpSocket::drain(std::uint64_t generation) {
-  for (std::size_t i = 0; i < kBatch * kRoundsPerWakeup; ++i) {
+std::size_t UdpSocket::drain(std::uint64_t generation, std::size_t rounds) {
+  std::size_t taken = 0;
+  for (std::size_t i = 0; i < kBatch * rounds; ++i) {
     udp::endpoint sender;
     boost::system::error_code ec;
     const std::size_t n = socket_.receive_from(asio::buffer(buffers_[0]), sender, 0, ec);
     if (ec) break;
     ++receive_calls_;
     ++datagrams_received_;
+    ++taken;
     if (on_datagram_) on_datagram_(sender, std::span<const std::uint8_t>(buffers_[0].data(), n));
-    if (generation != generation_) return;
+    if (generation != generation_) return taken;
   }
-  if (on_burst_end_) on_burst_end_();
+  return taken;
 }
 
 std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
@@ -179,6 +212,14 @@ std::size_t UdpSocket::send_batch(std::span<const Outgoing> batch) {
 #endif
 
 bool UdpSocket::send(std::span<const std::uint8_t> bytes, const std::optional<udp::endpoint>& to) {
+  if (polled_ >= 0) {  // out of Asio's hands: the batch's system call
+    if (!to) {  // a socket out of the reactor is a server's, and a server names the peer
+      ++send_errors_;
+      return false;
+    }
+    const Outgoing one{*to, bytes};
+    return send_batch({&one, 1}) == 0;
+  }
   boost::system::error_code ec;
   if (to) socket_.send_to(asio::buffer(bytes.data(), bytes.size()), *to, 0, ec);
   else socket_.send(asio::buffer(bytes.data(), bytes.size()), 0, ec);
@@ -188,11 +229,21 @@ bool UdpSocket::send(std::span<const std::uint8_t> bytes, const std::optional<ud
 
 void UdpSocket::close() {
   ++generation_;
+  if (polled_ >= 0) ::close(std::exchange(polled_, -1));
   boost::system::error_code ec;
   if (socket_.is_open()) socket_.close(ec);
 }
 
 udp::endpoint UdpSocket::local_endpoint() const {
+#ifdef __linux__
+  if (polled_ >= 0) {
+    udp::endpoint local;
+    socklen_t len = static_cast<socklen_t>(local.capacity());
+    if (::getsockname(polled_, local.data(), &len) != 0) return {};
+    local.resize(len);
+    return local;
+  }
+#endif
   boost::system::error_code ec;
   return socket_.local_endpoint(ec);
 }

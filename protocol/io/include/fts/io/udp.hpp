@@ -1,8 +1,10 @@
 // The one UDP socket of the edges (fts-server, fts-client, fts-bot): open, bind or
 // connect, a receive loop that hands every datagram to a callback, and sends whose
 // failures are counted, not thrown (a lost datagram is the protocol's business).
-// Batched on Linux: one wake-up drains up to kBatch datagrams per recvmmsg call, and
-// send_batch hands many datagrams to one sendmmsg call.
+// Batched on Linux: one read takes up to kBatch datagrams per recvmmsg call, and
+// send_batch hands many datagrams to one sendmmsg call. A socket is read either when it
+// wakes its loop (Wake::on_arrival: clients, which answer at once) or when its owner asks
+// (Wake::when_asked: the server, which reads at each tick; see take_waiting).
 #pragma once
 
 #include <array>
@@ -34,6 +36,14 @@ class UdpSocket {
   // such as a due tick, gets its turn before the next wake-up drains more).
   static constexpr std::size_t kBatch = 32;
   static constexpr std::size_t kRoundsPerWakeup = 4;
+  // Calls per take_waiting() at most: 4096 datagrams, ten 100 Hz ticks of 2048 clients.
+  // What a flood leaves beyond waits in the kernel's buffer for the next take, and what
+  // overflows that buffer the kernel drops (as it would any datagram it cannot queue).
+  static constexpr std::size_t kRoundsPerTake = 128;
+  enum class Wake {
+    on_arrival,  // the socket wakes the io_context's loop when datagrams come; they are read then
+    when_asked,  // the socket never wakes the loop (it leaves the reactor): take_waiting() reads
+  };
   struct Outgoing {
     udp::endpoint to;
     std::span<const std::uint8_t> bytes;
@@ -59,8 +69,16 @@ class UdpSocket {
   // Hands every datagram received from now on to `on_datagram`, until close() or the
   // next bind/connect; receive errors (an ICMP "port unreachable") are skipped.
   // `on_burst_end` runs once after every wake-up's datagrams (where a server sends its
-  // answers in one batch).
-  void start_receiving(Handler on_datagram, std::function<void()> on_burst_end = {});
+  // answers in one batch). With Wake::when_asked (Linux; elsewhere the socket wakes the
+  // loop as on_arrival) nothing is read until take_waiting(): a loop that wakes anyway at
+  // fixed times (a server's ticks) reads in one go what came since, instead of waking for
+  // every datagram (on a 2-core VM a wake-up costs about 10 µs of the process's CPU in
+  // the context switch alone: BENCHMARKS.md, issue 39).
+  void start_receiving(Handler on_datagram, std::function<void()> on_burst_end = {}, Wake wake = Wake::on_arrival);
+  // Wake::when_asked: hands every datagram waiting now to `on_datagram` (at most
+  // kRoundsPerTake calls; no waiting) and returns how many; on_burst_end is not called
+  // (the owner sends when it is done). 0 in the other mode.
+  std::size_t take_waiting();
   // Sends one datagram (to the connected peer when `to` is not given); false on error.
   bool send(std::span<const std::uint8_t> bytes, const std::optional<udp::endpoint>& to = std::nullopt);
   // Sends every datagram of `batch` (sendmmsg: one system call per kBatch); returns how
@@ -76,9 +94,13 @@ class UdpSocket {
 
  private:
   void receive_next(std::uint64_t generation);
-  void drain(std::uint64_t generation);
+  // Reads up to `rounds` batches; how many datagrams it handed on.
+  std::size_t drain(std::uint64_t generation, std::size_t rounds);
+  // The descriptor the system calls use: the socket's, or the one taken from the reactor.
+  int fd() { return polled_ >= 0 ? polled_ : socket_.native_handle(); }
 
   udp::socket socket_;
+  int polled_ = -1;  // Wake::when_asked: the descriptor, out of the io_context's reactor; owned
   std::array<std::array<std::uint8_t, 2048>, kBatch> buffers_{};
   Handler on_datagram_;
   std::function<void()> on_burst_end_;
