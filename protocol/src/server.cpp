@@ -242,6 +242,36 @@ void seal_snapshot(ServerSession& s, std::uint16_t version, const SharedSnapshot
   }
 }
 
+void RoomSessions::send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const {
+  lane.encoded_used = 0;
+  for (ServerSession* s : sessions_) {
+    const Snapshot* base = s->snapshots.base_for(*quantized);
+    const auto used = lane.encoded.begin() + static_cast<std::ptrdiff_t>(lane.encoded_used);
+    auto e = std::find_if(lane.encoded.begin(), used,
+                          [&](const SendLane::Encoded& x) { return x.base == base && x.encoding == s->encoding; });
+    if (e == used) {  // the first session with this base: its parts are encoded for the others too
+      if (lane.encoded_used == lane.encoded.size()) lane.encoded.emplace_back();
+      e = lane.encoded.begin() + static_cast<std::ptrdiff_t>(lane.encoded_used++);
+      e->base = base;
+      e->encoding = s->encoding;
+      e->parts = 0;
+      for (const SnapshotMsg& part : s->snapshots.encode(quantized, s->encoding)) {
+        if (e->parts == e->payloads.size()) e->payloads.emplace_back();
+        std::vector<std::uint8_t>& payload = e->payloads[e->parts++];
+        payload.clear();
+        append_snapshot_payload(s->encoding, part, payload);
+      }
+    } else {
+      s->snapshots.sent(quantized);
+    }
+    for (std::size_t k = 0; k < e->parts; ++k) {
+      const Header h = s->next_header(version_, now_ms);
+      s->last_send_ms = now_ms;
+      s->seal_into(h, e->payloads[k], lane.out, lane.spare);
+    }
+  }
+}
+
 void ServerEndpoint::adopt(SendLane& lane) {
   serial_only("adopt");
   for (Outgoing& o : lane.out) lane_.out.push_back(std::move(o));

@@ -266,19 +266,27 @@ const std::vector<SnapshotMsg>& SnapshotSender::encode(const Snapshot& current, 
 
 const std::vector<SnapshotMsg>& SnapshotSender::encode(SharedSnapshot current, Encoding encoding,
                                                        std::size_t budget) {
+  make_delta(*current, base_for(*current), tick_rate_hz_, delta_, motions_);  // resets every field of delta_
+  split_snapshot_into(delta_, encoding, budget, parts_);
+  sent(std::move(current));
+  return parts_;
+}
+
+const Snapshot* SnapshotSender::base_for(const Snapshot& current) const {
   const Snapshot* base = nullptr;
   // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
-  if (acked_ && *acked_ + max_base_age_ticks_ >= current->tick) {
+  if (acked_ && *acked_ + max_base_age_ticks_ >= current.tick) {
     for (const auto& h : history_)
-      if (h->tick == *acked_ && h->tick < current->tick) base = h.get();
+      if (h->tick == *acked_ && h->tick < current.tick) base = h.get();
   }
-  make_delta(*current, base, tick_rate_hz_, delta_, motions_);  // resets every field of delta_
-  split_snapshot_into(delta_, encoding, budget, parts_);
+  return base;
+}
+
+void SnapshotSender::sent(SharedSnapshot current) {
   if (history_.capacity() < kHistory) history_.reserve(kHistory);  // once, not per doubling
   std::erase_if(history_, [&](const SharedSnapshot& h) { return h->tick == current->tick; });
   if (history_.size() >= kHistory) history_.erase(history_.begin());
   history_.push_back(std::move(current));
-  return parts_;
 }
 
 void SnapshotSender::on_ack(std::uint32_t tick) {

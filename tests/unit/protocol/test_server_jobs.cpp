@@ -204,3 +204,70 @@ TEST_CASE("Server jobs: a room's timer job keeps its own sessions alive, the end
   t.server->settle_timers(t.now);
   CHECK(t.server->sessions().size() == 3);  // their seats held for the reconnect window
 }
+
+TEST_CASE("Server jobs: a room's sessions with one base share one encoding, each client decodes its own",
+          "[protocol][threads]") {
+  TwoRooms t;
+  auto& ann = t.add("ann");
+  t.add("bob");
+  auto& cid = t.add("cid");
+  t.add("dee");
+  auto& eve = t.add("eve");
+  REQUIRE(t.connect_all());
+  const RoomSessions& room = t.server->connected_by_room().at(1);  // ann, cid and eve
+  REQUIRE(room.size() == 3);
+
+  const auto snapshot_at = [](std::uint32_t tick, double x) {
+    Snapshot s;
+    s.tick = tick;
+    s.phase = Phase::play;
+    s.balls.push_back(BallState{7, x, 2.0, 0.5, -0.25, 0.5, 1.0, BallKind::enemy, 0});
+    return std::make_shared<const Snapshot>(quantize(s));
+  };
+  const auto deliver = [&](const SendLane& lane, const std::vector<ClientEndpoint*>& to) {
+    for (const auto& o : lane.out)
+      for (std::size_t i = 0; i < t.clients.size(); ++i)
+        if (t.addresses[i] == o.to && std::find(to.begin(), to.end(), t.clients[i].get()) != to.end())
+          t.clients[i]->receive(o.bytes, t.now);
+  };
+
+  // The first snapshot: nobody has a base, one full encoding for all three.
+  SendLane lane;
+  const auto first = snapshot_at(1000, 10.0);
+  room.send_snapshot(first, t.now, lane);
+  CHECK(lane.encoded_used == 1);
+  REQUIRE(lane.out.size() == 3);
+  // Each datagram sealed for its own session: three different byte strings.
+  CHECK(lane.out[0].bytes != lane.out[1].bytes);
+  CHECK(lane.out[1].bytes != lane.out[2].bytes);
+  deliver(lane, {&ann, &cid});  // eve's is lost
+  REQUIRE(ann.latest_snapshot() != nullptr);
+  CHECK(*ann.latest_snapshot() == *first);
+  // ann and cid acknowledge it with their next input.
+  ann.send_input({1, 0, 0, false}, t.now);
+  cid.send_input({0, 1, 0, false}, t.now);
+  t.step(false);
+
+  // The second: a delta against the first for ann and cid (encoded once), a full one for
+  // eve; every client rebuilds exactly what the server sent.
+  SendLane next;
+  const auto second = snapshot_at(1005, 10.5);
+  room.send_snapshot(second, t.now, next);
+  CHECK(next.encoded_used == 2);
+  REQUIRE(next.out.size() == 3);
+  deliver(next, {&ann, &cid, &eve});
+  for (ClientEndpoint* c : {&ann, &cid, &eve}) {
+    REQUIRE(c->latest_snapshot() != nullptr);
+    CHECK(*c->latest_snapshot() == *second);
+  }
+  // ann's and cid's datagrams carry the same parts (sealed apart); eve's, full, differ.
+  const auto size_to = [&](const ClientEndpoint& c) {
+    for (std::size_t i = 0; i < t.clients.size(); ++i)
+      if (t.clients[i].get() == &c)
+        for (const auto& o : next.out)
+          if (o.to == t.addresses[i]) return o.bytes.size();
+    return std::size_t{0};
+  };
+  CHECK(size_to(ann) == size_to(cid));
+  CHECK(size_to(eve) != size_to(ann));
+}

@@ -27,6 +27,16 @@ struct SendLane {
   std::vector<Outgoing> out;
   std::vector<Outgoing> spare;  // buffers of datagrams sent before, reused
   std::vector<std::uint8_t> payload;
+  // RoomSessions::send_snapshot's payloads, one entry per (base, encoding) its sessions
+  // needed in one call (the first `encoded_used`; the rest keep their buffers).
+  struct Encoded {
+    const Snapshot* base = nullptr;
+    Encoding encoding = Encoding::msgpack;
+    std::size_t parts = 0;
+    std::vector<std::vector<std::uint8_t>> payloads;  // the first `parts`
+  };
+  std::vector<Encoded> encoded;
+  std::size_t encoded_used = 0;
 };
 
 // A datagram of a session waiting in the endpoint's inbox (ServerEndpoint::receive_later).
@@ -72,10 +82,10 @@ class RoomSessions {
  public:
   bool empty() const { return sessions_.empty(); }
   std::size_t size() const { return sessions_.size(); }
-  // The snapshot to each of them, sealed into `lane`.
-  void send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const {
-    for (ServerSession* s : sessions_) seal_snapshot(*s, version_, quantized, now_ms, lane);
-  }
+  // The snapshot to each of them, sealed into `lane`. Sessions whose deltas have the same
+  // base and encoding (most of a room's, when they acknowledge in time) get the same parts:
+  // made and encoded once, sealed for each.
+  void send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const;
   // A player out of lives who watches its room's match (the room's job says so, each
   // tick) is never dropped for idling: it has nothing to press (issue 37).
   void set_watching(std::uint32_t player_id, bool watching) const {

@@ -65,6 +65,13 @@ class SnapshotSender {
   // delta, its parts and the history reuse their storage (fts-wire-bench counts it).
   const std::vector<SnapshotMsg>& encode(SharedSnapshot quantized, Encoding encoding,
                                          std::size_t budget = kMaxPayloadBytes);
+  // The snapshot a delta for `current` is made against (nullptr: a full snapshot). Two
+  // senders that give the same base (the same shared snapshot: clients of one room) make
+  // the same parts for `current`, which RoomSessions::send_snapshot encodes once.
+  const Snapshot* base_for(const Snapshot& current) const;
+  // `current` went out in parts another sender made for the same base: kept in the
+  // history as encode() keeps what it encodes.
+  void sent(SharedSnapshot current);
   // The client reports the latest complete snapshot it has.
   void on_ack(std::uint32_t tick);
   std::optional<std::uint32_t> acked_tick() const { return acked_; }
