@@ -23,12 +23,13 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   q.now_ms = now_ms;
   q.bytes.assign(bytes.begin(), bytes.end());
   q.applied.clear();
-  auto [j, fresh] = inbox_job_of_.try_emplace(s->player_id, inbox_jobs_used_);
-  if (fresh) {
+  if (s->inbox_round != inbox_round_) {  // the session's first datagram of the tick: a job of its own
+    s->inbox_round = inbox_round_;
+    s->inbox_job = inbox_jobs_used_;
     if (inbox_jobs_used_ == inbox_jobs_.size()) inbox_jobs_.emplace_back();
     inbox_jobs_[inbox_jobs_used_++].datagrams_.clear();
   }
-  inbox_jobs_[j->second].datagrams_.push_back(&q);
+  inbox_jobs_[s->inbox_job].datagrams_.push_back(&q);
   ++inbox_used_;
 }
 
@@ -71,7 +72,7 @@ void ServerEndpoint::apply_inbox() {
   }
   inbox_used_ = 0;
   inbox_jobs_used_ = 0;
-  inbox_job_of_.clear();
+  ++inbox_round_;
 }
 
 void ServerEndpoint::settle(std::uint32_t player_id, std::uint32_t session_id, Applied& applied,

@@ -436,7 +436,7 @@ class ServerEndpoint {
   std::size_t inbox_used_ = 0;
   std::vector<InboxJob> inbox_jobs_;  // the first inbox_jobs_used_: one per session with datagrams
   std::size_t inbox_jobs_used_ = 0;
-  std::unordered_map<std::uint32_t, std::size_t> inbox_job_of_;  // player id -> its job
+  std::uint64_t inbox_round_ = 1;  // a session's inbox_job is this round's if its inbox_round is this
   std::map<std::uint32_t, RoomSessions> by_room_;  // connected_by_room(), as of by_room_generation_
   std::vector<Session*> held_;  // the sessions not connected, as of by_room_generation_
   std::uint64_t by_room_generation_ = ~std::uint64_t{0};

@@ -110,6 +110,10 @@ struct ServerSession {
   bool spectator = false;  // no seat; inputs dropped; never idle
   bool watching = false;   // out of lives (RoomSessions::set_watching): never idle
   bool kept = false;       // past its reconnect window, kept while its room's match runs
+  // The endpoint's inbox (server_inbox.cpp): this session's InboxJob of the tick, if
+  // inbox_round is the endpoint's round (a field, not a map: no allocation per datagram).
+  std::size_t inbox_job = 0;
+  std::uint64_t inbox_round = 0;
 
   // Applies an opened datagram of this session (`opened` its decoding or why it did not
   // decode): its rate, acks, inputs (ahead of the last applied, by at most
