@@ -50,6 +50,7 @@ class UdpSocket {
   };
 
   explicit UdpSocket(asio::io_context& io) : socket_(io) {}
+  ~UdpSocket() { close(); }  // the descriptor taken from the reactor is this object's to close
   UdpSocket(const UdpSocket&) = delete;
   UdpSocket& operator=(const UdpSocket&) = delete;
 
