@@ -222,29 +222,16 @@ void ServerEndpoint::send_snapshot(std::uint32_t player_id, const Snapshot& snap
   send_snapshot(player_id, std::make_shared<const Snapshot>(quantize(snapshot)), now_ms);
 }
 
-void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
-  serial_only("send_snapshot");
-  auto it = sessions_.find(player_id);
-  if (it == sessions_.end() || !it->second.connected) return;
-  seal_snapshot(it->second, config_.version, quantized, now_ms, lane_);
-}
+namespace {
 
-void seal_snapshot(ServerSession& s, std::uint16_t version, const SharedSnapshot& quantized, std::uint64_t now_ms,
-                   SendLane& lane) {
-  // Each part straight from the sender's buffers into the sealed datagram: no message
-  // list, no copy of the part.
-  for (const SnapshotMsg& part : s.snapshots.encode(quantized, s.encoding)) {
-    const Header h = s.next_header(version, now_ms);
-    s.last_send_ms = now_ms;
-    lane.payload.clear();
-    append_snapshot_payload(s.encoding, part, lane.payload);
-    s.seal_into(h, lane.payload, lane.out, lane.spare);
-  }
-}
-
-void RoomSessions::send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const {
+// `quantized` to each of `sessions` (a delta against what each acknowledged, in as many
+// parts as it takes), sealed into `lane`. Sessions with the same base and encoding (most
+// of a room's, when they acknowledge in time) get the same parts: made and encoded once,
+// straight from the sender's buffers, then stamped and sealed for each.
+void seal_snapshots(std::span<ServerSession* const> sessions, std::uint16_t version, const SharedSnapshot& quantized,
+                    std::uint64_t now_ms, SendLane& lane) {
   lane.encoded_used = 0;
-  for (ServerSession* s : sessions_) {
+  for (ServerSession* s : sessions) {
     const Snapshot* base = s->snapshots.base_for(*quantized);
     const auto used = lane.encoded.begin() + static_cast<std::ptrdiff_t>(lane.encoded_used);
     auto e = std::find_if(lane.encoded.begin(), used,
@@ -265,11 +252,25 @@ void RoomSessions::send_snapshot(const SharedSnapshot& quantized, std::uint64_t 
       s->snapshots.sent(quantized);
     }
     for (std::size_t k = 0; k < e->parts; ++k) {
-      const Header h = s->next_header(version_, now_ms);
+      const Header h = s->next_header(version, now_ms);
       s->last_send_ms = now_ms;
       s->seal_into(h, e->payloads[k], lane.out, lane.spare);
     }
   }
+}
+
+}  // namespace
+
+void RoomSessions::send_snapshot(const SharedSnapshot& quantized, std::uint64_t now_ms, SendLane& lane) const {
+  seal_snapshots(sessions_, version_, quantized, now_ms, lane);
+}
+
+void ServerEndpoint::send_snapshot(std::uint32_t player_id, const SharedSnapshot& quantized, std::uint64_t now_ms) {
+  serial_only("send_snapshot");
+  auto it = sessions_.find(player_id);
+  if (it == sessions_.end() || !it->second.connected) return;
+  ServerSession* const one = &it->second;
+  seal_snapshots({&one, 1}, config_.version, quantized, now_ms, lane_);
 }
 
 void ServerEndpoint::adopt(SendLane& lane) {

@@ -27,8 +27,8 @@ struct SendLane {
   std::vector<Outgoing> out;
   std::vector<Outgoing> spare;  // buffers of datagrams sent before, reused
   std::vector<std::uint8_t> payload;
-  // RoomSessions::send_snapshot's payloads, one entry per (base, encoding) its sessions
-  // needed in one call (the first `encoded_used`; the rest keep their buffers).
+  // A snapshot's encoded parts, one entry per (base, encoding) the sessions it went to
+  // needed in one call (RoomSessions::send_snapshot, ServerEndpoint::send_snapshot) (the first `encoded_used`; the rest keep their buffers).
   struct Encoded {
     const Snapshot* base = nullptr;
     Encoding encoding = Encoding::msgpack;
@@ -64,11 +64,6 @@ class InboxJob {
   RejectCounters rejects_;
   std::vector<InboxDatagram*> datagrams_;
 };
-
-// Seals `quantized` for `s` (a delta against what it acknowledged, in as many parts as it
-// takes) into `lane`: touches that session and the lane only.
-void seal_snapshot(ServerSession& s, std::uint16_t version, const SharedSnapshot& quantized, std::uint64_t now_ms,
-                   SendLane& lane);
 
 // Seals a datagram of `messages` for `s` into `lane`; `with_results` adds the session's
 // results and chat lines that are due (never sent, or unacknowledged for resend_ms); a

@@ -11,7 +11,7 @@
 //             acks, inputs, commands exactly once, bye; what it leaves for everyone
 //             (an Applied) is settled by ServerEndpoint::settle (server_inbox.cpp), in
 //             arrival order;
-//   answered  seal_packet / seal_snapshot (server.cpp; heartbeats and resends by the
+//   answered  seal_packet / seal_snapshots (server.cpp; heartbeats and resends by the
 //             room's TimerJob, server_timers.cpp), each datagram stamped by next_header
 //             and sealed by seal_into below.
 #pragma once
