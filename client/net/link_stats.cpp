@@ -96,6 +96,9 @@ std::string link_stats_json(const LinkSummary& s) {
   std::string out(buf);
   out.pop_back();  // the samples themselves, for a reader who wants the distribution
   out += ",\"longest_snapshot_gap_ms\":" + std::to_string(s.longest_gap_ms);
+  char jitter_max[32];
+  std::snprintf(jitter_max, sizeof jitter_max, ",\"jitter_max_ms\":%.1f", s.jitter_max_ms);
+  out += jitter_max;
   out += ",\"response_samples_ms\":[";
   const auto& r = s.response.samples_ms();
   for (std::size_t i = 0; i < r.size() && i < 200; ++i) out += (i ? "," : "") + std::to_string(static_cast<long long>(r[i]));

@@ -60,6 +60,7 @@ struct LinkSummary {
   double rtt_ms = 0, loss_percent = 0, jitter_ms = 0, delay_ms = 0;
   std::uint64_t bytes_sent = 0, bytes_received = 0, frames = 0;
   std::uint64_t longest_gap_ms = 0;  // the longest time between two snapshots' arrivals
+  double jitter_max_ms = 0;          // the highest p95 lateness seen (jitter_ms is the last)
 };
 
 // One JSON object (the keys are the matrix's columns).

@@ -25,6 +25,7 @@ void NetTiming::on_snapshot(const protocol::Snapshot& s, std::uint32_t me, std::
     longest_gap_ms_ = std::max(longest_gap_ms_, now_ms - last_arrival_ms_);
   last_arrival_ms_ = now_ms;
   jitter_.on_snapshot(s.tick, now_ms);
+  jitter_max_ms_ = std::max(jitter_max_ms_, jitter_.jitter_ms());
   loss_.on_snapshot(s.tick, ticks_per_snapshot_);
   if (predict_) predictor_.on_snapshot(s, me, shown_tick_, now_ms);
 }
@@ -58,7 +59,7 @@ std::string NetTiming::stats_json(std::uint64_t duration_ms, double rtt_ms, doub
                                   std::uint64_t bytes_sent, std::uint64_t bytes_received) const {
   return link_stats_json(LinkSummary{predict_, predictor_.stats(), stalls_, response_, duration_ms, rtt_ms, loss_percent,
                                      jitter_.jitter_ms(), delay_ms_, bytes_sent, bytes_received, frames_,
-                                     longest_gap_ms_});
+                                     longest_gap_ms_, jitter_max_ms_});
 }
 
 void place_own_ball(protocol::Snapshot& s, std::uint32_t me, const protocol::BallState& own) {

@@ -86,6 +86,7 @@ class NetTiming {
   double drawn_vx_ = 0, drawn_vy_ = 0;
   std::uint64_t frames_ = 0;
   std::uint64_t last_arrival_ms_ = 0, longest_gap_ms_ = 0;  // between snapshots' arrivals (stats)
+  double jitter_max_ms_ = 0;                                // the highest lateness estimate (stats)
 };
 
 // `s` with our ball (owner `me`) moved to `own` (the prediction drawn in place of the

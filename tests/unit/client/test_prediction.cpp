@@ -225,7 +225,7 @@ TEST_CASE("Jitter buffer: drawn behind its own clock, a slow server never stalls
   }
 }
 
-TEST_CASE("Link stats: the longest gap between two snapshots' arrivals", "[client][jitter]") {
+TEST_CASE("Link stats: the longest gap between two snapshots' arrivals, and the highest lateness", "[client][jitter]") {
   // What tells a stall of the link from a stop of the server or the machine (test_net).
   NetTiming t(false);
   protocol::Snapshot s;
@@ -242,6 +242,16 @@ TEST_CASE("Link stats: the longest gap between two snapshots' arrivals", "[clien
   s.tick = 20;
   t.on_snapshot(s, 1, 1450);
   CHECK(gap() == 350);
+  // The highest lateness estimate stays in the stats after the late arrivals have left
+  // the buffer's 3 s window: what tells a machine that delayed arrivals beyond the link.
+  for (std::uint64_t at = 1500; at <= 5500; at += 50) {
+    s.tick = static_cast<std::uint32_t>(5 + (at - 1000) / 10);  // on time again
+    t.on_snapshot(s, 1, at);
+  }
+  const auto stats = nlohmann::json::parse(t.stats_json(1000, 0, 0, 0, 0));
+  CHECK(t.jitter_ms() < 10);
+  CHECK(stats["jitter_max_ms"].get<double>() >= 250);
+  CHECK(stats["jitter_max_ms"].get<double>() <= 300);
 }
 
 TEST_CASE("Stall meter: frames drawn past the newest snapshot are stalls - long ones counted", "[client][jitter]") {
