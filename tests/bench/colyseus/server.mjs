@@ -9,7 +9,7 @@
 // (a MapSchema of balls: x, y, vx, vy as float32) goes to the clients as Colyseus schema
 // patches at 20 Hz (setPatchRate 50 ms) over WebSocket (no TLS). fts-server does more in
 // a tick (its exact collision model, the coins and shop, per-client delta snapshots,
-// each sealed with XChaCha20-Poly1305): the comparison is its CPU per client against
+// each sealed with ChaCha20-Poly1305 (IETF)): the comparison is its CPU per client against
 // this simpler room's.
 //
 // usage: node server.mjs PORT ENEMIES
