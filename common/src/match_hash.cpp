@@ -110,8 +110,8 @@ void mix_struct(Hasher& h, const Each<Table>& kind, const std::vector<T>& v) {
   h.add_u64(v.size());
   for (const T& x : v) mix_table(h, x, kind.table);
 }
-template <class Entry, class Table, class Id, class V>
-void mix_struct(Hasher& h, const EachById<Entry, Table>& kind, const std::map<Id, V>& v) {
+template <class Entry, class Table, class Map>  // std::map or sim::IdMap: by id, ascending
+void mix_struct(Hasher& h, const EachById<Entry, Table>& kind, const Map& v) {
   h.add_u64(v.size());
   for (const auto& [id, value] : v) mix_table(h, Entry{id, value}, kind.table);
 }

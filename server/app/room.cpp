@@ -180,7 +180,7 @@ void Room::on_command(const protocol::PlayerCommand& pc, protocol::ServerEndpoin
 
 sim::TickInputs Room::gather(std::uint64_t now_ms) {
   sim::TickInputs in = std::exchange(pending_, {});
-  std::map<std::uint32_t, sim::PlayerTick> ticks;
+  sim::IdMap<std::uint32_t, sim::PlayerTick> ticks;
   for (auto& t : in.players) ticks[t.player.value] = std::move(t);
   in.players.clear();
   for (auto& [id, h] : held_) {

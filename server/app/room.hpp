@@ -162,7 +162,7 @@ class Room {
   room::RoomStepper stepper_;  // the match, its event numbering and recent window
   sim::TickOutput stepped_;    // the last step's results and events, until publish()
   sim::TickInputs pending_;  // connection events and commands for the next step
-  std::map<std::uint32_t, Held> held_;
+  sim::IdMap<std::uint32_t, Held> held_;
   InputTiming timing_;
   std::string record_path_;
   std::unique_ptr<store::JournalWriter> recorder_;

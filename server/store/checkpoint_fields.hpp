@@ -296,14 +296,14 @@ Ascending(K) -> Ascending<K>;
 template <class Entry, class K>
 struct ById {
   K entry;
-  template <class Id, class V>
-  json put(const std::map<Id, V>& m) const {
+  template <class Map>  // std::map or sim::IdMap: by id, ascending
+  json put(const Map& m) const {
     json j = json::array();
     for (const auto& [id, value] : m) j.push_back(entry.put(Entry{id, value}));
     return j;
   }
-  template <class Id, class V>
-  void get(const json& j, std::map<Id, V>& m) const {
+  template <class Map>
+  void get(const json& j, Map& m) const {
     m.clear();
     read_elements(j, [&](const json& e) {
       Entry x{};

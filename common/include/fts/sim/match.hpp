@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -14,6 +13,7 @@
 
 #include "fts/sim/config.hpp"
 #include "fts/sim/economy.hpp"
+#include "fts/sim/id_map.hpp"
 #include "fts/sim/level.hpp"
 #include "fts/sim/physics.hpp"
 #include "fts/sim/rng.hpp"
@@ -217,7 +217,7 @@ struct MatchState {
   World world;
   PhysicsSettings physics;
   StepConstants step_k;
-  std::map<BallId, Body> bodies;
+  IdMap<BallId, Body> bodies;    // by ball id, ascending
   std::vector<Player> players;  // sorted by id
   std::uint32_t next_ball_id = 1;  // the next ball's id
 };
