@@ -274,26 +274,26 @@ const std::vector<SnapshotMsg>& SnapshotSender::encode(SharedSnapshot current, E
 
 const Snapshot* SnapshotSender::base_for(const Snapshot& current) const {
   // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
-  // Newest first: the acknowledged snapshot is nearly always one of the last (each entry
-  // read is a snapshot's memory, likely out of cache).
+  // Newest first: the acknowledged snapshot is nearly always one of the last.
   if (acked_ && *acked_ + max_base_age_ticks_ >= current.tick && *acked_ < current.tick) {
     for (auto h = history_.rbegin(); h != history_.rend(); ++h)
-      if ((*h)->tick == *acked_) return h->get();
+      if (h->tick == *acked_) return h->snapshot.get();
   }
   return nullptr;
 }
 
 void SnapshotSender::sent(SharedSnapshot current) {
   if (history_.capacity() < kHistory) history_.reserve(kHistory);  // once, not per doubling
-  std::erase_if(history_, [&](const SharedSnapshot& h) { return h->tick == current->tick; });
+  const std::uint32_t tick = current->tick;
+  std::erase_if(history_, [&](const Sent& h) { return h.tick == tick; });
   if (history_.size() >= kHistory) history_.erase(history_.begin());
-  history_.push_back(std::move(current));
+  history_.push_back({tick, std::move(current)});
 }
 
 void SnapshotSender::on_ack(std::uint32_t tick) {
   if (acked_ && tick <= *acked_) return;
   for (auto h = history_.rbegin(); h != history_.rend(); ++h)  // newest first, as base_for
-    if ((*h)->tick == tick) {
+    if (h->tick == tick) {
       acked_ = tick;
       return;
     }

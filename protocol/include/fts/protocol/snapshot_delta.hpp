@@ -80,7 +80,14 @@ class SnapshotSender {
  private:
   std::uint32_t max_base_age_ticks_;
   std::uint32_t tick_rate_hz_;
-  std::vector<SharedSnapshot> history_;  // at most kHistory, oldest first
+  // At most kHistory, oldest first. Each entry's tick is kept beside its snapshot: the
+  // searches (an ack, a base, a resend of a tick) read one contiguous array instead of
+  // each snapshot's memory, likely out of cache (a host has a history per client).
+  struct Sent {
+    std::uint32_t tick;
+    SharedSnapshot snapshot;
+  };
+  std::vector<Sent> history_;
   std::optional<std::uint32_t> acked_;
   // Reused storage of the per-client work.
   SnapshotMsg delta_;
