@@ -14,7 +14,7 @@ Node 22 and the npm packages (package.json's exact versions) are installed by th
 into tests/bench/colyseus/node_modules on its first run (npm and the npm registry needed).
 
 usage: FTS_BIN_DIR=build-opt python3 tests/bench/peer_colyseus.py [--clients 64,256] (256,256,256: three pairs, their median)
-       [--seconds 30] [--warm 5] [--enemies 16] [--no-pin]
+       [--seconds 30] [--warm 5] [--enemies 16] [--no-pin] [--fts-args '--model discrete']
 """
 import argparse, json, os, signal, socket, statistics, subprocess, sys, time
 
@@ -106,7 +106,7 @@ def fts(n, a, server_cpus, client_cpus):
     rooms = n // 8
     with Server("--stats-interval-ms", "1000", "--log-format", "json", "--tick-rate", "100",
                 "--max-rooms", str(max(64, rooms)), "--max-per-address", str(min(1024, n + 8)),
-                "--max-rooms-per-host", "1024") as srv:
+                "--max-rooms-per-host", "1024", *a.fts_args.split()) as srv:
         pin(srv.proc.pid, server_cpus)
         groups = [start_bots("--connect", srv.address, "--name", f"r{r}b", "--count", "8", "--behavior", "shopper",
                              "--duration", str(a.warm + a.seconds + 30), "--seed", str(1 + 8 * r), "--room", "create")
@@ -158,6 +158,8 @@ def main():
     ap.add_argument("--enemies", type=int, default=16,
                     help="enemy balls in each Colyseus room (16: fts rooms of 8 at level 2, where its bots are by then)")
     ap.add_argument("--no-pin", action="store_true")
+    ap.add_argument("--fts-args", default="",
+                    help="more fts-server flags, e.g. '--model discrete' (the Colyseus room's collision model)")
     a = ap.parse_args()
     install()
     cpus = sorted(os.sched_getaffinity(0))
@@ -168,6 +170,8 @@ def main():
         c = colyseus(n, a, server_cpus, client_cpus)
         rows.append((n, f, c))
         print(f"{n} clients: fts {f}, colyseus {c}", file=sys.stderr)
+    if a.fts_args:
+        print(f"fts-server with {a.fts_args}")
     print(f"Colyseus rooms: 8 players and {a.enemies} enemies each; fts rooms' levels at the window's end: "
           + ", ".join(f"{n} clients {f['levels']}" for n, f, _ in rows))
     print()
