@@ -67,3 +67,24 @@ TEST_CASE("IdMap: at() throws for a missing id and changes nothing, and == compa
   for (const auto& [id, v] : m) order.push_back(id);
   CHECK(order == std::vector<unsigned>{3, 7});
 }
+
+namespace {
+int made = 0;  // default constructions of Counted
+struct Counted {
+  Counted() { ++made; }
+  int value = 0;
+};
+}  // namespace
+
+TEST_CASE("IdMap: [] makes a value only for a missing id", "[match][id_map]") {
+  // A room looks its held inputs up with [] per datagram; a default Held holds a
+  // std::deque, which allocates when made.
+  IdMap<int, Counted> m;
+  m[4].value = 1;
+  CHECK(made == 1);
+  for (int i = 0; i < 10; ++i) m[4].value += 1;
+  CHECK(made == 1);
+  CHECK(m.at(4).value == 11);
+  m[2];
+  CHECK(made == 2);
+}

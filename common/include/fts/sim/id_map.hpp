@@ -46,8 +46,13 @@ class IdMap {
   }
   const V& at(const K& k) const { return const_cast<IdMap*>(this)->at(k); }
 
-  // The value of k, a default one inserted in its place if there was none.
-  V& operator[](const K& k) { return emplace(k, V{}).first->second; }
+  // The value of k, a default one inserted in its place if there was none (a V is made
+  // only then: some allocate, a std::deque for one).
+  V& operator[](const K& k) {
+    const auto it = lower(k);
+    if (it != items_.end() && it->first == k) return it->second;
+    return items_.insert(it, value_type{k, V{}})->second;
+  }
 
   // Inserts {k, v} unless k is there: the entry of k, and whether it was inserted.
   std::pair<iterator, bool> emplace(const K& k, V v) {
