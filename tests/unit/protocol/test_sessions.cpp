@@ -298,3 +298,29 @@ TEST_CASE("Sessions: a base older than the bound gets a full snapshot", "[protoc
   s.tick = 111;
   CHECK_FALSE(tx.encode(s, Encoding::msgpack)[0].base);  // 101 ticks: full
 }
+
+TEST_CASE("Sessions: an input's frames are applied once each in sequence order, whatever their order",
+          "[protocol][sessions][input]") {
+  // Clients send newest first (read backwards, no copy); another order is sorted.
+  Harness h;
+  Peer& p = h.add_client(attempt("ann"));
+  p.client.connect(h.now);
+  REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+  const std::vector<std::vector<std::uint32_t>> orders = {{3, 2, 1}, {4, 5, 6}, {8, 9, 7}, {9, 10, 8}};
+  std::vector<std::uint32_t> applied;
+  for (const auto& order : orders) {
+    p.client.send_input({0, 1, 0, false}, h.now);  // a datagram of the session, for its header
+    auto real = p.client.take_datagrams();
+    REQUIRE(!real.empty());
+    auto header = read_header(real.back());
+    REQUIRE(header);
+    Input in{0, {}};
+    for (std::uint32_t seq : order) in.frames.push_back(InputFrame{seq, 1, 0, false});
+    const std::vector<Message> messages = {in};
+    h.server.receive(p.address, seal_as(p.client, *header, messages), h.now);
+    for (const auto& i : h.server.take_inputs()) applied.push_back(i.frame.seq);
+    h.now += 10;
+  }
+  CHECK(applied == std::vector<std::uint32_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  CHECK(h.server.rejects()[Reject::out_of_range] == 0);
+}

@@ -94,6 +94,7 @@ struct ServerSession {
   std::uint64_t last_send_ms = 0;
   std::uint64_t disconnected_ms = 0;
   std::uint32_t last_input_seq = 0;
+  std::vector<std::uint16_t> acked_scratch;  // apply's: our sequences a header acknowledged
   std::size_t unanswered = 0;  // commands handed to the game, not yet answered
   std::uint64_t last_active_ms = 0;  // last real input (idle time-out)
   bool played = false;  // sent real input once: a lost connection holds its slot
@@ -126,6 +127,9 @@ struct ServerSession {
   // Queues the result of command `rid` (its text cut to printable ASCII and kMaxTextBytes);
   // false when the results waiting for the client's acks are over `max_pending` (an overflow).
   bool answer(std::uint32_t rid, ResultCode code, std::string message, std::size_t max_pending);
+  // One input frame, in sequence order: applied if newer than the last and not too far ahead.
+  void take_frame(const InputFrame& f, std::uint64_t now_ms, const ServerConfig& config, Applied& out,
+                  RejectCounters& rejects);
 
   // The header of this session's next datagram: its encoding and id, its acks stamped
   // (the sequence counts on).
