@@ -73,9 +73,12 @@ def http(port, request, timeout=10):
 
 
 def ticks(srv):
+    """The ticks the server ran and skipped so far, as /metrics says (every tick of its
+    schedule is one or the other)."""
     status, data = http(srv.metrics, GET, timeout=5)
     check(status == 200, f"GET /metrics: {status}")
-    return float(re.search(rb"^fts_ticks_total (\S+)", data, re.M)[1])
+    return tuple(float(re.search(rb"^%s (\S+)" % name, data, re.M)[1])
+                 for name in (rb"fts_ticks_total", rb"fts_skipped_ticks_total"))
 
 
 class Ticking:
@@ -93,8 +96,12 @@ class Ticking:
         skipped = recs[-1]["ticks_skipped_total"] - recs[0]["ticks_skipped_total"]
         check(skipped <= MAX_SKIPPED and self.srv.proc.poll() is None, f"{skipped} ticks skipped, or the server died")
         if scrape:
-            rate = (ticks(self.srv) - self.ticks0) / (time.time() - self.t0)
-            check(rate >= 80, f"fts_ticks_total grew at {rate:.0f} Hz, want ~100")
+            # The schedule kept, from outside: ticks run and skipped grew at ~100 Hz. (Run
+            # alone, a window of half a second on a slow build, TSan's, read 66 Hz with 12
+            # ticks skipped, within MAX_SKIPPED: the skips are judged above.)
+            (run, skipped_total), elapsed = ticks(self.srv), time.time() - self.t0
+            rate = (run + skipped_total - self.ticks0[0] - self.ticks0[1]) / elapsed
+            check(rate >= 80, f"fts_ticks_total + fts_skipped_ticks_total grew at {rate:.0f} Hz, want ~100")
         return gap, skipped
 
 
