@@ -27,8 +27,9 @@ struct SendLane {
   std::vector<Outgoing> out;
   std::vector<Outgoing> spare;  // buffers of datagrams sent before, reused
   std::vector<std::uint8_t> payload;
-  // A snapshot's encoded parts, one entry per (base, encoding) the sessions it went to
-  // needed in one call (RoomSessions::send_snapshot, ServerEndpoint::send_snapshot) (the first `encoded_used`; the rest keep their buffers).
+  // A snapshot's encoded parts, one entry per (base, encoding) its sessions needed in one
+  // call of RoomSessions::send_snapshot or ServerEndpoint::send_snapshot: the first
+  // `encoded_used` (the rest keep their buffers).
   struct Encoded {
     const Snapshot* base = nullptr;
     Encoding encoding = Encoding::msgpack;
