@@ -158,22 +158,18 @@ ServerSession* SessionTable::at_address(const Address& address) {
   return it == by_address_.end() ? nullptr : it->second;
 }
 
-ServerSession* SessionTable::with_session_id(std::uint32_t id) {
-  const auto it = by_session_id_.find(id);
-  return it == by_session_id_.end() ? nullptr : it->second;
-}
+ServerSession* SessionTable::with_session_id(std::uint32_t id) { return by_session_id_.find(id); }
 
 void SessionTable::index(ServerSession& s) {
   ++generation_;
-  by_session_id_[s.session_id] = &s;
+  by_session_id_.set(s.session_id, &s);
   by_address_[s.address] = &s;
 }
 
 void SessionTable::unindex(const ServerSession& s) {
   ++generation_;
   // Only the session's own entries: another session may hold the address by now.
-  if (auto it = by_session_id_.find(s.session_id); it != by_session_id_.end() && it->second == &s)
-    by_session_id_.erase(it);
+  if (by_session_id_.find(s.session_id) == &s) by_session_id_.erase(s.session_id);
   if (auto it = by_address_.find(s.address); it != by_address_.end() && it->second == &s)
     by_address_.erase(it);
 }

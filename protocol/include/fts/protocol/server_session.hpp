@@ -31,6 +31,7 @@
 #include "fts/protocol/reject.hpp"
 #include "fts/protocol/reliable.hpp"
 #include "fts/protocol/seal.hpp"
+#include "fts/protocol/session_id_index.hpp"
 #include "fts/protocol/snapshot_delta.hpp"
 
 namespace fts::protocol {
@@ -182,7 +183,7 @@ class SessionTable {
   // The connected session at `address`, or with session id `id` (nullptr: none).
   ServerSession* at_address(const Address& address);
   ServerSession* with_session_id(std::uint32_t id);
-  bool session_id_taken(std::uint32_t id) const { return by_session_id_.count(id) != 0; }
+  bool session_id_taken(std::uint32_t id) const { return by_session_id_.find(id) != nullptr; }
   // The session's address and session id are its own in the indexes from now on; unindex
   // takes them out (the session stays, disconnected or gone).
   void index(ServerSession& s);
@@ -204,7 +205,7 @@ class SessionTable {
   // Hashed, to the session in by_id_ (a map's nodes stay put): screen() looks every
   // datagram up by its session id, in the serial part of a tick.
   std::unordered_map<Address, ServerSession*> by_address_;
-  std::unordered_map<std::uint32_t, ServerSession*> by_session_id_;
+  SessionIdIndex<ServerSession> by_session_id_;
   std::uint64_t generation_ = 0;
   std::uint32_t next_player_id_ = 1;
   std::set<std::uint32_t> taken_player_ids_;  // ids above next_player_id_ taken by rooms from elsewhere
