@@ -29,11 +29,10 @@ class ReliableSender {
   std::vector<T> collect(std::uint16_t sequence, std::uint64_t now_ms, std::uint64_t resend_ms,
                          std::size_t max_count) {
     std::vector<T> out;
-    // Nothing ever sent: no packet's record to keep (most sessions, most of the time).
-    if (in_packet_.empty()) {
-      if (pending_.empty()) return out;
-      in_packet_.resize(kPackets);
-    }
+    // Nothing to send: the packet's record is not touched (a record of an older packet
+    // in its slot names another sequence, so an ack of this one finds nothing there).
+    if (pending_.empty()) return out;
+    if (in_packet_.empty()) in_packet_.resize(kPackets);  // made at the first message sent
     auto& in_packet = in_packet_[sequence % kPackets];
     in_packet.sequence = sequence;
     in_packet.rids.clear();
@@ -57,7 +56,9 @@ class ReliableSender {
 
   // The packet `sequence` was acknowledged: what it carried is delivered.
   void on_acked(std::uint16_t sequence) {
-    if (in_packet_.empty()) return;
+    // Nothing pending, nothing to deliver: the records (cold memory) stay untouched; a
+    // record's rids are never pending again (rids are not reused).
+    if (pending_.empty() || in_packet_.empty()) return;
     auto& in_packet = in_packet_[sequence % kPackets];
     if (in_packet.sequence != sequence) return;
     for (auto rid : in_packet.rids) pending_.erase(rid);
