@@ -1,6 +1,7 @@
 #include "fts/protocol/ack.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace fts::protocol {
 
@@ -58,12 +59,32 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
     received_bits_ |= bit;
   }
   if (header.ack == 0) return true;
-  ack_one(header.ack, now_ms, header.ack_delay_ms, newly_acked);
-  for (unsigned i = 0; i < 32; ++i)
-    if (header.ack_bits & (1u << i)) {
-      const auto acked = static_cast<std::uint16_t>(header.ack - 1 - i);
-      if (acked != 0) ack_one(acked, now_ms, std::nullopt, newly_acked);
+  // The sequences an earlier header acknowledged (the newest one read, its ack no newer
+  // than this one's), moved to this header's ack: bit i is header.ack - 1 - i.
+  std::uint32_t seen = 0;
+  bool ack_seen = false;
+  if (have_peer_ack_ && !sequence_newer(peer_ack_, header.ack)) {
+    const unsigned d = static_cast<std::uint16_t>(header.ack - peer_ack_);
+    if (d == 0) {
+      seen = peer_ack_bits_;
+      ack_seen = true;
+    } else if (d <= 32) {
+      seen = (d < 32 ? peer_ack_bits_ << d : 0u) | (1u << (d - 1));
     }
+  }
+  if (!ack_seen) ack_one(header.ack, now_ms, header.ack_delay_ms, newly_acked);
+  for (std::uint32_t fresh = header.ack_bits & ~seen; fresh != 0; fresh &= fresh - 1) {
+    const auto acked = static_cast<std::uint16_t>(header.ack - 1 - std::countr_zero(fresh));
+    if (acked != 0) ack_one(acked, now_ms, std::nullopt, newly_acked);
+  }
+  // Kept only for an ack of a packet sent already (one of ours from the last 2^15): an ack
+  // of a sequence not sent yet must not mark it seen for when it is.
+  const auto last_sent = static_cast<std::uint16_t>(next_sequence_ == 1 ? 0xFFFF : next_sequence_ - 1);
+  if (packets_sent_ > 0 && !sequence_newer(header.ack, last_sent) && !(have_peer_ack_ && sequence_newer(peer_ack_, header.ack))) {
+    peer_ack_bits_ = header.ack_bits | seen;
+    peer_ack_ = header.ack;
+    have_peer_ack_ = true;
+  }
   return true;
 }
 

@@ -1,6 +1,10 @@
 // Packet acks, the reliable channel's edge cases, and hostile bytes against the endpoints.
 #include <catch2/catch.hpp>
 
+#include <deque>
+#include <random>
+#include <set>
+
 #include "harness.hpp"
 
 using namespace fts::protocol;
@@ -26,6 +30,79 @@ TEST_CASE("acks survive sequence wrap-around", "[protocol][ack]") {
   }
   CHECK(total_acked == 70000);  // every packet of a acknowledged exactly once
   CHECK(a.rtt_ms() == Approx(1.0));
+}
+
+TEST_CASE("each acknowledged packet is reported once, by the first header that acks it",
+          "[protocol][ack]") {
+  // A lossy, reordering link both ways (seeded): every header b sends back that reaches a
+  // reports exactly the sequences it acknowledges that no earlier header did, whatever
+  // order the headers come in (on_receive skips the bits it went through already).
+  AckWindow a, b;
+  std::mt19937 rng(39);
+  std::deque<Header> to_b, to_a;
+  std::set<std::uint16_t> reported, sent;
+  std::vector<std::uint16_t> acked;
+  std::uint64_t now = 0;
+  auto deliver = [&](std::deque<Header>& q) {  // the oldest or (1 in 4) the second oldest
+    if (q.size() > 1 && rng() % 4 == 0) std::swap(q[0], q[1]);
+    Header h = q.front();
+    q.pop_front();
+    return h;
+  };
+  for (int i = 0; i < 5000; ++i, now += 10) {
+    Header h;
+    a.stamp(h, now);
+    sent.insert(h.sequence);
+    if (rng() % 10 < 7) to_b.push_back(h);
+    if (to_b.size() > 2 || (!to_b.empty() && rng() % 2 == 0)) {
+      acked.clear();
+      b.on_receive(deliver(to_b), now, acked);
+      Header back;
+      b.stamp(back, now);
+      if (rng() % 10 < 7) to_a.push_back(back);
+    }
+    if (to_a.size() > 2 || (!to_a.empty() && rng() % 2 == 0)) {
+      const Header back = deliver(to_a);
+      std::set<std::uint16_t> expected;
+      if (back.ack != 0 && sent.count(back.ack) && !reported.count(back.ack)) expected.insert(back.ack);
+      for (unsigned k = 0; k < 32; ++k) {
+        const auto seq = static_cast<std::uint16_t>(back.ack - 1 - k);
+        if (back.ack != 0 && (back.ack_bits >> k & 1u) && seq != 0 && !reported.count(seq)) expected.insert(seq);
+      }
+      acked.clear();
+      if (!a.on_receive(back, now, acked)) continue;  // a duplicate or far behind: not read
+      REQUIRE(std::set<std::uint16_t>(acked.begin(), acked.end()) == expected);
+      REQUIRE(acked.size() == expected.size());
+      reported.insert(acked.begin(), acked.end());
+    }
+  }
+  CHECK(reported.size() > 2000);
+}
+
+TEST_CASE("an ack of a packet not sent yet does not hide its later ack", "[protocol][ack]") {
+  AckWindow w;
+  std::vector<std::uint16_t> acked;
+  for (int i = 0; i < 5; ++i) {  // sequences 1..5 sent
+    Header out;
+    w.stamp(out, 0);
+  }
+  Header in;
+  in.sequence = 1;
+  in.ack = 7;  // ahead of what was sent: nothing is acknowledged
+  in.ack_bits = 0x3Fu;  // 6..1
+  CHECK(w.on_receive(in, 0, acked));
+  const std::vector<std::uint16_t> first = acked;
+  for (int i = 0; i < 3; ++i) {  // 6..8 sent now
+    Header out;
+    w.stamp(out, 0);
+  }
+  acked.clear();
+  in.sequence = 2;
+  in.ack = 8;
+  in.ack_bits = 0x7Fu;  // 7..1
+  CHECK(w.on_receive(in, 0, acked));
+  CHECK(first == std::vector<std::uint16_t>{5, 4, 3, 2, 1});
+  CHECK(acked == std::vector<std::uint16_t>{8, 7, 6});
 }
 
 TEST_CASE("duplicates and packets too far behind are refused", "[protocol][ack]") {

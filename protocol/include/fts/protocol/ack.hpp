@@ -46,6 +46,12 @@ class AckWindow {
   std::uint16_t latest_received_ = 0;
   std::uint64_t latest_received_ms_ = 0;  // when latest_received_ arrived (for ack delays)
   std::uint32_t received_bits_ = 0;
+  // What the peer's headers acknowledged so far, as the newest such header's ack and bits
+  // (with the bits before it folded in): a header's bits repeat its predecessors' 31 of 32
+  // times, and only the new ones are looked up in sent_ (33 slots a datagram otherwise).
+  bool have_peer_ack_ = false;
+  std::uint16_t peer_ack_ = 0;
+  std::uint32_t peer_ack_bits_ = 0;
   double rtt_ms_ = 0;
   std::uint64_t rtt_samples_ = 0;
   std::uint64_t packets_acked_ = 0;
