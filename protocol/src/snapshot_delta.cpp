@@ -276,24 +276,36 @@ const Snapshot* SnapshotSender::base_for(const Snapshot& current) const {
   // A base older than max_base_age_ticks is not used: the client gets a full snapshot.
   // Newest first: the acknowledged snapshot is nearly always one of the last.
   if (acked_ && *acked_ + max_base_age_ticks_ >= current.tick && *acked_ < current.tick) {
-    for (auto h = history_.rbegin(); h != history_.rend(); ++h)
-      if (h->tick == *acked_) return h->snapshot.get();
+    for (std::size_t i = 0; i < count_; ++i)
+      if (ticks_[slot_of(i)] == *acked_) return snapshots_[slot_of(i)].get();
   }
   return nullptr;
 }
 
+void SnapshotSender::remove(std::size_t newest) {
+  for (std::size_t i = newest; i > 0; --i) {
+    ticks_[slot_of(i)] = ticks_[slot_of(i - 1)];
+    snapshots_[slot_of(i)] = std::move(snapshots_[slot_of(i - 1)]);
+  }
+  next_ = (next_ + kHistory - 1) % kHistory;
+  snapshots_[next_].reset();
+  --count_;
+}
+
 void SnapshotSender::sent(SharedSnapshot current) {
-  if (history_.capacity() < kHistory) history_.reserve(kHistory);  // once, not per doubling
   const std::uint32_t tick = current->tick;
-  std::erase_if(history_, [&](const Sent& h) { return h.tick == tick; });
-  if (history_.size() >= kHistory) history_.erase(history_.begin());
-  history_.push_back({tick, std::move(current)});
+  for (std::size_t i = 0; i < count_; ++i)  // a tick sent again: its old entry goes (rare)
+    if (ticks_[slot_of(i)] == tick) remove(i--);
+  ticks_[next_] = tick;
+  snapshots_[next_] = std::move(current);  // the oldest's slot once full
+  next_ = (next_ + 1) % kHistory;
+  if (count_ < kHistory) ++count_;
 }
 
 void SnapshotSender::on_ack(std::uint32_t tick) {
   if (acked_ && tick <= *acked_) return;
-  for (auto h = history_.rbegin(); h != history_.rend(); ++h)  // newest first, as base_for
-    if (h->tick == tick) {
+  for (std::size_t i = 0; i < count_; ++i)  // newest first, as base_for
+    if (ticks_[slot_of(i)] == tick) {
       acked_ = tick;
       return;
     }

@@ -164,3 +164,45 @@ TEST_CASE("snapshot sizes report", "[.report]") {
                 enc == Encoding::json ? "JSON" : "MessagePack", datagram_bytes(d, enc), d.size());
   }
 }
+
+TEST_CASE("the sender's history keeps the last 64 snapshots sent, a tick sent again once",
+          "[protocol][snapshot]") {
+  // base_for finds an acknowledged tick only while it is among the last kHistory sent
+  // (a ring: each new one takes the oldest's slot); a tick sent again replaces its entry
+  // and counts as the newest; on_ack takes only ticks in the history.
+  constexpr std::uint32_t kHistory = static_cast<std::uint32_t>(SnapshotSender::kHistory);
+  SnapshotSender tx(100000);
+  auto snap = [](std::uint32_t tick) {
+    auto s = std::make_shared<Snapshot>();
+    s->tick = tick;
+    return SharedSnapshot(std::move(s));
+  };
+  Snapshot later;
+  later.tick = 100000;
+  for (std::uint32_t t = 1; t <= 200; ++t) tx.sent(snap(t));
+  tx.on_ack(136);  // 200 - 64 = 136 has left: not taken
+  CHECK_FALSE(tx.acked_tick());
+  tx.on_ack(137);  // the oldest held
+  REQUIRE(tx.acked_tick() == 137u);
+  REQUIRE(tx.base_for(later) != nullptr);
+  CHECK(tx.base_for(later)->tick == 137);
+
+  // 150 sent again: it is the newest now, so the next 63 leave 137..149 and 151..200 ...
+  tx.sent(snap(150));
+  for (std::uint32_t t = 201; t < 201 + kHistory - 1; ++t) tx.sent(snap(t));
+  SnapshotSender probe = tx;
+  probe.on_ack(150);
+  CHECK(probe.acked_tick() == 150u);
+  // ... and one more takes it.
+  tx.sent(snap(201 + kHistory - 1));
+  tx.on_ack(150);
+  CHECK(tx.acked_tick() == 137u);  // 150 left; the ack stays where it was
+  CHECK(tx.base_for(later) == nullptr);  // 137 left long ago
+
+  tx.reset();
+  tx.on_ack(264);
+  CHECK_FALSE(tx.acked_tick());
+  tx.sent(snap(300));
+  tx.on_ack(300);
+  CHECK(tx.acked_tick() == 300u);
+}
