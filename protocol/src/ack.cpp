@@ -63,7 +63,8 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
   // than this one's), moved to this header's ack: bit i is header.ack - 1 - i.
   std::uint32_t seen = 0;
   bool ack_seen = false;
-  if (have_peer_ack_ && !sequence_newer(peer_ack_, header.ack)) {
+  const bool newest = !(have_peer_ack_ && sequence_newer(peer_ack_, header.ack));
+  if (have_peer_ack_ && newest) {
     const unsigned d = static_cast<std::uint16_t>(header.ack - peer_ack_);
     if (d == 0) {
       seen = peer_ack_bits_;
@@ -80,7 +81,7 @@ bool AckWindow::on_receive(const Header& header, std::uint64_t now_ms,
   // Kept only for an ack of a packet sent already (one of ours from the last 2^15): an ack
   // of a sequence not sent yet must not mark it seen for when it is.
   const auto last_sent = static_cast<std::uint16_t>(next_sequence_ == 1 ? 0xFFFF : next_sequence_ - 1);
-  if (packets_sent_ > 0 && !sequence_newer(header.ack, last_sent) && !(have_peer_ack_ && sequence_newer(peer_ack_, header.ack))) {
+  if (newest && packets_sent_ > 0 && !sequence_newer(header.ack, last_sent)) {
     peer_ack_bits_ = header.ack_bits | seen;
     peer_ack_ = header.ack;
     have_peer_ack_ = true;

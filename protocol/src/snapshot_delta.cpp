@@ -294,8 +294,10 @@ void SnapshotSender::remove(std::size_t newest) {
 
 void SnapshotSender::sent(SharedSnapshot current) {
   const std::uint32_t tick = current->tick;
-  for (std::size_t i = 0; i < count_; ++i)  // a tick sent again: its old entry goes (rare)
-    if (ticks_[slot_of(i)] == tick) remove(i--);
+  for (std::size_t i = 0; i < count_;) {  // a tick sent again: its old entry goes (rare)
+    if (ticks_[slot_of(i)] == tick) remove(i);  // the next older one is at i now
+    else ++i;
+  }
   ticks_[next_] = tick;
   snapshots_[next_] = std::move(current);  // the oldest's slot once full
   next_ = (next_ + 1) % kHistory;
