@@ -10,6 +10,9 @@ fails on time.
 
 usage: FTS_BIN_DIR=build-opt python3 tests/bench/server_ab.py --a OLD/server/fts-server
        --b build-opt/server/fts-server [--clients 256] [--rounds 4] [--warm 12] [--seconds 15]
+With --profile OUT (and --b only): one run of B under the same load, its measured window
+recorded by perf instead (perf record -p SERVER --call-graph dwarf,16384 -F 499 -o OUT);
+read it with perf report -i OUT.
 (the bots: FTS_BIN_DIR's fts-bot)
 (an old tree's server: git worktree add /tmp/old COMMIT && FTS_TARGETS=fts-server
  bash .ci/build.sh /tmp/old/build -DFTS_WERROR=ON)
@@ -31,7 +34,7 @@ def context_switches(pid):
     return total
 
 
-def run(binary, n, a, cpus):
+def run(binary, n, a, cpus, profile=None):
     log = tempfile.NamedTemporaryFile(prefix="fts-ab-", suffix=".log", delete=False)
     srv = subprocess.Popen([binary, "--port", "0", "--tick-rate", "100", "--log-format", "json",
                             "--stats-interval-ms", "1000", "--max-rooms", str(max(64, n // 8)),
@@ -49,7 +52,12 @@ def run(binary, n, a, cpus):
             os.sched_setaffinity(p.pid, set(cpus[1:]))
         time.sleep(a.warm)  # the measured window's start: a workload, not a wait for an event
         c0, s0, t0 = cpu_s(srv.pid), context_switches(srv.pid), time.monotonic()
-        time.sleep(a.seconds)
+        if profile:
+            subprocess.run(["perf", "record", "-o", profile, "-p", str(srv.pid), "--call-graph", "dwarf,16384",
+                            "-F", "499", "--", "sleep", str(a.seconds)], check=True,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        else:
+            time.sleep(a.seconds)
         c1, s1, t1 = cpu_s(srv.pid), context_switches(srv.pid), time.monotonic()
         stats = [json.loads(l) for l in text().splitlines() if '"event":"stats"' in l]
         full = [s for s in stats if s["players"] == n]
@@ -70,18 +78,26 @@ def run(binary, n, a, cpus):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--a", required=True, help="fts-server A (the old)")
+    ap.add_argument("--a", help="fts-server A (the old)")
     ap.add_argument("--b", required=True, help="fts-server B (the new)")
     ap.add_argument("--clients", type=int, default=256)
     ap.add_argument("--rounds", type=int, default=4)
     ap.add_argument("--warm", type=float, default=12)
     ap.add_argument("--seconds", type=float, default=15)
+    ap.add_argument("--profile", help="record B's measured window with perf into this file (no A)")
     a = ap.parse_args()
+    if not a.profile and not a.a:
+        ap.error("--a is needed unless --profile is given")
     cpus = sorted(os.sched_getaffinity(0))
     if len(cpus) < 2:
         print("needs at least 2 CPUs (the server alone on the first)")
         return 2
     os.sched_setaffinity(0, set(cpus[1:]))
+    if a.profile:
+        g = run(a.b, a.clients, a, cpus, profile=a.profile)
+        print(f"{a.clients} clients, {a.b}: {g['us_per_client']:.0f} µs CPU/s per client while recorded "
+              f"(perf's own cost included); perf report -i {a.profile}")
+        return 0
     print(f"{a.clients} clients, A = {a.a}, B = {a.b}; server on CPU {cpus[0]}, bots on {cpus[1:]}")
     print("| round | run | µs CPU/s per client | context switches/s | tick p50 (µs) | all in |")
     print("|---|---|---|---|---|---|")
