@@ -69,15 +69,16 @@ void ServerSession::apply(const Decoded<Datagram>& opened, std::uint64_t now_ms,
       snapshots.on_ack(in->snapshot_ack);
       if (spectator) continue;  // a spectator's input is its heartbeat and acks, nothing more
       // Clients send their frames newest first (ClientEndpoint::send_input's message):
-      // read backwards they are in order, with no copy; any other order is sorted.
+      // read backwards they are in order, with no copy; any other order is sorted so.
       const auto older = [](const InputFrame& a, const InputFrame& b) { return a.seq < b.seq; };
-      if (std::is_sorted(in->frames.rbegin(), in->frames.rend(), older)) {
-        for (auto f = in->frames.rbegin(); f != in->frames.rend(); ++f) take_frame(*f, now_ms, config, out, rejects);
-      } else {
-        std::vector<InputFrame> frames = in->frames;
-        std::sort(frames.begin(), frames.end(), older);
-        for (const auto& f : frames) take_frame(f, now_ms, config, out, rejects);
+      const std::vector<InputFrame>* frames = &in->frames;
+      std::vector<InputFrame> sorted;
+      if (!std::is_sorted(frames->rbegin(), frames->rend(), older)) {
+        sorted = in->frames;
+        std::sort(sorted.rbegin(), sorted.rend(), older);
+        frames = &sorted;
       }
+      for (auto f = frames->rbegin(); f != frames->rend(); ++f) take_frame(*f, now_ms, config, out, rejects);
     } else if (const auto* c = std::get_if<Command>(&m)) {
       // rid 0 names no place in the reliable order: that message alone is dropped.
       if (c->rid == 0) {
