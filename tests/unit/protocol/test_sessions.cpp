@@ -305,7 +305,7 @@ TEST_CASE("Sessions: an input's frames are applied once each in sequence order, 
   Harness h;
   Peer& p = h.add_client(attempt("ann"));
   p.client.connect(h.now);
-  REQUIRE(h.run_until([&] { return p.client.state() == ClientState::connected; }, 1000));
+  REQUIRE(h.run_until([&] { return connected(p); }, 1000));
   const std::vector<std::vector<std::uint32_t>> orders = {{3, 2, 1}, {4, 5, 6}, {8, 9, 7}, {9, 10, 8}};
   std::vector<std::uint32_t> applied;
   for (const auto& order : orders) {
