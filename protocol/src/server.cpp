@@ -69,14 +69,20 @@ void ServerEndpoint::receive(const Address& from, std::span<const std::uint8_t> 
 
 ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<const std::uint8_t> bytes,
                                                 std::uint64_t now_ms) {
+  const std::uint32_t id = screen_sender(from, bytes, now_ms);
+  return id == 0 ? nullptr : session_for(sessions_.with_session_id(id), from, rejects_);
+}
+
+std::uint32_t ServerEndpoint::screen_sender(const Address& from, std::span<const std::uint8_t> bytes,
+                                            std::uint64_t now_ms) {
   observe_time(now_ms);
-  // Cheapest checks first: the sender's rate, the header, the session, the replay window
-  // and the tag (PROTOCOL.md 5.7), then the session's rate; the payload is parsed only
-  // for a datagram that passed them all, and nothing of the session changes before the
-  // tag verified.
-  auto drop = [&](Reject r) -> Session* {
+  // Cheapest checks first: the sender's rate, the header, the session (session_for), the
+  // replay window and the tag (PROTOCOL.md 5.7), then the session's rate; the payload is
+  // parsed only for a datagram that passed them all, and nothing of the session changes
+  // before the tag verified.
+  auto drop = [&](Reject r) -> std::uint32_t {
     rejects_.add(r);
-    return nullptr;
+    return 0;
   };
   // A hello-sized datagram of our version that does not decode is most likely a hello
   // from a client with a bug: say why, in fewer bytes than it sent (no amplification).
@@ -109,26 +115,19 @@ ServerEndpoint::Session* ServerEndpoint::screen(const Address& from, std::span<c
       auto reply = encode_version_refusal(h, make_error(ErrorCode::version, text));
       if (reply.size() <= bytes.size()) emit(from, std::move(reply));
     }
-    return nullptr;
+    return 0;
   }
-  if (header->session != 0) {
-    Session* found = sessions_.with_session_id(header->session);
-    if (!found) return drop(Reject::unknown_session);
-    Session& s = *found;
-    if (s.address != from) return drop(Reject::address_mismatch);
-    if (!s.connected) return drop(Reject::unknown_session);
-    return &s;
-  }
+  if (header->session != 0) return header->session;
   auto d = decode_datagram(bytes, config_.version);
   if (!d) {
     rejects_.add(d.error());
     if (bytes.size() >= kMinHelloBytes) bad_hello(header->encoding, d.error());
-    return nullptr;
+    return 0;
   }
   if (d->messages.size() != 1 || !std::holds_alternative<Hello>(d->messages[0])) return drop(Reject::unexpected);
   if (bytes.size() < kMinHelloBytes) return drop(Reject::unpadded_hello);
   handle_hello(from, d->header, std::get<Hello>(d->messages[0]), bytes.size(), now_ms);
-  return nullptr;
+  return 0;
 }
 
 // A spectator holds no seat (PROTOCOL.md 5.6): it counts against its own cap per host.

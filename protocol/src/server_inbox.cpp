@@ -1,6 +1,9 @@
-// ServerEndpoint's deferred receiving (issues 29, 39): screened at once, queued, opened and
-// applied one session per job on the host's threads (an InboxJob: server_jobs.hpp), then
-// what they left for everyone settled in arrival order (settle).
+// ServerEndpoint's deferred receiving (issues 29, 39): the sender screened at once (its
+// host's rate, the header), queued by its session id's shard; its session screened, the
+// datagram opened and applied one shard per job on the host's threads (an InboxJob:
+// server_jobs.hpp), then what they left for everyone settled in arrival order (settle).
+#include <algorithm>
+
 #include "fts/protocol/server.hpp"
 
 namespace fts::protocol {
@@ -13,66 +16,60 @@ ServerEndpoint::Session* ServerEndpoint::live_session(std::uint32_t player_id, s
 
 void ServerEndpoint::receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms) {
   serial_only("receive_later");
-  Session* s = screen(from, bytes, now_ms);
-  if (!s) return;
+  const std::uint32_t session_id = screen_sender(from, bytes, now_ms);
+  if (session_id == 0) return;
   if (inbox_used_ >= kMaxInbox) return rejects_.add(Reject::rate_limited);
   if (inbox_used_ == inbox_.size()) inbox_.emplace_back();
-  InboxDatagram& q = inbox_[inbox_used_];
-  q.player_id = s->player_id;
-  q.session_id = s->session_id;
+  InboxDatagram& q = inbox_[inbox_used_++];
+  q.session_id = session_id;
+  q.player_id = 0;
   q.now_ms = now_ms;
+  q.from = from;
   q.bytes.assign(bytes.begin(), bytes.end());
   q.applied.clear();
-  if (s->inbox_round != inbox_round_) {  // the session's first datagram of the tick: a job of its own
-    s->inbox_round = inbox_round_;
-    s->inbox_job = inbox_jobs_used_;
-    if (inbox_jobs_used_ == inbox_jobs_.size()) inbox_jobs_.emplace_back();
-    inbox_jobs_[inbox_jobs_used_++].datagrams_.clear();
-  }
-  inbox_jobs_[s->inbox_job].datagrams_.push_back(&q);
-  ++inbox_used_;
+  if (inbox_jobs_.empty()) inbox_jobs_.resize(SessionShard::kShards);  // (never again: inbox_queued_ points in)
+  InboxJob& job = inbox_jobs_[SessionShard::of(session_id)];
+  if (job.datagrams_.empty()) inbox_queued_.push_back(&job);
+  job.datagrams_.push_back(&q);
 }
 
 void InboxJob::run(std::vector<std::uint8_t>& scratch) {
-  bool ended = false;
+  ended_.clear();
   for (InboxDatagram* d : datagrams_) {  // (each Applied cleared when queued: receive_later)
-    if (!session_ || ended || d->session_id != session_->session_id) {
+    ServerSession* s = session_for(sessions_.find(d->session_id), d->from, rejects_);
+    if (s == nullptr) continue;
+    if (std::find(ended_.begin(), ended_.end(), d->session_id) != ended_.end()) {
       rejects_.add(Reject::unknown_session);
       continue;
     }
-    session_->apply(open_sealed(session_->seal, d->bytes, config_->version, scratch), d->now_ms, *config_, d->applied,
-                    rejects_);
-    ended = d->applied.end != Applied::End::none;
+    d->player_id = s->player_id;
+    s->apply(open_sealed(s->seal, d->bytes, config_->version, scratch), d->now_ms, *config_, d->applied, rejects_);
+    if (d->applied.end != Applied::End::none) ended_.push_back(d->session_id);
   }
 }
 
-std::span<InboxJob> ServerEndpoint::inbox_jobs() {
+std::span<InboxJob* const> ServerEndpoint::inbox_jobs() {
   serial_only("inbox_jobs");
-  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
-    InboxJob& job = inbox_jobs_[i];
-    job.config_ = &config_;  // (its rejects_ are zero: apply_inbox took them last time)
-    // The session its last datagram came for, if still connected under that id (a hashed
-    // lookup): datagrams of an older one, before a hello replaced it, are counted as gone;
-    // so are all, when a hello replaced it after the last.
-    ServerSession* s = sessions_.with_session_id(job.datagrams_.back()->session_id);
-    job.session_ = s && s->player_id == job.datagrams_.back()->player_id ? s : nullptr;
+  for (InboxJob* job : inbox_queued_) {  // (its rejects_ are zero: apply_inbox took them)
+    job->sessions_ = sessions_.shard(static_cast<unsigned>(job - inbox_jobs_.data()));
+    job->config_ = &config_;
   }
-  return {inbox_jobs_.data(), inbox_jobs_used_};
+  return inbox_queued_;
 }
 
 void ServerEndpoint::apply_inbox() {
   serial_only("apply_inbox");
-  for (std::size_t i = 0; i < inbox_jobs_used_; ++i) {
-    rejects_.add(inbox_jobs_[i].rejects_);
-    inbox_jobs_[i].rejects_ = {};  // counted once, whatever calls come next
+  for (InboxJob* job : inbox_queued_) {
+    rejects_.add(job->rejects_);
+    job->rejects_ = {};  // counted once, whatever calls come next
+    job->datagrams_.clear();
   }
+  inbox_queued_.clear();
   for (std::size_t at = 0; at < inbox_used_; ++at) {
     InboxDatagram& q = inbox_[at];
-    settle(q.player_id, q.session_id, q.applied, q.now_ms);
+    if (q.player_id != 0) settle(q.player_id, q.session_id, q.applied, q.now_ms);
   }
   inbox_used_ = 0;
-  inbox_jobs_used_ = 0;
-  ++inbox_round_;
 }
 
 void ServerEndpoint::settle(std::uint32_t player_id, std::uint32_t session_id, Applied& applied,

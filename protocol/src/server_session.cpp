@@ -154,6 +154,22 @@ void ServerSession::seal_into(const Header& h, const std::vector<std::uint8_t>& 
   }
 }
 
+ServerSession* session_for(ServerSession* found, const Address& from, RejectCounters& rejects) {
+  if (found == nullptr) {
+    rejects.add(Reject::unknown_session);
+    return nullptr;
+  }
+  if (found->address != from) {
+    rejects.add(Reject::address_mismatch);
+    return nullptr;
+  }
+  if (!found->connected) {
+    rejects.add(Reject::unknown_session);
+    return nullptr;
+  }
+  return found;
+}
+
 ServerSession* SessionTable::at_address(const Address& address) {
   const auto it = by_address_.find(address);
   return it == by_address_.end() ? nullptr : it->second;

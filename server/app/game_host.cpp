@@ -325,12 +325,12 @@ void GameHost::tick(std::uint64_t now_ms) {
     endpoint_.set_idle_paused(id, m.phase != sim::Phase::playing);
     endpoint_.set_keeps_departed(id, (m.phase == sim::Phase::playing || m.phase == sim::Phase::shop) && played_on);
   }
-  // The datagrams received since the last tick: opened and applied to their sessions on
+  // The datagrams received since the last tick: screened, opened and applied to their sessions on
   // the pool, what they left for everyone settled in arrival order.
   {
-    const auto jobs = endpoint_.inbox_jobs();  // each a session and its datagrams, no endpoint
+    const auto jobs = endpoint_.inbox_jobs();  // each a shard of the sessions and their datagrams, no endpoint
     const protocol::ServerEndpoint::ParallelPhase parallel(endpoint_);
-    pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i].run(open_scratch_[slot]); });
+    pool_.run(jobs.size(), [&](std::size_t i, std::size_t slot) { jobs[i]->run(open_scratch_[slot]); });
   }
   endpoint_.apply_inbox();
   answer_profiles(now_ms);  // before the timers: the results go out in this tick's packets

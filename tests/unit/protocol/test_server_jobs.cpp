@@ -1,12 +1,15 @@
-// What a pool's job is handed (issue 39, server_jobs.hpp): an InboxJob opens and applies
-// one session's queued datagrams with that session's seal, whatever order the jobs run in;
-// a session replaced since its datagrams came has them counted as gone; RoomSessions
+// What a pool's job is handed (issue 39, server_jobs.hpp): an InboxJob screens, opens and
+// applies the queued datagrams of one shard of the sessions, each with its session's seal,
+// whatever order the jobs run in; a datagram from another address, or of a session gone
+// since it came, is counted and applies nothing; RoomSessions
 // hands a room's snapshot job its connected sessions and nothing else, made again when
 // one comes or goes; a room's TimerJob keeps its own sessions alive, and what the timer
 // jobs find is settled in room order whatever order they ran in.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 #include "harness.hpp"
 
@@ -65,52 +68,93 @@ struct TwoRooms {
 
 }  // namespace
 
-TEST_CASE("Server jobs: each inbox job opens its own session's datagrams, in any order", "[protocol][threads]") {
+TEST_CASE("Server jobs: each inbox job screens and opens its own shard's datagrams, in any order",
+          "[protocol][threads]") {
   TwoRooms t;
-  auto& ann = t.add("ann");
-  auto& bob = t.add("bob");
+  for (int i = 0; i < 12; ++i) t.add("p" + std::to_string(i));
   REQUIRE(t.connect_all());
   t.server->take_events();
   t.server->take_inputs();
+  std::map<std::uint32_t, unsigned> shard_of_player;  // from the datagrams' own headers
+  const auto queue_inputs = [&] {
+    t.now += 1;
+    for (std::size_t c = 0; c < t.clients.size(); ++c) {
+      t.clients[c]->send_input({1, 0, 0, false}, t.now);
+      t.clients[c]->update(t.now);
+      for (auto& d : t.clients[c]->take_datagrams()) {
+        const auto h = read_header_any_version(d);
+        REQUIRE(h);
+        shard_of_player[t.clients[c]->welcome()->player_id] = SessionShard::of(h->session);
+        t.server->receive_later(t.addresses[c], d, t.now);
+      }
+    }
+  };
 
   // Three inputs each, queued; the jobs run last first; every input comes out once, in order.
-  for (int i = 0; i < 3; ++i) {
-    ann.send_input({1, 0, 0, false}, t.now);
-    bob.send_input({0, 1, 0, false}, t.now);
-    t.now += 1;
-    for (std::size_t c = 0; c < 2; ++c) {
-      t.clients[c]->update(t.now);
-      for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
-    }
-  }
+  for (int i = 0; i < 3; ++i) queue_inputs();
+  CHECK(t.server->inbox_datagrams() >= 36);
   const auto jobs = t.server->inbox_jobs();
-  REQUIRE(jobs.size() == 2);
+  std::set<unsigned> shards;
+  for (const InboxJob* job : jobs) shards.insert(job->shard());
+  std::set<unsigned> expected_shards;
+  for (const auto& [player, shard] : shard_of_player) expected_shards.insert(shard);
+  CHECK(shards == expected_shards);  // one job per shard with datagrams, each once
+  REQUIRE(jobs.size() >= 2);  // twelve random session ids in 64 shards
   std::vector<std::uint8_t> scratch;
-  for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) it->run(scratch);
+  for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) (*it)->run(scratch);
   t.server->apply_inbox();
-  const auto inputs = t.server->take_inputs();
   std::map<std::uint32_t, std::vector<std::uint32_t>> seqs;
-  for (const auto& in : inputs) seqs[in.player_id].push_back(in.frame.seq);
-  REQUIRE(seqs.size() == 2);
+  for (const auto& in : t.server->take_inputs()) seqs[in.player_id].push_back(in.frame.seq);
+  CHECK(seqs.size() == t.clients.size());
   for (const auto& [player, s] : seqs) {
     CHECK(s.size() == 3);
     CHECK(std::is_sorted(s.begin(), s.end()));
   }
   CHECK(t.server->rejects()[Reject::unknown_session] == 0);
+  CHECK(t.server->inbox_datagrams() == 0);
 
-  // A job that is not run applies nothing, and nobody else's datagrams.
+  // One job run alone applies the datagrams of its shard's sessions, and nobody else's.
+  queue_inputs();
+  const auto again = t.server->inbox_jobs();
+  REQUIRE(again.size() >= 2);
+  const unsigned ran = again[1]->shard();
+  again[1]->run(scratch);
+  t.server->apply_inbox();
+  std::set<std::uint32_t> applied, of_shard;
+  for (const auto& in : t.server->take_inputs()) applied.insert(in.player_id);
+  for (const auto& [player, shard] : shard_of_player)
+    if (shard == ran) of_shard.insert(player);
+  CHECK(!applied.empty());
+  CHECK(applied == of_shard);
+  CHECK(t.server->rejects()[Reject::unknown_session] == 0);
+}
+
+TEST_CASE("Server jobs: a queued datagram is screened in its job: another address, or a session gone",
+          "[protocol][threads]") {
+  TwoRooms t;
+  auto& ann = t.add("ann");
+  auto& bob = t.add("bob");
+  REQUIRE(t.connect_all());
+  t.server->take_inputs();
   ann.send_input({1, 0, 0, false}, t.now);
   bob.send_input({0, 1, 0, false}, t.now);
-  for (std::size_t c = 0; c < 2; ++c) {
-    t.clients[c]->update(t.now);
-    for (auto& d : t.clients[c]->take_datagrams()) t.server->receive_later(t.addresses[c], d, t.now);
-  }
-  const auto again = t.server->inbox_jobs();
-  REQUIRE(again.size() == 2);
-  again[1].run(scratch);
+  t.now += 1;
+  ann.update(t.now);
+  bob.update(t.now);
+  // ann's datagram from bob's address, and bob's own, queued; then bob is kicked before the jobs run.
+  const auto from_ann = ann.take_datagrams(), from_bob = bob.take_datagrams();
+  REQUIRE(!from_ann.empty());
+  REQUIRE(!from_bob.empty());
+  for (const auto& d : from_ann) t.server->receive_later(t.addresses[1], d, t.now);
+  for (const auto& d : from_bob) t.server->receive_later(t.addresses[1], d, t.now);
+  CHECK(t.server->rejects()[Reject::address_mismatch] == 0);  // not screened yet: only its sender was
+  t.server->kick(bob.welcome()->player_id, ErrorCode::kicked, "bye", t.now);
+  std::vector<std::uint8_t> scratch;
+  for (InboxJob* job : t.server->inbox_jobs()) job->run(scratch);
   t.server->apply_inbox();
-  CHECK(t.server->take_inputs().size() == 1);
-  CHECK(t.server->rejects()[Reject::unknown_session] == 0);
+  CHECK(t.server->take_inputs().empty());
+  CHECK(t.server->rejects()[Reject::address_mismatch] == from_ann.size());
+  CHECK(t.server->rejects()[Reject::unknown_session] == from_bob.size());
 }
 
 TEST_CASE("Server jobs: a room's snapshot job holds its room's connected sessions only", "[protocol][threads]") {

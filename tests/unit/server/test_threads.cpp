@@ -135,7 +135,7 @@ TEST_CASE("Threads: while a pool runs on the endpoint, a serial call is refused 
       CHECK_THROWS_WITH(e.take_datagrams(), Catch::Contains("take_datagrams"));
       CHECK_THROWS_WITH(e.set_server_tick(1, 5), Catch::Contains("set_server_tick"));
     }
-    CHECK(e.inbox_sessions() == 0);  // const reads stay allowed
+    CHECK(e.inbox_datagrams() == 0);  // const reads stay allowed
     CHECK(e.sessions().empty());
   }
   CHECK_NOTHROW(e.update(1000));  // the phase is over

@@ -196,18 +196,18 @@ class ServerEndpoint {
 
   void receive(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
 
-  // ---- Receiving on several threads (issue 29). receive_later() makes receive()'s cheap
-  // checks at once (the sender's rate, the header, the version, the session and its
-  // address; a handshake datagram is handled at once) and queues the rest of a session's
-  // datagram. inbox_jobs() hands out one InboxJob for each session with queued datagrams
-  // (server_jobs.hpp: the session and its datagrams, nothing else), to open and apply on
-  // the pool while nothing calls the endpoint. apply_inbox() then settles what they left
-  // (inputs, commands, ended sessions) in arrival order, as receive() would have, and
-  // empties the queue. At most kMaxInbox datagrams wait; beyond, they are dropped
-  // (rate_limited).
+  // ---- Receiving on several threads (issues 29, 39). receive_later() makes receive()'s
+  // checks of the sender at once (its host's rate, the header, the version: the one
+  // shared part, AddressLimits; a handshake datagram is handled at once) and queues a
+  // session's datagram by its session id's shard. inbox_jobs() hands out one InboxJob for
+  // each shard with queued datagrams (server_jobs.hpp: the shard's sessions and its
+  // datagrams, nothing else), to screen (session_for), open and apply on the pool while
+  // nothing calls the endpoint. apply_inbox() then settles what they left (inputs,
+  // commands, ended sessions) in arrival order, as receive() would have, and empties the
+  // queue. At most kMaxInbox datagrams wait; beyond, they are dropped (rate_limited).
   void receive_later(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
-  std::span<InboxJob> inbox_jobs();
-  std::size_t inbox_sessions() const { return inbox_jobs_used_; }
+  std::span<InboxJob* const> inbox_jobs();
+  std::size_t inbox_datagrams() const { return inbox_used_; }
   void apply_inbox();
   static constexpr std::size_t kMaxInbox = 65536;
   // Timers: heartbeats, result resends, time-outs, idle players, reconnect windows. The
@@ -382,6 +382,10 @@ class ServerEndpoint {
   // receive()'s checks before the crypto: the session a sealed datagram is for, or
   // nullptr when the datagram was dealt with (dropped and counted, or a handshake).
   Session* screen(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
+  // Its first half, the checks of the sender (its host's rate, the header, the version; a
+  // handshake handled here): the session id a sealed datagram names, or 0 when dealt with.
+  // receive_later() makes only these; the InboxJob asks session_for.
+  std::uint32_t screen_sender(const Address& from, std::span<const std::uint8_t> bytes, std::uint64_t now_ms);
   // What applying a datagram of session `session_id` left for everyone (its inputs and
   // commands queued for the game; the session ended by a bye or an overflow), taken in
   // arrival order. The shared half of applying a datagram; ServerSession::apply did the rest.
@@ -434,9 +438,8 @@ class ServerEndpoint {
   // while more are queued).
   std::deque<InboxDatagram> inbox_;
   std::size_t inbox_used_ = 0;
-  std::vector<InboxJob> inbox_jobs_;  // the first inbox_jobs_used_: one per session with datagrams
-  std::size_t inbox_jobs_used_ = 0;
-  std::uint64_t inbox_round_ = 1;  // a session's inbox_job is this round's if its inbox_round is this
+  std::vector<InboxJob> inbox_jobs_;       // one per SessionShard, its datagrams this tick's
+  std::vector<InboxJob*> inbox_queued_;    // those with datagrams, in the order they got their first
   std::map<std::uint32_t, RoomSessions> by_room_;  // connected_by_room(), as of by_room_generation_
   std::vector<Session*> held_;  // the sessions not connected, as of by_room_generation_
   std::uint64_t by_room_generation_ = ~std::uint64_t{0};

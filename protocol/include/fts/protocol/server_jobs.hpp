@@ -1,10 +1,11 @@
-// What a job on the host's worker pool is handed (issue 39): one session's datagrams to
-// open, or one room's connected sessions to send a snapshot to or to keep alive, and the
-// lane it seals into; never the endpoint. Two jobs hold disjoint sessions, so the types, not a comment,
-// keep them apart. The endpoint makes them in its serial part (ServerEndpoint::inbox_jobs,
-// connected_by_room, timer_jobs); an InboxJob stays valid until the endpoint is next
-// called, a TimerJob until settle_timers takes what it found, a RoomSessions until a
-// session comes, goes, connects or drops (none does while jobs run).
+// What a job on the host's worker pool is handed (issue 39): one shard of the sessions
+// and their datagrams to screen and open, or one room's connected sessions to send a
+// snapshot to or to keep alive, and the lane it seals into; never the endpoint. Two jobs
+// hold disjoint sessions, so the types, not a comment, keep them apart. The endpoint makes
+// them in its serial part (ServerEndpoint::inbox_jobs, connected_by_room, timer_jobs); an
+// InboxJob stays valid until the endpoint is next called, a TimerJob until settle_timers
+// takes what it found, a RoomSessions until a session comes, goes, connects or drops (none
+// does while jobs run).
 #pragma once
 
 #include <cstdint>
@@ -42,28 +43,33 @@ struct SendLane {
 
 // A datagram of a session waiting in the endpoint's inbox (ServerEndpoint::receive_later).
 struct InboxDatagram {
-  std::uint32_t player_id = 0, session_id = 0;
+  std::uint32_t session_id = 0;  // its header's
+  std::uint32_t player_id = 0;   // the session's, once a job found it (0: dropped)
   std::uint64_t now_ms = 0;
+  Address from;
   std::vector<std::uint8_t> bytes;  // kept for the next datagram's copy
   Applied applied;  // what applying it left for the endpoint (its vectors kept, like bytes)
 };
 
-// One session's datagrams of this tick, to open (replay window, tag, payload) and apply
-// (ServerSession::apply) on a worker, in arrival order. Touches that session, its
-// datagrams and its own reject counts; the endpoint settles what they left, serially.
-// Datagrams of a session gone or replaced since they came, or after one that ended it,
-// are counted unknown_session.
+// The datagrams of this tick whose session ids fall in one shard (SessionShard), to
+// screen (the session their id names, connected, at their address), open (replay window,
+// tag, payload) and apply (ServerSession::apply) on a worker, in arrival order. Touches
+// the sessions of its shard, its datagrams and its own reject counts; the endpoint
+// settles what they left, serially. Datagrams of a session gone or replaced since they
+// came, or after one that ended it, are counted unknown_session.
 class InboxJob {
  public:
   // `scratch` is the calling thread's buffer (the pool keeps one per thread).
   void run(std::vector<std::uint8_t>& scratch);
+  unsigned shard() const { return sessions_.number(); }
 
  private:
   friend class ServerEndpoint;
-  ServerSession* session_ = nullptr;  // nullptr: gone
+  SessionShard sessions_;
   const ServerConfig* config_ = nullptr;
   RejectCounters rejects_;
   std::vector<InboxDatagram*> datagrams_;
+  std::vector<std::uint32_t> ended_;  // sessions a datagram of this run ended (a bye, an overflow)
 };
 
 // Seals a datagram of `messages` for `s` into `lane`; `with_results` adds the session's

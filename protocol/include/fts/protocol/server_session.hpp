@@ -1,12 +1,14 @@
 // One client's session on the server (issue 39): everything one client's datagrams touch,
 // kept by the endpoint (server.hpp) in its table of sessions by player id. A datagram
 // from a client goes through four places, each findable by name:
-//   screened  ServerEndpoint::screen (server.cpp): the sender's rate, the header, the
-//             version, the session its id names and the address it must come from; a
-//             handshake datagram goes to handle_hello (server_handshake.cpp) instead,
-//             whose Handshake (handshake.hpp) checks what the hello proves;
+//   screened  ServerEndpoint::screen (server.cpp): the sender (screen_sender: its host's
+//             rate, the header, the version), then the session its id names and the
+//             address it must come from (session_for, below: at once, or in the InboxJob
+//             of a queued datagram); a handshake datagram goes to handle_hello
+//             (server_handshake.cpp) instead, whose Handshake (handshake.hpp) checks what
+//             the hello proves;
 //   opened    open_sealed with the session's `seal` (its keys and replay window): at once
-//             in receive(), or per session on a worker in an InboxJob (server_jobs.hpp);
+//             in receive(), or on a worker in an InboxJob (server_jobs.hpp);
 //   applied   ServerSession::apply (server_session.cpp), on the session's own: its rate,
 //             acks, inputs, commands exactly once, bye; what it leaves for everyone
 //             (an Applied) is settled by ServerEndpoint::settle (server_inbox.cpp), in
@@ -112,10 +114,6 @@ struct ServerSession {
   bool spectator = false;  // no seat; inputs dropped; never idle
   bool watching = false;   // out of lives (RoomSessions::set_watching): never idle
   bool kept = false;       // past its reconnect window, kept while its room's match runs
-  // The endpoint's inbox (server_inbox.cpp): this session's InboxJob of the tick, if
-  // inbox_round is the endpoint's round (a field, not a map: no allocation per datagram).
-  std::size_t inbox_job = 0;
-  std::uint64_t inbox_round = 0;
 
   // Applies an opened datagram of this session (`opened` its decoding or why it did not
   // decode): its rate, acks, inputs (ahead of the last applied, by at most
@@ -140,6 +138,32 @@ struct ServerSession {
   // vectors only: rooms on different threads seal into lanes of their own.
   void seal_into(const Header& h, const std::vector<std::uint8_t>& payload, std::vector<Outgoing>& out,
                  std::vector<Outgoing>& spare);
+};
+
+// The session a sealed datagram from `from` may be opened for, `found` being the session
+// its header's id names (nullptr: none): connected, at that address; otherwise nullptr and
+// why counted (unknown_session, address_mismatch). screen() and an InboxJob ask it.
+ServerSession* session_for(ServerSession* found, const Address& from, RejectCounters& rejects);
+
+// The connected sessions whose session ids fall in one shard of kShards (a multiplicative
+// hash's top bits): what an InboxJob may reach. It finds no session of another shard, so
+// two jobs holding two shards never touch one session. Made by SessionTable::shard; valid
+// while no session is indexed or unindexed (none is while jobs run).
+class SessionShard {
+ public:
+  static constexpr unsigned kShardBits = 6;
+  static constexpr unsigned kShards = 1u << kShardBits;
+  static unsigned of(std::uint32_t session_id) { return (session_id * 0x9E3779B1u) >> (32 - kShardBits); }
+  unsigned number() const { return shard_; }
+  // The connected session `session_id` names, if it is of this shard; nullptr otherwise.
+  ServerSession* find(std::uint32_t session_id) const {
+    return index_ != nullptr && of(session_id) == shard_ ? index_->find(session_id) : nullptr;
+  }
+
+ private:
+  friend class SessionTable;
+  const SessionIdIndex<ServerSession>* index_ = nullptr;
+  unsigned shard_ = 0;
 };
 
 // The endpoint's sessions (issue 39): by player id, indexed by the address and the
@@ -183,6 +207,13 @@ class SessionTable {
   // The connected session at `address`, or with session id `id` (nullptr: none).
   ServerSession* at_address(const Address& address);
   ServerSession* with_session_id(std::uint32_t id);
+  // A read-only view of the sessions of shard `n` (below SessionShard::kShards) by id.
+  SessionShard shard(unsigned n) const {
+    SessionShard v;
+    v.index_ = &by_session_id_;
+    v.shard_ = n;
+    return v;
+  }
   bool session_id_taken(std::uint32_t id) const { return by_session_id_.find(id) != nullptr; }
   // The session's address and session id are its own in the indexes from now on; unindex
   // takes them out (the session stays, disconnected or gone).
@@ -202,8 +233,8 @@ class SessionTable {
 
  private:
   Map by_id_;
-  // Hashed, to the session in by_id_ (a map's nodes stay put): screen() looks every
-  // datagram up by its session id, in the serial part of a tick.
+  // Hashed, to the session in by_id_ (a map's nodes stay put): every datagram is looked
+  // up by its session id (by an InboxJob, through its shard, on the pool).
   std::unordered_map<Address, ServerSession*> by_address_;
   SessionIdIndex<ServerSession> by_session_id_;
   std::uint64_t generation_ = 0;
