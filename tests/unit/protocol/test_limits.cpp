@@ -2,6 +2,11 @@
 // next update, datagram rates per session and per host. Time is stepped by hand.
 #include <catch2/catch.hpp>
 
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
 #include "fts/sim/items.hpp"
 #include "harness.hpp"
 
@@ -85,6 +90,65 @@ TEST_CASE("Limits: the host of an address", "[protocol][limits]") {
   CHECK(host_of("[::1]:5000") == "[::1]");
   CHECK(host_of("::1") == "::1");
   CHECK(host_of("localhost") == "localhost");
+}
+
+TEST_CASE("Limits: each host keeps its own buckets across growth and forgetting", "[protocol][limits]") {
+  // A seeded walk over 600 hosts (IPv4 and IPv6), against a reference count of the
+  // datagrams each host's bucket let through: a host found again is the same host, a new
+  // one starts full, growth past every table size keeps them, forget_quiet drops only
+  // the quiet and those come back full.
+  AddressLimits::Rates r;
+  r.datagrams_per_s = 1;  // refills a token a second: taken tokens show for a while
+  r.datagram_burst = 5;
+  r.hellos_per_s = r.hello_burst = r.takeovers_per_s = r.takeover_burst = 1;
+  r.code_misses_per_min = r.code_miss_burst = 1;
+  r.max_hosts = 1000;
+  AddressLimits limits(r);
+  std::vector<std::string> names;
+  for (int i = 0; i < 300; ++i) names.push_back("10." + std::to_string(i / 250) + "." + std::to_string(i % 250) + ".7");
+  for (int i = 0; i < 300; ++i) names.push_back("[2001:db8::" + std::to_string(i) + "]");
+  std::map<std::string, int> taken;  // tokens taken since the host was (re)made
+  std::uint64_t seed = 12345;
+  const auto next = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<std::size_t>(seed >> 33);
+  };
+  const std::uint64_t now = 1000;
+  for (int step = 0; step < 4000; ++step) {
+    const std::string& h = names[next() % names.size()];
+    AddressLimits::Host* host = limits.of(h, now);
+    REQUIRE(host != nullptr);
+    const bool expect = taken[h] < 5;  // no time passes: only the burst
+    REQUIRE(host->datagrams.take(now) == expect);
+    if (expect) ++taken[h];
+    REQUIRE(limits.of(h, now) == host);  // the same host again
+  }
+  CHECK(limits.tracked() == taken.size());
+  // Ten seconds on, every bucket is full again except those taken from now: those stay.
+  const std::uint64_t later = now + 10000;
+  std::set<std::string> busy;
+  for (std::size_t i = 0; i < names.size(); i += 7) {
+    busy.insert(names[i]);
+    REQUIRE(limits.of(names[i], later)->datagrams.take(later));
+  }
+  limits.forget_quiet(later);
+  CHECK(limits.tracked() == busy.size());
+  for (const auto& h : busy) {  // kept: the token taken is still missing (burst 5, 4 left)
+    AddressLimits::Host* host = limits.of(h, later);
+    for (int i = 0; i < 4; ++i) REQUIRE(host->datagrams.take(later));
+    CHECK_FALSE(host->datagrams.take(later));
+  }
+  CHECK(limits.tracked() == busy.size());
+  AddressLimits::Host* back = limits.of(names[1], later);  // forgotten: made again, full
+  for (int i = 0; i < 5; ++i) REQUIRE(back->datagrams.take(later));
+  CHECK(limits.tracked() == busy.size() + 1);
+  // Past max_hosts a new host is not tracked; a tracked one still is.
+  r.max_hosts = 2;
+  AddressLimits small(r);
+  CHECK(small.of("a", now) != nullptr);
+  CHECK(small.of("b", now) != nullptr);
+  CHECK(small.of("c", now) == nullptr);
+  CHECK(small.of("a", now) == small.of("a", now));
 }
 
 TEST_CASE("Limits: results ride the next update, batched", "[protocol][limits]") {
