@@ -21,6 +21,7 @@ unsigned WorkerPool::usable_cores() {
 WorkerPool::WorkerPool(unsigned threads) {
   if (threads == 0) threads = usable_cores();
   done_.assign(threads, 0);
+  shares_ = std::make_unique<Share[]>(threads);
   workers_.reserve(threads - 1);
   for (std::size_t slot = 1; slot < threads; ++slot) workers_.emplace_back([this, slot] { work(slot); });
 }
@@ -34,18 +35,22 @@ WorkerPool::~WorkerPool() {
   for (auto& t : workers_) t.join();
 }
 
-// Takes indices until none is left and runs them; how many it ran. The first exception
-// is kept for run().
+// Takes indices until none is left and runs them, its own share first, then the others'
+// in turn; how many it ran. The first exception is kept for run().
 std::uint64_t WorkerPool::claim(std::size_t slot) {
   std::uint64_t ran = 0;
-  for (std::size_t i = next_.fetch_add(1, std::memory_order_relaxed); i < n_;
-       i = next_.fetch_add(1, std::memory_order_relaxed)) {
-    ++ran;
-    try {
-      (*job_)(i, slot);
-    } catch (...) {
-      std::lock_guard lock(mu_);
-      if (!error_) error_ = std::current_exception();
+  const std::size_t threads = done_.size();
+  for (std::size_t k = 0; k < threads; ++k) {
+    Share& share = shares_[(slot + k) % threads];
+    for (std::size_t i = share.next.fetch_add(1, std::memory_order_relaxed); i < share.end;
+         i = share.next.fetch_add(1, std::memory_order_relaxed)) {
+      ++ran;
+      try {
+        (*job_)(i, slot);
+      } catch (...) {
+        std::lock_guard lock(mu_);
+        if (!error_) error_ = std::current_exception();
+      }
     }
   }
   return ran;
@@ -94,7 +99,11 @@ void WorkerPool::run(std::size_t n, const Job& job) {
     std::lock_guard lock(mu_);
     job_ = &job;
     n_ = n;
-    next_.store(0, std::memory_order_relaxed);
+    const std::size_t threads = done_.size();
+    for (std::size_t k = 0; k < threads; ++k) {
+      shares_[k].next.store(k * n / threads, std::memory_order_relaxed);
+      shares_[k].end = (k + 1) * n / threads;
+    }
     finished_ = 0;
     error_ = nullptr;
     published_.store(++generation_, std::memory_order_release);

@@ -9,8 +9,10 @@
 // caller waits for the jobs, never for a worker that did not wake in time (it then runs
 // the jobs itself: an overloaded machine costs speed, not a stall). A
 // room's state is therefore touched by one thread at a time, and which thread that is
-// changes nothing a room computes: each index is claimed from an atomic counter, so
-// the rooms spread over the threads by their cost, not by a fixed assignment.
+// changes nothing a room computes: each index is claimed from an atomic cursor, a
+// thread's own share of the indices first, then what is left of the others' (so a room
+// keeps to one thread while the threads keep pace, and the rooms still spread over the
+// threads by their cost when they do not).
 // The jobs must not touch what another index's job touches; they may throw: the first
 // exception is rethrown by run() on the caller once every job has finished.
 #pragma once
@@ -22,6 +24,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -53,7 +56,16 @@ class WorkerPool {
   std::condition_variable start_cv_, done_cv_;
   const Job* job_ = nullptr;
   std::size_t n_ = 0;
-  std::atomic<std::size_t> next_{0};
+  // Each thread's share of a run's indices (slot k: [k n / T, (k + 1) n / T)), taken from
+  // the front by its own thread first, then by any thread whose share is done: a room's
+  // jobs (its timers, its step, its snapshots) fall to the same thread phase after phase
+  // and tick after tick while the threads keep pace, so its state stays in that core's
+  // caches. Each on a cache line of its own.
+  struct alignas(64) Share {
+    std::atomic<std::size_t> next{0};
+    std::size_t end = 0;
+  };
+  std::unique_ptr<Share[]> shares_;
   std::uint64_t generation_ = 0;  // one per run(): a worker joins each run at most once
   std::atomic<std::uint64_t> published_{0};  // generation_, read without the lock while spinning
   // How long a worker that finished a run spins for the next before it sleeps (a tick's

@@ -4,6 +4,8 @@
 // the same snapshots, and the host's datagrams leave in the same order (to, size).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -113,6 +115,11 @@ TEST_CASE("Threads: the pool runs every job once per run and rethrows a job's ex
   int after = 0;
   pool.run(1, [&](std::size_t, std::size_t) { ++after; });  // still works
   CHECK(after == 1);
+  for (std::size_t n : {2, 3, 7, 64}) {  // shares of every size, some empty: each index once
+    std::vector<int> once(n, 0);
+    pool.run(n, [&](std::size_t i, std::size_t) { ++once.at(i); });
+    CHECK(std::count(once.begin(), once.end(), 1) == static_cast<std::ptrdiff_t>(n));
+  }
   CHECK(server::WorkerPool(0).threads() == server::WorkerPool::usable_cores());
 }
 
