@@ -27,7 +27,6 @@ void ServerEndpoint::receive_later(const Address& from, std::span<const std::uin
   q.from = from;
   q.bytes.assign(bytes.begin(), bytes.end());
   q.applied.clear();
-  if (inbox_jobs_.empty()) inbox_jobs_.resize(SessionShard::kShards);  // (never again: inbox_queued_ points in)
   InboxJob& job = inbox_jobs_[SessionShard::of(session_id)];
   if (job.datagrams_.empty()) inbox_queued_.push_back(&job);
   job.datagrams_.push_back(&q);

@@ -438,7 +438,8 @@ class ServerEndpoint {
   // while more are queued).
   std::deque<InboxDatagram> inbox_;
   std::size_t inbox_used_ = 0;
-  std::vector<InboxJob> inbox_jobs_;       // one per SessionShard, its datagrams this tick's
+  // One per SessionShard, its datagrams this tick's; never resized (inbox_queued_ points in).
+  std::vector<InboxJob> inbox_jobs_ = std::vector<InboxJob>(SessionShard::kShards);
   std::vector<InboxJob*> inbox_queued_;    // those with datagrams, in the order they got their first
   std::map<std::uint32_t, RoomSessions> by_room_;  // connected_by_room(), as of by_room_generation_
   std::vector<Session*> held_;  // the sessions not connected, as of by_room_generation_
